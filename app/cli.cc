@@ -1,0 +1,61 @@
+#include "app/cli.h"
+
+#include <CLI/CLI.hpp>
+#include <spdlog/sinks/stdout_color_sinks.h>
+#include <spdlog/spdlog.h>
+
+#include <functional>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include "app/capture_command.h"
+
+namespace sortcell::app {
+namespace {
+
+std::string OneLine(std::string text) {
+  for (char& c : text) {
+    if (c == '\n' || c == '\r') c = ' ';
+  }
+  return text;
+}
+
+}  // namespace
+
+int RunCli(int argc, char** argv) {
+  spdlog::set_default_logger(spdlog::stderr_color_mt("sortcell"));
+  spdlog::set_pattern("[%l] %v");
+  const std::vector<std::string> command_line(argv, argv + argc);
+
+  CLI::App app{
+      "SortCell: a simulated robotic sorting cell (UR5, parallel gripper, Kinect v1, Color-CVFH + SVM).\n"
+      "World frame = UR Base frame (D-H frame 0), z up, table top at z = 0."};
+  app.require_subcommand(1);
+  std::function<int()> run;
+  AddCaptureCommand(app, run, command_line);
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::Success& e) {
+    return app.exit(e);  // --help
+  } catch (const CLI::ParseError& e) {
+    std::string message = OneLine(e.what());
+    if (argc > 1 && argv[1][0] != '-' && app.get_subcommands().empty()) {
+      std::string names;
+      for (const CLI::App* sub : app.get_subcommands({})) names += (names.empty() ? "" : ", ") + sub->get_name();
+      message = "unknown command '" + std::string(argv[1]) + "' (commands: " + names + ")";
+    }
+    std::cerr << "sortcell: error: " << message << " (see sortcell --help)\n";
+    return 2;
+  }
+  try {
+    return run ? run() : 2;
+  } catch (const std::exception& e) {
+    std::cerr << "sortcell " << (app.get_subcommands().empty() ? "" : app.get_subcommands().front()->get_name())
+              << ": error: " << OneLine(e.what()) << "\n";
+    return 2;
+  }
+}
+
+}  // namespace sortcell::app

@@ -1,0 +1,90 @@
+// Per-stage cost of one synthetic Kinect frame of the default cell (640x480): colour + depth render,
+// segmentation render, depth conversion, noise model, organized cloud, and the whole capture.
+//   build/bench/kinect_benchmark
+#include <benchmark/benchmark.h>
+
+#include <memory>
+
+#include "sim/kinect_camera.h"
+#include "sim/model.h"
+#include "sim/offscreen_renderer.h"
+#include "sim/point_cloud.h"
+
+namespace {
+
+using namespace sortcell::sim;
+
+struct Cell {
+  Model model = Model::FromFile(SORTCELL_SOURCE_DIR "/scenes/cell.xml");
+  Data data{model};
+  Cell() {
+    mj_resetDataKeyframe(model.get(), data.get(), mj_name2id(model.get(), mjOBJ_KEY, "observe"));
+    mj_forward(model.get(), data.get());
+  }
+};
+
+Cell& TheCell() {
+  static Cell cell;
+  return cell;
+}
+
+RenderView KinectView(const Cell& cell) { return {cell.model.Id(mjOBJ_CAMERA, "kinect"), 640, 480}; }
+
+void BM_RenderColourDepth(benchmark::State& state) {
+  Cell& cell = TheCell();
+  OffscreenRenderer renderer(cell.model);
+  cv::Mat rgb, depth;
+  for (auto _ : state) renderer.Render(cell.data, KinectView(cell), rgb, depth);
+}
+BENCHMARK(BM_RenderColourDepth)->Unit(benchmark::kMillisecond);
+
+void BM_RenderSegmentation(benchmark::State& state) {
+  Cell& cell = TheCell();
+  OffscreenRenderer renderer(cell.model);
+  cv::Mat ids;
+  for (auto _ : state) renderer.RenderGeomIds(cell.data, KinectView(cell), ids);
+}
+BENCHMARK(BM_RenderSegmentation)->Unit(benchmark::kMillisecond);
+
+void BM_LinearizeDepth(benchmark::State& state) {
+  Cell& cell = TheCell();
+  OffscreenRenderer renderer(cell.model);
+  cv::Mat rgb, buffer;
+  renderer.Render(cell.data, KinectView(cell), rgb, buffer);
+  for (auto _ : state) benchmark::DoNotOptimize(LinearizeDepth(buffer, DepthRangeOf(cell.model)));
+}
+BENCHMARK(BM_LinearizeDepth)->Unit(benchmark::kMillisecond);
+
+void BM_KinectNoise(benchmark::State& state) {
+  Cell& cell = TheCell();
+  KinectCamera kinect(cell.model);
+  const KinectFrame clean = kinect.Capture(cell.data, nullptr, nullptr);
+  const KinectNoiseParams params;
+  std::mt19937_64 rng(1);
+  for (auto _ : state) benchmark::DoNotOptimize(ApplyKinectNoise(clean.depth, clean.intrinsics, params, rng));
+}
+BENCHMARK(BM_KinectNoise)->Unit(benchmark::kMillisecond);
+
+void BM_OrganizedCloud(benchmark::State& state) {
+  Cell& cell = TheCell();
+  KinectCamera kinect(cell.model);
+  const KinectFrame frame = kinect.Capture(cell.data, nullptr, nullptr);
+  for (auto _ : state) benchmark::DoNotOptimize(ToOrganizedCloud(frame));
+}
+BENCHMARK(BM_OrganizedCloud)->Unit(benchmark::kMillisecond);
+
+void BM_FullCapture(benchmark::State& state) {
+  Cell& cell = TheCell();
+  KinectCamera kinect(cell.model);
+  const KinectNoiseParams params;
+  std::mt19937_64 rng(1);
+  for (auto _ : state) {
+    const KinectFrame frame = kinect.Capture(cell.data, &params, &rng);
+    benchmark::DoNotOptimize(ToOrganizedCloud(frame));
+  }
+}
+BENCHMARK(BM_FullCapture)->Unit(benchmark::kMillisecond);
+
+}  // namespace
+
+BENCHMARK_MAIN();

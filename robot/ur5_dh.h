@@ -1,0 +1,28 @@
+#pragma once
+/// @file
+/// The UR5 (CB-series) Denavit-Hartenberg table, the single source of the arm's kinematic constants.
+/// Frame 0 is the UR controller's Base frame (= the world frame W of the cell), frame 6 the tool
+/// flange. Standard D-H: T_{i-1,i} = Rz(theta_i) Tz(d_i) Tx(a_i) Rx(alpha_i), theta_i = q_i (no offsets).
+
+#include <array>
+#include <cmath>
+
+namespace sortcell::robot {
+
+struct DhRow {
+  double d;      ///< m, along z_{i-1}
+  double a;      ///< m, along x_i
+  double alpha;  ///< rad, about x_i
+};
+
+/// UR5 CB-series (not UR5e).
+inline constexpr std::array<DhRow, 6> kUr5Dh = {{
+    {0.089159, 0.0, M_PI / 2},
+    {0.0, -0.42500, 0.0},
+    {0.0, -0.39225, 0.0},
+    {0.10915, 0.0, M_PI / 2},
+    {0.09465, 0.0, -M_PI / 2},
+    {0.0823, 0.0, 0.0},
+}};
+
+}  // namespace sortcell::robot

@@ -1,0 +1,54 @@
+#include "sim/kinect_camera.h"
+
+#include <stdexcept>
+
+namespace sortcell::sim {
+
+KinectCamera::KinectCamera(const Model& model, const std::string& camera_name, int width, int height)
+    : model_(model),
+      camera_id_(model.Id(mjOBJ_CAMERA, camera_name)),
+      intrinsics_(IntrinsicsOf(model, camera_id_, width, height)),
+      renderer_(model),
+      object_names_(FreeBodyNames(model)) {
+  if (width > renderer_.max_width() || height > renderer_.max_height()) {
+    throw std::invalid_argument("scene '" + model.source() + "': camera '" + camera_name + "' at " +
+                                std::to_string(width) + "x" + std::to_string(height) +
+                                " needs <visual><global offwidth offheight> at least that large, found " +
+                                std::to_string(renderer_.max_width()) + "x" + std::to_string(renderer_.max_height()));
+  }
+  // Objects are the free bodies; every geom in an object's subtree carries its label.
+  std::vector<uint16_t> body_label(model->nbody, 0);
+  for (size_t i = 0; i < object_names_.size(); ++i) {
+    body_label[model.Id(mjOBJ_BODY, object_names_[i])] = static_cast<uint16_t>(i + 1);
+  }
+  geom_label_.assign(model->ngeom, 0);
+  for (int g = 0; g < model->ngeom; ++g) {
+    int b = model->geom_bodyid[g];
+    while (b > 0 && body_label[b] == 0) b = model->body_parentid[b];
+    geom_label_[g] = body_label[b];
+  }
+}
+
+KinectFrame KinectCamera::Capture(const Data& data, const KinectNoiseParams* noise, std::mt19937_64* rng) {
+  if (noise != nullptr && rng == nullptr) throw std::invalid_argument("KinectCamera::Capture: noise needs an rng");
+  const RenderView view{camera_id_, intrinsics_.width, intrinsics_.height};
+  KinectFrame frame;
+  frame.intrinsics = intrinsics_;
+  frame.X_WC = CameraPoseInWorld(model_, data, camera_id_);
+  cv::Mat depth_buffer;
+  renderer_.Render(data, view, frame.rgb, depth_buffer);
+  const cv::Mat clean = LinearizeDepth(depth_buffer, DepthRangeOf(model_));
+  frame.depth = noise != nullptr ? ApplyKinectNoise(clean, intrinsics_, *noise, *rng) : clean;
+
+  cv::Mat geom_ids;
+  renderer_.RenderGeomIds(data, view, geom_ids);
+  frame.labels.create(geom_ids.size(), CV_16UC1);
+  for (int r = 0; r < geom_ids.rows; ++r) {
+    const int* g = geom_ids.ptr<int>(r);
+    uint16_t* l = frame.labels.ptr<uint16_t>(r);
+    for (int c = 0; c < geom_ids.cols; ++c) l[c] = g[c] >= 0 ? geom_label_[g[c]] : 0;
+  }
+  return frame;
+}
+
+}  // namespace sortcell::sim

@@ -1,0 +1,53 @@
+#pragma once
+/// @file
+/// The synthetic Kinect v1: one fixed camera of the scene rendered off-screen to registered colour
+/// and depth, with the Kinect noise model, plus a ground-truth object label image for scoring.
+
+#include <Eigen/Geometry>
+#include <opencv2/core/mat.hpp>
+
+#include <random>
+#include <string>
+#include <vector>
+
+#include "sim/camera_model.h"
+#include "sim/kinect_noise.h"
+#include "sim/model.h"
+#include "sim/offscreen_renderer.h"
+
+namespace sortcell::sim {
+
+/// One capture. Colour and depth are registered (same pinhole, same pixel grid).
+struct KinectFrame {
+  cv::Mat rgb;     ///< CV_8UC3, RGB order, top row first.
+  cv::Mat depth;   ///< CV_32FC1, planar depth in metres, NaN where the sensor gives none.
+  cv::Mat labels;  ///< CV_16UC1 ground truth: 0 = no object, i = object_names[i - 1]. Scoring only.
+  CameraIntrinsics intrinsics;
+  Eigen::Isometry3d X_WC = Eigen::Isometry3d::Identity();  ///< Optical frame C in the world.
+};
+
+class KinectCamera {
+ public:
+  /// @throws std::invalid_argument naming the scene if it has no camera `camera_name` or its
+  ///         off-screen buffer is smaller than width x height.
+  KinectCamera(const Model& model, const std::string& camera_name = "kinect", int width = 640, int height = 480);
+
+  /// Renders the current state. With `noise` null the depth is ideal (NaN only where nothing was
+  /// drawn); otherwise the Kinect noise model is applied, driven by `rng`.
+  /// @throws std::invalid_argument if `noise` is given without `rng`.
+  KinectFrame Capture(const Data& data, const KinectNoiseParams* noise, std::mt19937_64* rng);
+
+  /// Names of the objects the label image numbers (the scene's free bodies, in body order).
+  const std::vector<std::string>& object_names() const { return object_names_; }
+  const CameraIntrinsics& intrinsics() const { return intrinsics_; }
+
+ private:
+  const Model& model_;
+  int camera_id_;
+  CameraIntrinsics intrinsics_;
+  OffscreenRenderer renderer_;
+  std::vector<std::string> object_names_;
+  std::vector<uint16_t> geom_label_;  // Per geom: the label of the object it belongs to, or 0.
+};
+
+}  // namespace sortcell::sim

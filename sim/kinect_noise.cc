@@ -1,0 +1,139 @@
+#include "sim/kinect_noise.h"
+
+#include <Eigen/Core>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+namespace sortcell::sim {
+namespace {
+
+constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
+
+Eigen::Vector3d BackProject(const CameraIntrinsics& k, int u, int v, double z) {
+  return {(u - k.cx) * z / k.fx, (v - k.cy) * z / k.fy, z};
+}
+
+// Neighbour offsets used for a tangent: the central difference when both sides lie on the same
+// surface, else the one-sided difference to the closer side, else none.
+bool Tangent(const cv::Mat& depth, const CameraIntrinsics& k, int u, int v, int du, int dv, Eigen::Vector3d& t) {
+  const float z0 = depth.at<float>(v, u);
+  auto sample = [&](int s, Eigen::Vector3d& p) {
+    const int uu = u + s * du, vv = v + s * dv;
+    if (uu < 0 || vv < 0 || uu >= depth.cols || vv >= depth.rows) return false;
+    const float z = depth.at<float>(vv, uu);
+    // A jump of more than 3 % of the depth between neighbours is an edge, not one surface.
+    if (!std::isfinite(z) || std::abs(z - z0) > 0.03f * z0) return false;
+    p = BackProject(k, uu, vv, z);
+    return true;
+  };
+  Eigen::Vector3d plus = Eigen::Vector3d::Zero(), minus = Eigen::Vector3d::Zero();
+  const bool has_plus = sample(1, plus), has_minus = sample(-1, minus);
+  const Eigen::Vector3d centre = BackProject(k, u, v, z0);
+  if (has_plus && has_minus) t = plus - minus;
+  else if (has_plus) t = plus - centre;
+  else if (has_minus) t = centre - minus;
+  else return false;
+  return true;
+}
+
+}  // namespace
+
+double AxialSigma(const KinectNoiseParams& p, double z, double theta) {
+  double sigma = p.axial_a_m + p.axial_b_per_m * (z - p.axial_c_m) * (z - p.axial_c_m);
+  if (theta > p.steep_angle_rad) {
+    const double rest = std::max(M_PI / 2 - theta, 1e-3);
+    sigma += p.steep_gain / std::sqrt(z) * theta * theta / (rest * rest);
+  }
+  return sigma * p.noise_scale;
+}
+
+double QuantizationStep(const KinectNoiseParams& p, double z) {
+  return z * z / (p.ir_focal_px * p.baseline_m * p.subpixel);
+}
+
+cv::Mat IncidenceAngles(const cv::Mat& depth, const CameraIntrinsics& k) {
+  cv::Mat theta(depth.size(), CV_32FC1, cv::Scalar(kNaN));
+  for (int v = 0; v < depth.rows; ++v) {
+    for (int u = 0; u < depth.cols; ++u) {
+      const float z = depth.at<float>(v, u);
+      if (!std::isfinite(z)) continue;
+      Eigen::Vector3d tu, tv;
+      if (!Tangent(depth, k, u, v, 1, 0, tu) || !Tangent(depth, k, u, v, 0, 1, tv)) continue;
+      const Eigen::Vector3d n = tu.cross(tv);
+      const double norm = n.norm();
+      if (norm <= 0) continue;
+      const Eigen::Vector3d ray = BackProject(k, u, v, z).normalized();
+      const double c = std::min(1.0, std::abs(n.dot(ray)) / norm);
+      theta.at<float>(v, u) = static_cast<float>(std::acos(c));
+    }
+  }
+  return theta;
+}
+
+cv::Mat ProjectorShadowMask(const cv::Mat& depth, const CameraIntrinsics& k, double baseline_m) {
+  // The projector, baseline_m along +x, sees pixel u at u_p = u - fx b / z. Scanning a row from the
+  // right, a pixel is hidden from the projector when something to its right maps further left.
+  cv::Mat mask(depth.size(), CV_8UC1, cv::Scalar(0));
+  const double fb = k.fx * baseline_m;
+  for (int v = 0; v < depth.rows; ++v) {
+    const float* z = depth.ptr<float>(v);
+    unsigned char* m = mask.ptr<unsigned char>(v);
+    double min_up = std::numeric_limits<double>::infinity();
+    for (int u = depth.cols - 1; u >= 0; --u) {
+      if (!std::isfinite(z[u])) continue;
+      const double up = u - fb / z[u];
+      if (up > min_up + 0.5) m[u] = 255;  // Half a pixel of slack for sampling.
+      min_up = std::min(min_up, up);
+    }
+  }
+  return mask;
+}
+
+cv::Mat ApplyKinectNoise(const cv::Mat& clean, const CameraIntrinsics& k, const KinectNoiseParams& p,
+                         std::mt19937_64& rng) {
+  if (clean.type() != CV_32FC1 || clean.cols != k.width || clean.rows != k.height) {
+    throw std::invalid_argument("ApplyKinectNoise: expected a CV_32FC1 depth image of " + std::to_string(k.width) +
+                                "x" + std::to_string(k.height));
+  }
+  const cv::Mat theta = IncidenceAngles(clean, k);
+  const cv::Mat shadow = p.shadows ? ProjectorShadowMask(clean, k, p.baseline_m)
+                                   : cv::Mat(clean.size(), CV_8UC1, cv::Scalar(0));
+  std::normal_distribution<double> gauss(0.0, 1.0);
+  std::uniform_real_distribution<double> uniform(0.0, 1.0);
+  const double disparity_scale = p.ir_focal_px * p.baseline_m;  // disparity (px) = scale / z
+
+  cv::Mat out(clean.size(), CV_32FC1, cv::Scalar(kNaN));
+  for (int v = 0; v < clean.rows; ++v) {
+    for (int u = 0; u < clean.cols; ++u) {
+      // The same number of draws for every pixel keeps the noise of one pixel independent of
+      // what the rest of the image holds.
+      const double n_u = gauss(rng), n_v = gauss(rng), n_z = gauss(rng), drop = uniform(rng);
+      const float t0 = theta.at<float>(v, u);
+      const double t_here = std::isfinite(t0) ? t0 : 0.0;
+      const double sigma_l = p.noise_scale * (p.lateral_a_px + p.lateral_b_px * t_here / std::max(M_PI / 2 - t_here, 1e-3));
+      const int su = std::clamp(static_cast<int>(std::lround(u + sigma_l * n_u)), 0, clean.cols - 1);
+      const int sv = std::clamp(static_cast<int>(std::lround(v + sigma_l * n_v)), 0, clean.rows - 1);
+      const float z = clean.at<float>(sv, su);
+      if (!std::isfinite(z) || shadow.at<unsigned char>(sv, su)) continue;
+      if (z < p.min_range_m || z > p.max_range_m) continue;
+      const float ts = theta.at<float>(sv, su);
+      const double t = std::isfinite(ts) ? ts : 0.0;
+      const double p_drop = (t - p.grazing_start_rad) / (p.grazing_end_rad - p.grazing_start_rad);
+      if (drop < p_drop) continue;
+      double noisy = z + AxialSigma(p, z, t) * n_z;
+      if (p.quantize) {
+        const double disparity = std::round(disparity_scale / noisy * p.subpixel) / p.subpixel;
+        if (disparity <= 0) continue;
+        noisy = disparity_scale / disparity;
+      }
+      if (noisy < p.min_range_m || noisy > p.max_range_m) continue;
+      out.at<float>(v, u) = static_cast<float>(noisy);
+    }
+  }
+  return out;
+}
+
+}  // namespace sortcell::sim

@@ -1,0 +1,84 @@
+#pragma once
+/// @file
+/// RAII ownership of MuJoCo's compiled model (immutable, shared) and per-episode data.
+
+#include <mujoco/mujoco.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace sortcell::sim {
+
+/// A compiled MJCF model. Immutable after loading; many Data may share one Model.
+class Model {
+ public:
+  /// Loads and compiles an MJCF (or URDF) file.
+  /// @throws std::invalid_argument naming the file if it is missing, unreadable or does not compile
+  ///         (with MuJoCo's message, which names the element and line).
+  static Model FromFile(const std::string& path);
+
+  /// A file held in memory: its name (no directory) and its text.
+  struct VirtualFile {
+    std::string name;
+    std::string text;
+  };
+  /// Compiles files held in memory (MuJoCo's virtual file system); the first is the main file.
+  /// Includes of other virtual files use their bare names; includes of files on disk must be
+  /// absolute paths (MuJoCo 2.2 prefixes includes with the main file's directory, which is empty
+  /// here). `name` names the model in error messages.
+  /// @throws std::invalid_argument with `name` and MuJoCo's message if it does not compile.
+  static Model FromVirtualFiles(const std::vector<VirtualFile>& files, const std::string& name);
+
+  const mjModel* get() const { return model_.get(); }
+  const mjModel* operator->() const { return model_.get(); }
+  /// Mutable access for scene variation (lighting, friction, masses) before an episode starts.
+  mjModel* mutable_get() { return model_.get(); }
+  /// The file (or name) this model came from.
+  const std::string& source() const { return source_; }
+  /// The compiler's warning text, empty when the model compiled cleanly.
+  const std::string& compile_warning() const { return compile_warning_; }
+
+  /// Id of a named element. @throws std::invalid_argument naming the model, kind and name if absent.
+  int Id(mjtObj type, const std::string& name) const;
+
+ private:
+  struct Deleter {
+    void operator()(mjModel* m) const { mj_deleteModel(m); }
+  };
+  Model(mjModel* model, std::string source, std::string warning);
+  std::unique_ptr<mjModel, Deleter> model_;
+  std::string source_;
+  std::string compile_warning_;
+};
+
+/// Simulation state for one model.
+class Data {
+ public:
+  explicit Data(const Model& model);
+  mjData* get() { return data_.get(); }
+  const mjData* get() const { return data_.get(); }
+  mjData* operator->() { return data_.get(); }
+  const mjData* operator->() const { return data_.get(); }
+
+ private:
+  struct Deleter {
+    void operator()(mjData* d) const { mj_deleteData(d); }
+  };
+  std::unique_ptr<mjData, Deleter> data_;
+};
+
+/// Outcome of advancing the simulation: kOk, or kDiverged when MuJoCo flagged an unstable state
+/// (2.2 silently resets a diverged state and only bumps d->warning[]).
+struct StepStatus {
+  enum Code { kOk, kDiverged, kWarning } code = kOk;
+  std::string detail;  ///< The warning's name and count when code != kOk.
+};
+
+/// Steps `n` times and checks d->warning[] for counters that grew during these steps.
+StepStatus Step(const Model& model, Data& data, int n = 1);
+
+/// Names of the free bodies (the movable objects), in body order.
+std::vector<std::string> FreeBodyNames(const Model& model);
+
+}  // namespace sortcell::sim

@@ -1,0 +1,156 @@
+#include "sim/offscreen_renderer.h"
+
+#include <GL/osmesa.h>
+#include <mujoco/mujoco.h>
+
+#include <cstring>
+#include <mutex>
+#include <stdexcept>
+#include <vector>
+
+#include "sim/mujoco_handlers.h"
+
+namespace sortcell::sim {
+namespace {
+
+// One OSMesa context per process. MuJoCo renders into its own off-screen framebuffer, so the
+// context's window buffer only needs to exist, not to be large.
+class GlContext {
+ public:
+  static GlContext& Instance() {
+    static GlContext context;
+    return context;
+  }
+  void MakeCurrent() {
+    if (!OSMesaMakeCurrent(context_, buffer_.data(), GL_UNSIGNED_BYTE, kSize, kSize)) {
+      throw std::runtime_error("OSMesa: OSMesaMakeCurrent failed");
+    }
+  }
+
+ private:
+  static constexpr int kSize = 64;
+  GlContext() : buffer_(kSize * kSize * 4) {
+    context_ = OSMesaCreateContextExt(OSMESA_RGBA, 24, 8, 0, nullptr);
+    if (context_ == nullptr) throw std::runtime_error("OSMesa: cannot create an off-screen GL context");
+    MakeCurrent();
+  }
+  ~GlContext() { OSMesaDestroyContext(context_); }
+  OSMesaContext context_ = nullptr;
+  std::vector<unsigned char> buffer_;
+};
+
+}  // namespace
+
+struct OffscreenRenderer::Impl {
+  const Model* model = nullptr;
+  mjvScene scene;
+  mjvOption option;
+  mjrContext context;
+  std::vector<unsigned char> rgb_buffer;
+  std::vector<float> depth_buffer;
+
+  void CheckView(const RenderView& view) const {
+    const mjModel* m = model->get();
+    if (view.camera_id < 0 || view.camera_id >= m->ncam) {
+      throw std::invalid_argument("scene '" + model->source() + "': camera id " +
+                                  std::to_string(view.camera_id) + " does not exist");
+    }
+    if (view.width <= 0 || view.height <= 0 || view.width > context.offWidth ||
+        view.height > context.offHeight) {
+      throw std::invalid_argument(
+          "scene '" + model->source() + "': a " + std::to_string(view.width) + "x" +
+          std::to_string(view.height) + " render needs <visual><global offwidth offheight> at least that " +
+          "large, found " + std::to_string(context.offWidth) + "x" + std::to_string(context.offHeight));
+    }
+  }
+
+  // Draws the view into the off-screen buffer and reads it back (rows bottom-up, as GL gives them).
+  void Draw(const Data& data, const RenderView& view, bool segmentation, bool want_depth) {
+    CheckView(view);
+    GlContext::Instance().MakeCurrent();
+    mjvCamera camera;
+    mjv_defaultCamera(&camera);
+    camera.type = mjCAMERA_FIXED;
+    camera.fixedcamid = view.camera_id;
+    scene.flags[mjRND_SEGMENT] = segmentation ? 1 : 0;
+    scene.flags[mjRND_IDCOLOR] = segmentation ? 1 : 0;
+    // mjv_updateScene only reads the simulation state, but its signature is not const-correct.
+    mjv_updateScene(model->get(), const_cast<mjData*>(data.get()), &option, nullptr, &camera, mjCAT_ALL,
+                    &scene);
+    const mjrRect viewport = {0, 0, view.width, view.height};
+    mjr_render(viewport, &scene, &context);
+    const size_t pixels = static_cast<size_t>(view.width) * view.height;
+    rgb_buffer.resize(3 * pixels);
+    depth_buffer.resize(pixels);
+    mjr_readPixels(rgb_buffer.data(), want_depth ? depth_buffer.data() : nullptr, viewport, &context);
+  }
+};
+
+OffscreenRenderer::OffscreenRenderer(const Model& model) : impl_(std::make_unique<Impl>()) {
+  InstallMujocoHandlers();
+  impl_->model = &model;
+  GlContext::Instance().MakeCurrent();
+  mjv_defaultScene(&impl_->scene);
+  mjv_makeScene(model.get(), &impl_->scene, 4000);
+  mjv_defaultOption(&impl_->option);
+  for (int g = 0; g < mjNGROUP; ++g) {
+    impl_->option.geomgroup[g] = g <= 2 ? 1 : 0;
+    impl_->option.sitegroup[g] = 0;
+  }
+  for (int f = 0; f < mjNVISFLAG; ++f) impl_->option.flags[f] = 0;
+  impl_->option.flags[mjVIS_TEXTURE] = 1;
+  impl_->option.flags[mjVIS_STATIC] = 1;
+  impl_->option.flags[mjVIS_SKIN] = 1;
+  mjr_defaultContext(&impl_->context);
+  mjr_makeContext(model.get(), &impl_->context, mjFONTSCALE_100);
+  mjr_setBuffer(mjFB_OFFSCREEN, &impl_->context);
+  if (impl_->context.currentBuffer != mjFB_OFFSCREEN) {
+    throw std::runtime_error("OSMesa: MuJoCo's off-screen framebuffer is not available");
+  }
+}
+
+OffscreenRenderer::~OffscreenRenderer() {
+  GlContext::Instance().MakeCurrent();
+  mjr_freeContext(&impl_->context);
+  mjv_freeScene(&impl_->scene);
+}
+
+int OffscreenRenderer::max_width() const { return impl_->context.offWidth; }
+int OffscreenRenderer::max_height() const { return impl_->context.offHeight; }
+
+void OffscreenRenderer::Render(const Data& data, const RenderView& view, cv::Mat& rgb, cv::Mat& depth_buffer) {
+  impl_->Draw(data, view, /*segmentation=*/false, /*want_depth=*/true);
+  rgb.create(view.height, view.width, CV_8UC3);
+  depth_buffer.create(view.height, view.width, CV_32FC1);
+  const size_t row_rgb = 3 * static_cast<size_t>(view.width);
+  for (int r = 0; r < view.height; ++r) {
+    const int src = view.height - 1 - r;  // GL rows are bottom-up.
+    std::memcpy(rgb.ptr<unsigned char>(r), impl_->rgb_buffer.data() + src * row_rgb, row_rgb);
+    std::memcpy(depth_buffer.ptr<float>(r), impl_->depth_buffer.data() + static_cast<size_t>(src) * view.width,
+                sizeof(float) * view.width);
+  }
+}
+
+void OffscreenRenderer::RenderGeomIds(const Data& data, const RenderView& view, cv::Mat& geom_ids) {
+  impl_->Draw(data, view, /*segmentation=*/true, /*want_depth=*/false);
+  // Each drawn mjvGeom is coloured segid + 1 (little-endian RGB); 0 is the background.
+  std::vector<int> segid_to_geom(impl_->scene.ngeom, -1);
+  for (int i = 0; i < impl_->scene.ngeom; ++i) {
+    const mjvGeom& g = impl_->scene.geoms[i];
+    if (g.segid >= 0 && g.segid < impl_->scene.ngeom && g.objtype == mjOBJ_GEOM) {
+      segid_to_geom[g.segid] = g.objid;
+    }
+  }
+  geom_ids.create(view.height, view.width, CV_32SC1);
+  for (int r = 0; r < view.height; ++r) {
+    const unsigned char* src = impl_->rgb_buffer.data() + 3 * static_cast<size_t>(view.height - 1 - r) * view.width;
+    int* dst = geom_ids.ptr<int>(r);
+    for (int c = 0; c < view.width; ++c) {
+      const int code = src[3 * c] | (src[3 * c + 1] << 8) | (src[3 * c + 2] << 16);
+      const int segid = code - 1;
+      dst[c] = (segid >= 0 && segid < static_cast<int>(segid_to_geom.size())) ? segid_to_geom[segid] : -1;
+    }
+  }
+}
+
+}  // namespace sortcell::sim

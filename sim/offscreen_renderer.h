@@ -1,0 +1,51 @@
+#pragma once
+/// @file
+/// Off-screen OpenGL rendering of a MuJoCo model through OSMesa (no display, no GPU).
+
+#include <opencv2/core/mat.hpp>
+
+#include <memory>
+#include <string>
+
+#include "sim/model.h"
+
+namespace sortcell::sim {
+
+/// Visual options shared by every sensor render: geom groups 0-2 (collision-only hulls in group 3
+/// stay hidden, as in MuJoCo's viewer), no sites, frames, lights or camera glyphs.
+struct RenderView {
+  int camera_id = -1;  ///< A fixed camera of the model.
+  int width = 640;
+  int height = 480;
+};
+
+/// Renders a model's fixed cameras to colour, the raw depth buffer and segment ids. The OSMesa
+/// context is created once per process and shared; each renderer owns its model's GPU resources.
+class OffscreenRenderer {
+ public:
+  /// @throws std::runtime_error if no OSMesa context can be created.
+  explicit OffscreenRenderer(const Model& model);
+  ~OffscreenRenderer();
+  OffscreenRenderer(const OffscreenRenderer&) = delete;
+  OffscreenRenderer& operator=(const OffscreenRenderer&) = delete;
+
+  /// Colour (CV_8UC3, RGB order, top row first) and the raw depth buffer (CV_32FC1 in [0, 1], top
+  /// row first; 1 where nothing was drawn).
+  /// @throws std::invalid_argument naming the model's <visual><global offwidth/offheight> if the view
+  ///         is larger than the off-screen buffer, or the camera id is not a camera of the model.
+  void Render(const Data& data, const RenderView& view, cv::Mat& rgb, cv::Mat& depth_buffer);
+
+  /// Per-pixel geom id (CV_32SC1, top row first), -1 where no geom is seen: MuJoCo's
+  /// segmentation render (mjRND_SEGMENT + mjRND_IDCOLOR), decoded through the scene's segids.
+  void RenderGeomIds(const Data& data, const RenderView& view, cv::Mat& geom_ids);
+
+  /// Largest view this model's off-screen buffer allows.
+  int max_width() const;
+  int max_height() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace sortcell::sim

@@ -1,0 +1,67 @@
+// Object set YAML files: parsed into plain structs, every mistake named.
+#include "app/object_set.h"
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+namespace {
+
+using sortcell::app::LoadObjectSet;
+
+std::string Write(const std::string& name, const std::string& text) {
+  const std::string path = ::testing::TempDir() + "/" + name;
+  std::ofstream(path) << text;
+  return path;
+}
+
+std::string ErrorOf(const std::string& path) {
+  try {
+    LoadObjectSet(path);
+  } catch (const std::invalid_argument& e) {
+    return e.what();
+  }
+  return "no exception";
+}
+
+const std::string kModel = std::string("model: ") + SORTCELL_SOURCE_DIR + "/models/objects/ball.inc.xml";
+
+TEST(ObjectSet, LoadsThePaperSet) {
+  const auto set = LoadObjectSet(SORTCELL_SOURCE_DIR "/scenes/objects/paper.yaml");
+  EXPECT_EQ(set.name, "paper");
+  ASSERT_EQ(set.objects.size(), 6u);
+  EXPECT_EQ(set.Find("bottle2").category, "others");
+  EXPECT_TRUE(set.Find("ball").model.is_absolute());
+  EXPECT_THROW(set.Find("teapot"), std::invalid_argument);
+}
+
+TEST(ObjectSet, RejectsUnknownKeysByName) {
+  const auto path = Write("unknown.yaml", "name: s\nobjects:\n  - {name: a, category: c, instance: a, colour: red, " +
+                                              kModel + "}\n");
+  const std::string e = ErrorOf(path);
+  EXPECT_NE(e.find(path), std::string::npos) << e;
+  EXPECT_NE(e.find("unknown key 'colour' in objects[0]"), std::string::npos) << e;
+  const std::string top = ErrorOf(Write("unknown_top.yaml", "name: s\nobject: []\n"));
+  EXPECT_NE(top.find("unknown key 'object'"), std::string::npos) << top;
+}
+
+TEST(ObjectSet, RejectsWrongTypesMissingKeysDuplicatesAndMissingModels) {
+  EXPECT_NE(ErrorOf(Write("type.yaml", "name: s\nobjects:\n  - {name: [a], category: c, instance: a, " + kModel + "}\n"))
+                .find("'objects[0].name': expected a non-empty string, found a list"),
+            std::string::npos);
+  EXPECT_NE(ErrorOf(Write("missing.yaml", "name: s\nobjects:\n  - {name: a, instance: a, " + kModel + "}\n"))
+                .find("missing key 'category' in objects[0]"),
+            std::string::npos);
+  EXPECT_NE(ErrorOf(Write("dup.yaml", "name: s\nobjects:\n  - {name: a, category: c, instance: a, " + kModel +
+                                          "}\n  - {name: a, category: c, instance: b, " + kModel + "}\n"))
+                .find("duplicate object name 'a'"),
+            std::string::npos);
+  EXPECT_NE(ErrorOf(Write("nomodel.yaml", "name: s\nobjects:\n  - {name: a, category: c, instance: a, model: no.xml}\n"))
+                .find("'objects[0].model': file"),
+            std::string::npos);
+  EXPECT_NE(ErrorOf(Write("empty.yaml", "name: s\nobjects: []\n")).find("expected a non-empty list"), std::string::npos);
+  EXPECT_NE(ErrorOf(Write("bad.yaml", "name: [unclosed\n")).find("not valid YAML"), std::string::npos);
+  EXPECT_NE(ErrorOf("/nonexistent/set.yaml").find("file not found"), std::string::npos);
+}
+
+}  // namespace

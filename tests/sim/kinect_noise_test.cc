@@ -1,0 +1,161 @@
+// The Kinect v1 noise model on synthetic depth images (no rendering).
+#include "sim/kinect_noise.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <opencv2/core.hpp>
+
+namespace {
+
+using namespace sortcell::sim;
+
+CameraIntrinsics Kinect() {
+  CameraIntrinsics k;
+  k.width = 640;
+  k.height = 480;
+  k.fx = k.fy = 525.0;
+  k.cx = 319.5;
+  k.cy = 239.5;
+  return k;
+}
+
+cv::Mat Flat(double z) { return cv::Mat(480, 640, CV_32FC1, cv::Scalar(z)); }
+
+// A plane through (0, 0, z0) turned by `angle` about the camera's y axis: planar depth per pixel.
+cv::Mat Tilted(double z0, double angle) {
+  const CameraIntrinsics k = Kinect();
+  cv::Mat depth(480, 640, CV_32FC1);
+  const double t = std::tan(angle);
+  for (int v = 0; v < 480; ++v) {
+    for (int u = 0; u < 640; ++u) {
+      const double x_over_z = (u - k.cx) / k.fx;  // plane: z = z0 + t x
+      depth.at<float>(v, u) = static_cast<float>(z0 / (1 - t * x_over_z));
+    }
+  }
+  return depth;
+}
+
+struct Stats {
+  double mean = 0, stddev = 0;
+  int valid = 0;
+};
+
+Stats ErrorStats(const cv::Mat& noisy, const cv::Mat& clean) {
+  Stats s;
+  double sum = 0, sum2 = 0;
+  for (int v = 0; v < noisy.rows; ++v) {
+    for (int u = 0; u < noisy.cols; ++u) {
+      const float z = noisy.at<float>(v, u);
+      if (!std::isfinite(z)) continue;
+      const double e = z - clean.at<float>(v, u);
+      sum += e;
+      sum2 += e * e;
+      ++s.valid;
+    }
+  }
+  s.mean = sum / s.valid;
+  s.stddev = std::sqrt(sum2 / s.valid - s.mean * s.mean);
+  return s;
+}
+
+int InvalidCount(const cv::Mat& depth) { return static_cast<int>(depth.total()) - cv::countNonZero(depth == depth); }
+
+TEST(KinectNoise, AxialSpreadMatchesTheModelAtOneAndTwoMetres) {
+  KinectNoiseParams params;
+  params.quantize = false;  // Quantisation is checked on its own below.
+  for (const double z : {1.0, 2.0}) {
+    SCOPED_TRACE(z);
+    std::mt19937_64 rng(7);
+    const cv::Mat clean = Flat(z);
+    const Stats s = ErrorStats(ApplyKinectNoise(clean, Kinect(), params, rng), clean);
+    const double sigma = AxialSigma(params, z, 0.0);
+    EXPECT_NEAR(sigma, 0.0012 + 0.0019 * (z - 0.4) * (z - 0.4), 1e-12);
+    EXPECT_NEAR(s.stddev, sigma, 0.15 * sigma);
+    EXPECT_NEAR(s.mean, 0.0, 0.1 * sigma);
+    EXPECT_GT(s.valid, 0.99 * 640 * 480);
+  }
+}
+
+TEST(KinectNoise, DepthLiesOnTheDisparityGrid) {
+  const KinectNoiseParams params;
+  std::mt19937_64 rng(3);
+  const cv::Mat noisy = ApplyKinectNoise(Flat(1.0), Kinect(), params, rng);
+  const double scale = params.ir_focal_px * params.baseline_m * params.subpixel;
+  int checked = 0;
+  for (int v = 0; v < 480; v += 7) {
+    for (int u = 0; u < 640; u += 7) {
+      const float z = noisy.at<float>(v, u);
+      if (!std::isfinite(z)) continue;
+      const double steps = scale / z;  // disparity in 1/8 px: an integer
+      EXPECT_NEAR(steps, std::round(steps), 1e-3);
+      ++checked;
+    }
+  }
+  EXPECT_GT(checked, 5000);
+  EXPECT_NEAR(QuantizationStep(params, 1.0), 2.87e-3, 0.01e-3);
+  EXPECT_NEAR(QuantizationStep(params, 2.0), 11.5e-3, 0.05e-3);
+}
+
+TEST(KinectNoise, ProjectorShadowFallsLeftOfAForegroundEdge) {
+  // Background at 2 m, a foreground slab at 1 m filling columns 320..479.
+  cv::Mat depth = Flat(2.0);
+  depth(cv::Rect(320, 0, 160, 480)).setTo(1.0);
+  const CameraIntrinsics k = Kinect();
+  const cv::Mat shadow = ProjectorShadowMask(depth, k, 0.075);
+  const double expected = k.fx * 0.075 * (1.0 / 1.0 - 1.0 / 2.0);  // ~19.7 px
+  for (int v = 0; v < 480; v += 60) {
+    const cv::Mat row = shadow.row(v);
+    EXPECT_NEAR(cv::countNonZero(row), expected, 1.5) << "row " << v;
+    EXPECT_EQ(cv::countNonZero(row.colRange(320, 640)), 0);   // Nothing on or right of the slab.
+    EXPECT_EQ(row.at<unsigned char>(0, 319), 255);             // The band touches the edge.
+  }
+  // With noise on, those pixels have no depth.
+  std::mt19937_64 rng(5);
+  const cv::Mat noisy = ApplyKinectNoise(depth, k, KinectNoiseParams{}, rng);
+  EXPECT_GT(InvalidCount(noisy(cv::Rect(300, 0, 20, 480))), 0.7 * 20 * 480);
+  EXPECT_LT(InvalidCount(noisy(cv::Rect(0, 0, 250, 480))), 0.01 * 250 * 480);
+}
+
+TEST(KinectNoise, RangeLimitsDropDepth) {
+  std::mt19937_64 rng(1);
+  EXPECT_EQ(InvalidCount(ApplyKinectNoise(Flat(0.4), Kinect(), {}, rng)), 640 * 480);
+  EXPECT_EQ(InvalidCount(ApplyKinectNoise(Flat(4.5), Kinect(), {}, rng)), 640 * 480);
+  EXPECT_LT(InvalidCount(ApplyKinectNoise(Flat(3.5), Kinect(), {}, rng)), 640 * 480 / 100);
+}
+
+TEST(KinectNoise, GrazingSurfacesLoseDepth) {
+  const cv::Mat steep = Tilted(1.5, 84.0 * M_PI / 180.0);
+  const cv::Mat gentle = Tilted(1.5, 30.0 * M_PI / 180.0);
+  // The incidence angle is recovered from the depth image: ~30 deg at the image centre.
+  EXPECT_NEAR(IncidenceAngles(gentle, Kinect()).at<float>(240, 320), 30.0 * M_PI / 180.0, 0.02);
+  std::mt19937_64 rng(2);
+  cv::Mat centre(ApplyKinectNoise(steep, Kinect(), {}, rng), cv::Rect(300, 200, 40, 80));
+  EXPECT_GT(InvalidCount(centre), 0.9 * centre.total());
+  cv::Mat gentle_noisy = ApplyKinectNoise(gentle, Kinect(), {}, rng);
+  EXPECT_LT(InvalidCount(gentle_noisy), 0.02 * gentle_noisy.total());
+}
+
+TEST(KinectNoise, SameSeedSameDepthOtherSeedOtherDepth) {
+  const cv::Mat clean = Tilted(1.2, 0.4);
+  std::mt19937_64 a(11), b(11), c(12);
+  const cv::Mat da = ApplyKinectNoise(clean, Kinect(), {}, a);
+  const cv::Mat db = ApplyKinectNoise(clean, Kinect(), {}, b);
+  const cv::Mat dc = ApplyKinectNoise(clean, Kinect(), {}, c);
+  EXPECT_EQ(std::memcmp(da.data, db.data, da.total() * da.elemSize()), 0);
+  EXPECT_NE(std::memcmp(da.data, dc.data, da.total() * da.elemSize()), 0);
+}
+
+TEST(KinectNoise, RejectsAnImageOfTheWrongShape) {
+  std::mt19937_64 rng(1);
+  cv::Mat wrong(10, 10, CV_32FC1, cv::Scalar(1.0));
+  try {
+    ApplyKinectNoise(wrong, Kinect(), {}, rng);
+    FAIL() << "expected std::invalid_argument";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("640x480"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
