@@ -1,5 +1,6 @@
 // Object set YAML files: parsed into plain structs, every mistake named.
 #include "app/object_set.h"
+#include "app/output_dir.h"
 
 #include <gtest/gtest.h>
 
@@ -62,6 +63,29 @@ TEST(ObjectSet, RejectsWrongTypesMissingKeysDuplicatesAndMissingModels) {
   EXPECT_NE(ErrorOf(Write("empty.yaml", "name: s\nobjects: []\n")).find("expected a non-empty list"), std::string::npos);
   EXPECT_NE(ErrorOf(Write("bad.yaml", "name: [unclosed\n")).find("not valid YAML"), std::string::npos);
   EXPECT_NE(ErrorOf("/nonexistent/set.yaml").find("file not found"), std::string::npos);
+}
+
+}  // namespace
+
+namespace {
+
+TEST(ObjectSet, FindNamesTheSetAndTheObject) {
+  const auto set = LoadObjectSet(SORTCELL_SOURCE_DIR "/scenes/objects/paper.yaml");
+  try {
+    set.Find("teapot");
+    FAIL() << "expected std::invalid_argument";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("paper.yaml': no object named 'teapot'"), std::string::npos) << e.what();
+  }
+}
+
+TEST(OutputDir, WriteJsonNamesTheFileItCannotWrite) {
+  try {
+    sortcell::app::WriteJson("/nonexistent/dir/x.json", {{"a", 1}});
+    FAIL() << "expected std::runtime_error";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("'/nonexistent/dir/x.json'"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace
