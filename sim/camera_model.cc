@@ -5,12 +5,19 @@
 #include <stdexcept>
 
 namespace sortcell::sim {
+namespace {
 
-CameraIntrinsics IntrinsicsOf(const Model& model, int camera_id, int width, int height) {
+void CheckCameraId(const Model& model, int camera_id) {
   if (camera_id < 0 || camera_id >= model->ncam) {
     throw std::invalid_argument("scene '" + model.source() + "': camera id " + std::to_string(camera_id) +
                                 " does not exist");
   }
+}
+
+}  // namespace
+
+CameraIntrinsics IntrinsicsOf(const Model& model, int camera_id, int width, int height) {
+  CheckCameraId(model, camera_id);
   const double fovy = model->cam_fovy[camera_id] * M_PI / 180.0;  // MJCF stores fovy in degrees.
   CameraIntrinsics k;
   k.width = width;
@@ -23,10 +30,7 @@ CameraIntrinsics IntrinsicsOf(const Model& model, int camera_id, int width, int 
 }
 
 Eigen::Isometry3d CameraPoseInWorld(const Model& model, const Data& data, int camera_id) {
-  if (camera_id < 0 || camera_id >= model->ncam) {
-    throw std::invalid_argument("scene '" + model.source() + "': camera id " + std::to_string(camera_id) +
-                                " does not exist");
-  }
+  CheckCameraId(model, camera_id);
   Eigen::Matrix3d R_WM;  // MuJoCo camera frame M in world; cam_xmat is row-major.
   for (int r = 0; r < 3; ++r) {
     for (int c = 0; c < 3; ++c) R_WM(r, c) = data->cam_xmat[9 * camera_id + 3 * r + c];
