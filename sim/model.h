@@ -32,8 +32,6 @@ class Model {
 
   const mjModel* get() const { return model_.get(); }
   const mjModel* operator->() const { return model_.get(); }
-  /// Mutable access for scene variation (lighting, friction, masses) before an episode starts.
-  mjModel* mutable_get() { return model_.get(); }
   /// The file (or name) this model came from.
   const std::string& source() const { return source_; }
   /// The compiler's warning text, empty when the model compiled cleanly.
