@@ -16,7 +16,11 @@ struct Result {
 
 // Runs the binary with `args`, capturing stderr (stdout is discarded).
 inline Result RunSortcell(const std::string& args) {
-  const std::string err_file = ::testing::TempDir() + "/sortcell_stderr.txt";
+  // One file per test and call: ctest -j runs the tests of this executable in parallel processes.
+  static int call = 0;
+  const std::string err_file = ::testing::TempDir() + "/sortcell_stderr_" +
+                               ::testing::UnitTest::GetInstance()->current_test_info()->name() + "_" +
+                               std::to_string(++call) + ".txt";
   const std::string command = std::string(SORTCELL_BINARY) + " " + args + " > /dev/null 2> " + err_file;
   const int status = std::system(command.c_str());
   Result r;
