@@ -5,7 +5,6 @@
 #include <stdexcept>
 
 namespace sortcell::sim {
-namespace {
 
 void CheckCameraId(const Model& model, int camera_id) {
   if (camera_id < 0 || camera_id >= model->ncam) {
@@ -13,8 +12,6 @@ void CheckCameraId(const Model& model, int camera_id) {
                                 " does not exist");
   }
 }
-
-}  // namespace
 
 CameraIntrinsics IntrinsicsOf(const Model& model, int camera_id, int width, int height) {
   CheckCameraId(model, camera_id);

@@ -16,6 +16,9 @@ struct CameraIntrinsics {
   int width = 0, height = 0;
 };
 
+/// @throws std::invalid_argument naming the scene if `camera_id` is not a camera of the model.
+void CheckCameraId(const Model& model, int camera_id);
+
 /// Intrinsics of camera `camera_id` rendered at width x height: fy = (H/2)/tan(fovy/2), fx = fy
 /// (MuJoCo pixels are square), principal point at the image centre (W/2 - 0.5, H/2 - 0.5).
 CameraIntrinsics IntrinsicsOf(const Model& model, int camera_id, int width, int height);

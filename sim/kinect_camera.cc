@@ -10,12 +10,7 @@ KinectCamera::KinectCamera(const Model& model, const std::string& camera_name, i
       intrinsics_(IntrinsicsOf(model, camera_id_, width, height)),
       renderer_(model),
       object_names_(FreeBodyNames(model)) {
-  if (width > renderer_.max_width() || height > renderer_.max_height()) {
-    throw std::invalid_argument("scene '" + model.source() + "': camera '" + camera_name + "' at " +
-                                std::to_string(width) + "x" + std::to_string(height) +
-                                " needs <visual><global offwidth offheight> at least that large, found " +
-                                std::to_string(renderer_.max_width()) + "x" + std::to_string(renderer_.max_height()));
-  }
+  renderer_.CheckViewSize(width, height);
   // Objects are the free bodies; every geom in an object's subtree carries its label.
   std::vector<uint16_t> body_label(model->nbody, 0);
   for (size_t i = 0; i < object_names_.size(); ++i) {

@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "sim/camera_model.h"
 #include "sim/mujoco_handlers.h"
 
 namespace sortcell::sim {
@@ -49,24 +50,19 @@ struct OffscreenRenderer::Impl {
   std::vector<unsigned char> rgb_buffer;
   std::vector<float> depth_buffer;
 
-  void CheckView(const RenderView& view) const {
-    const mjModel* m = model->get();
-    if (view.camera_id < 0 || view.camera_id >= m->ncam) {
-      throw std::invalid_argument("scene '" + model->source() + "': camera id " +
-                                  std::to_string(view.camera_id) + " does not exist");
-    }
-    if (view.width <= 0 || view.height <= 0 || view.width > context.offWidth ||
-        view.height > context.offHeight) {
+  void CheckViewSize(int width, int height) const {
+    if (width <= 0 || height <= 0 || width > context.offWidth || height > context.offHeight) {
       throw std::invalid_argument(
-          "scene '" + model->source() + "': a " + std::to_string(view.width) + "x" +
-          std::to_string(view.height) + " render needs <visual><global offwidth offheight> at least that " +
-          "large, found " + std::to_string(context.offWidth) + "x" + std::to_string(context.offHeight));
+          "scene '" + model->source() + "': a " + std::to_string(width) + "x" + std::to_string(height) +
+          " render needs <visual><global offwidth offheight> at least that large, found " +
+          std::to_string(context.offWidth) + "x" + std::to_string(context.offHeight));
     }
   }
 
   // Draws the view into the off-screen buffer and reads it back (rows bottom-up, as GL gives them).
   void Draw(const Data& data, const RenderView& view, bool segmentation, bool want_depth) {
-    CheckView(view);
+    CheckCameraId(*model, view.camera_id);
+    CheckViewSize(view.width, view.height);
     GlContext::Instance().MakeCurrent();
     mjvCamera camera;
     mjv_defaultCamera(&camera);
@@ -115,8 +111,8 @@ OffscreenRenderer::~OffscreenRenderer() {
   mjv_freeScene(&impl_->scene);
 }
 
-int OffscreenRenderer::max_width() const { return impl_->context.offWidth; }
-int OffscreenRenderer::max_height() const { return impl_->context.offHeight; }
+void OffscreenRenderer::CheckViewSize(int width, int height) const { impl_->CheckViewSize(width, height); }
+
 
 void OffscreenRenderer::Render(const Data& data, const RenderView& view, cv::Mat& rgb, cv::Mat& depth_buffer) {
   impl_->Draw(data, view, /*segmentation=*/false, /*want_depth=*/true);

@@ -39,9 +39,9 @@ class OffscreenRenderer {
   /// segmentation render (mjRND_SEGMENT + mjRND_IDCOLOR), decoded through the scene's segids.
   void RenderGeomIds(const Data& data, const RenderView& view, cv::Mat& geom_ids);
 
-  /// Largest view this model's off-screen buffer allows.
-  int max_width() const;
-  int max_height() const;
+  /// @throws std::invalid_argument naming the model's <visual><global offwidth/offheight> if a
+  ///         width x height view does not fit the off-screen buffer.
+  void CheckViewSize(int width, int height) const;
 
  private:
   struct Impl;
