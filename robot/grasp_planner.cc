@@ -1,0 +1,94 @@
+#include "robot/grasp_planner.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "robot/gripper_geometry.h"
+#include "robot/ur5_ik.h"
+
+namespace sortcell::robot {
+
+const char* ToString(GraspStatus status) {
+  switch (status) {
+    case GraspStatus::kOk: return "ok";
+    case GraspStatus::kTooWide: return "too_wide";
+    case GraspStatus::kTooLow: return "too_low";
+    case GraspStatus::kUnreachable: return "unreachable";
+  }
+  return "?";
+}
+
+Eigen::Isometry3d TopDownTcpPose(const Eigen::Vector3d& p_W, double pinch_yaw) {
+  // z_T down, y_T (the closing direction) along the pinch direction, x_T = y_T x z_T.
+  const Eigen::Vector3d z(0, 0, -1), y(std::cos(pinch_yaw), std::sin(pinch_yaw), 0);
+  Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
+  X.linear().col(0) = y.cross(z);
+  X.linear().col(1) = y;
+  X.linear().col(2) = z;
+  X.translation() = p_W;
+  return X;
+}
+
+GraspPlan PlanTopDownGrasp(const ObjectFootprint& object, const Joints& q_current, const GraspOptions& options) {
+  GraspPlan plan;
+  const double height = object.top_z - object.base_z;
+  plan.open_gap = object.width + 2 * options.finger_clearance;
+  if (plan.open_gap > kMaxGap) {
+    plan.status = GraspStatus::kTooWide;
+    return plan;
+  }
+  // The middle of the object, raised until the palm clears its top; the pads must still overlap it
+  // and the finger tips must stay above the table.
+  const double lowest = kFingerTipBeyondTcp + options.table_clearance - object.base_z;
+  plan.grasp_height = std::max({0.5 * height, height - kPalmBeforeTcp + options.palm_clearance, lowest});
+  if (plan.grasp_height > height - 0.005) {
+    plan.status = GraspStatus::kTooLow;
+    return plan;
+  }
+  const double z_grasp = object.base_z + plan.grasp_height;
+  const double z_pregrasp = std::fmax(object.top_z + kFingerTipBeyondTcp + options.approach_height, z_grasp + 0.05);
+  const double z_lift = std::fmax(options.lift_clearance + plan.grasp_height, z_pregrasp);
+
+  double best_distance = 0;
+  for (const double yaw : {object.pinch_yaw, object.pinch_yaw + M_PI}) {
+    const Eigen::Vector3d p(object.centre_xy.x(), object.centre_xy.y(), 0);
+    const Eigen::Isometry3d pregrasp = TopDownTcpPose(p + Eigen::Vector3d(0, 0, z_pregrasp), yaw);
+    const auto q_pre = SelectNearest(SolveTcpIk(pregrasp, q_current[5]), q_current, options.selection);
+    if (!q_pre) continue;
+    const Eigen::Isometry3d grasp = TopDownTcpPose(p + Eigen::Vector3d(0, 0, z_grasp), yaw);
+    const Eigen::Isometry3d lift = TopDownTcpPose(p + Eigen::Vector3d(0, 0, z_lift), yaw);
+    if (!SelectNearest(SolveTcpIk(grasp, q_pre->q[5]), q_pre->q, options.selection) ||
+        !SelectNearest(SolveTcpIk(lift, q_pre->q[5]), q_pre->q, options.selection)) {
+      continue;
+    }
+    const double distance = (q_pre->q - q_current).norm();
+    if (plan.status == GraspStatus::kOk && distance >= best_distance) continue;
+    plan.status = GraspStatus::kOk;
+    best_distance = distance;
+    plan.X_WT_pregrasp = pregrasp;
+    plan.X_WT_grasp = grasp;
+    plan.X_WT_lift = lift;
+    plan.q_pregrasp = q_pre->q;
+  }
+  return plan;
+}
+
+bool NearestTopDownPose(const Eigen::Vector3d& p_W, const Joints& q_current, const SelectionOptions& selection,
+                        Eigen::Isometry3d& X_WT, Joints& q) {
+  bool found = false;
+  double best_distance = 0;
+  for (int k = 0; k < 16; ++k) {
+    const Eigen::Isometry3d X = TopDownTcpPose(p_W, k * M_PI / 8);
+    const auto chosen = SelectNearest(SolveTcpIk(X, q_current[5]), q_current, selection);
+    if (!chosen) continue;
+    const double distance = (chosen->q - q_current).norm();
+    if (found && distance >= best_distance) continue;
+    found = true;
+    best_distance = distance;
+    X_WT = X;
+    q = chosen->q;
+  }
+  return found;
+}
+
+}  // namespace sortcell::robot

@@ -1,0 +1,60 @@
+#pragma once
+/// @file
+/// Top-down grasp planning for the parallel gripper from what is known of an object: where it
+/// stands, how tall it is and along which horizontal direction it is narrowest. The same planner
+/// serves the scripted `sortcell pick` (footprint from the scene file) and the perception-driven
+/// episode (footprint from a segmented cloud).
+
+#include <Eigen/Geometry>
+
+#include "robot/ik_selection.h"
+#include "robot/ur5_kinematics.h"
+
+namespace sortcell::robot {
+
+/// An object standing on the table, in the world (= Base) frame.
+struct ObjectFootprint {
+  Eigen::Vector2d centre_xy;  ///< Centre of the part to grasp, on the table (m).
+  double base_z = 0;          ///< Height of its lowest point (m).
+  double top_z = 0;           ///< Height of its highest point (m).
+  double pinch_yaw = 0;       ///< Horizontal direction across which it is narrowest (rad).
+  double width = 0;           ///< Its extent along pinch_yaw (m): what the fingers close on.
+};
+
+struct GraspOptions {
+  double finger_clearance = 0.0045;  ///< Per side, between open pads and the object (m).
+  double palm_clearance = 0.015;     ///< Between the object's top and the palm (m).
+  double table_clearance = 0.010;    ///< Between finger tips and the table (m).
+  double approach_height = 0.06;     ///< Finger tips above the object's top before descending (m).
+  double lift_clearance = 0.17;      ///< Lift the object's bottom this high above the table (m).
+  SelectionOptions selection;
+};
+
+enum class GraspStatus { kOk, kTooWide, kTooLow, kUnreachable };
+const char* ToString(GraspStatus status);
+
+struct GraspPlan {
+  GraspStatus status = GraspStatus::kUnreachable;
+  Eigen::Isometry3d X_WT_pregrasp = Eigen::Isometry3d::Identity();  ///< Above the grasp, fingers open.
+  Eigen::Isometry3d X_WT_grasp = Eigen::Isometry3d::Identity();     ///< Pads around the object.
+  Eigen::Isometry3d X_WT_lift = Eigen::Isometry3d::Identity();      ///< Straight above, object lifted.
+  Joints q_pregrasp = Joints::Zero();  ///< IK of the pre-grasp nearest to the current joints.
+  double open_gap = 0;                 ///< Gap to open to before the descent (m).
+  double grasp_height = 0;             ///< TCP height above the object's base (m).
+};
+
+/// A top-down TCP pose (z_T pointing down) at p_W whose fingers close along `pinch_yaw`.
+Eigen::Isometry3d TopDownTcpPose(const Eigen::Vector3d& p_W, double pinch_yaw);
+
+/// Plans pre-grasp, grasp and lift poses for `object`. Of the two equivalent yaws (pinch_yaw and
+/// pinch_yaw + pi), takes the one whose pre-grasp IK lies nearer to `q_current`. The grasp height is
+/// the object's middle, raised if needed so the palm clears its top. Expected failures are statuses:
+/// too wide for the stroke, too flat to hold, or no valid IK for a pose on the way.
+GraspPlan PlanTopDownGrasp(const ObjectFootprint& object, const Joints& q_current, const GraspOptions& options = {});
+
+/// The top-down TCP pose at p_W (any yaw in steps of pi/8) whose valid IK lies nearest to q_current;
+/// false if none is reachable.
+bool NearestTopDownPose(const Eigen::Vector3d& p_W, const Joints& q_current, const SelectionOptions& selection,
+                        Eigen::Isometry3d& X_WT, Joints& q);
+
+}  // namespace sortcell::robot

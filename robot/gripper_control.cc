@@ -1,0 +1,25 @@
+#include "robot/gripper_control.h"
+
+#include <cmath>
+
+namespace sortcell::robot {
+
+HoldState DetectHold(const GripperSensors& s, const HoldDetection& d) {
+  if (std::abs(s.left_speed) > d.settled_speed || std::abs(s.right_speed) > d.settled_speed) return HoldState::kMoving;
+  if (s.gap() < d.min_gap) return HoldState::kEmpty;
+  if (s.left_pad_force < d.min_pad_force || s.right_pad_force < d.min_pad_force) return HoldState::kEmpty;
+  return HoldState::kHolding;
+}
+
+const char* ToString(HoldState state) {
+  switch (state) {
+    case HoldState::kMoving: return "moving";
+    case HoldState::kEmpty: return "empty";
+    case HoldState::kHolding: return "holding";
+  }
+  return "?";
+}
+
+double HalfGapTarget(double gap) { return std::fmax(0.0, std::fmin(0.5 * gap, 0.5 * kMaxGap)); }
+
+}  // namespace sortcell::robot

@@ -1,0 +1,21 @@
+#pragma once
+/// @file
+/// The parallel-jaw gripper's dimensions as the robot layer knows them (they must match
+/// models/gripper/gripper_body.inc.xml; tests/models checks that they do).
+/// Flange frame F: z along the tool; the fingers close along y_F.
+
+namespace sortcell::robot {
+
+/// The TCP (between the finger pads' centres) lies this far along z_F from the flange (m).
+inline constexpr double kTcpOffsetZ = 0.185;
+/// Largest gap between the pads (m); the finger joint is the half-gap, 0 .. kMaxGap / 2.
+inline constexpr double kMaxGap = 0.085;
+/// The finger tips reach this far beyond the TCP along z_F (m).
+inline constexpr double kFingerTipBeyondTcp = 0.018;
+/// The palm's lowest point lies this far before the TCP along z_F (m): an object may reach this far
+/// up between the fingers.
+inline constexpr double kPalmBeforeTcp = 0.082;
+/// Half the pads' length along x_F (m).
+inline constexpr double kPadHalfLength = 0.020;
+
+}  // namespace sortcell::robot
