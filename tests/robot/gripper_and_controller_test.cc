@@ -1,0 +1,59 @@
+#include <gtest/gtest.h>
+
+#include "robot/gripper_control.h"
+#include "robot/joint_controller.h"
+
+namespace sortcell::robot {
+namespace {
+
+TEST(JointController, PdPlusBiasWithinTheTorqueLimits) {
+  JointController controller;
+  const Joints q = Joints::Zero(), qd = Joints::Zero();
+  const Joints bias = (Joints() << 0, 40, 10, 1, 0, 0).finished();
+  // On target: the bias alone.
+  EXPECT_TRUE(controller.Torque(q, qd, q, qd, bias).isApprox(bias));
+  // A small error: proportional action.
+  const Joints q_ref = Joints::Constant(0.001);
+  const Joints tau = controller.Torque(q, qd, q_ref, qd, Joints::Zero());
+  EXPECT_NEAR(tau[0], DefaultUr5Gains().kp[0] * 0.001, 1e-12);
+  // A large error saturates at 150 / 28 N m.
+  const Joints big = controller.Torque(q, qd, Joints::Constant(1.0), qd, bias);
+  EXPECT_TRUE(big.isApprox(Ur5TorqueLimits()));
+  const Joints negative = controller.Torque(q, qd, Joints::Constant(-1.0), qd, bias);
+  EXPECT_TRUE(negative.isApprox(-Ur5TorqueLimits()));
+  EXPECT_EQ(controller.stats().samples, 4);
+  EXPECT_EQ(controller.stats().saturated_samples, 2);
+  EXPECT_DOUBLE_EQ(controller.stats().max_error, 1.0);
+}
+
+TEST(JointController, RejectsBadGains) {
+  PdGains gains = DefaultUr5Gains();
+  gains.kd[3] = -1;
+  EXPECT_THROW(JointController{gains}, std::invalid_argument);
+  EXPECT_THROW(JointController(DefaultUr5Gains(), Joints::Zero()), std::invalid_argument);
+}
+
+TEST(GripperControl, HoldDetectionFromOpeningAndContacts) {
+  GripperSensors s;
+  s.left_half_gap = s.right_half_gap = 0.033;
+  s.left_pad_force = s.right_pad_force = 60;
+  EXPECT_EQ(DetectHold(s), HoldState::kHolding);
+  s.left_speed = 0.05;
+  EXPECT_EQ(DetectHold(s), HoldState::kMoving);
+  s.left_speed = 0;
+  s.right_pad_force = 0;  // one finger touches nothing
+  EXPECT_EQ(DetectHold(s), HoldState::kEmpty);
+  s.right_pad_force = 60;
+  s.left_half_gap = s.right_half_gap = 0.0005;  // closed to the stop
+  EXPECT_EQ(DetectHold(s), HoldState::kEmpty);
+  EXPECT_STREQ(ToString(HoldState::kHolding), "holding");
+}
+
+TEST(GripperControl, TargetsStayInTheStroke) {
+  EXPECT_DOUBLE_EQ(HalfGapTarget(0.05), 0.025);
+  EXPECT_DOUBLE_EQ(HalfGapTarget(0.2), kMaxGap / 2);
+  EXPECT_DOUBLE_EQ(HalfGapTarget(-1), 0.0);
+}
+
+}  // namespace
+}  // namespace sortcell::robot
