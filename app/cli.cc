@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "app/capture_command.h"
+#include "app/pick_command.h"
 
 namespace sortcell::app {
 namespace {
@@ -34,6 +35,7 @@ int RunCli(int argc, char** argv) {
   app.require_subcommand(1);
   std::function<int()> run;
   AddCaptureCommand(app, run, command_line);
+  AddPickCommand(app, run, command_line);
 
   try {
     app.parse(argc, argv);

@@ -47,28 +47,46 @@ GraspPlan PlanTopDownGrasp(const ObjectFootprint& object, const Joints& q_curren
   }
   const double z_grasp = object.base_z + plan.grasp_height;
   const double z_pregrasp = std::fmax(object.top_z + kFingerTipBeyondTcp + options.approach_height, z_grasp + 0.05);
-  const double z_lift = std::fmax(options.lift_clearance + plan.grasp_height, z_pregrasp);
+  const Eigen::Vector3d p(object.centre_xy.x(), object.centre_xy.y(), 0);
 
+  // The highest reachable lift; of the two yaws, the one nearer to the current joints.
   double best_distance = 0;
-  for (const double yaw : {object.pinch_yaw, object.pinch_yaw + M_PI}) {
-    const Eigen::Vector3d p(object.centre_xy.x(), object.centre_xy.y(), 0);
-    const Eigen::Isometry3d pregrasp = TopDownTcpPose(p + Eigen::Vector3d(0, 0, z_pregrasp), yaw);
-    const auto q_pre = SelectNearest(SolveTcpIk(pregrasp, q_current[5]), q_current, options.selection);
-    if (!q_pre) continue;
-    const Eigen::Isometry3d grasp = TopDownTcpPose(p + Eigen::Vector3d(0, 0, z_grasp), yaw);
-    const Eigen::Isometry3d lift = TopDownTcpPose(p + Eigen::Vector3d(0, 0, z_lift), yaw);
-    if (!SelectNearest(SolveTcpIk(grasp, q_pre->q[5]), q_pre->q, options.selection) ||
-        !SelectNearest(SolveTcpIk(lift, q_pre->q[5]), q_pre->q, options.selection)) {
-      continue;
+  for (double clearance = options.lift_clearance; clearance >= options.min_lift_clearance - 1e-9; clearance -= 0.02) {
+    const double z_lift = std::fmax(object.base_z + clearance + plan.grasp_height, z_pregrasp);
+    for (const double yaw : {object.pinch_yaw, object.pinch_yaw + M_PI}) {
+      const Eigen::Isometry3d lift = TopDownTcpPose(p + Eigen::Vector3d(0, 0, z_lift), yaw);
+      const Eigen::Isometry3d pregrasp = TopDownTcpPose(p + Eigen::Vector3d(0, 0, z_pregrasp), yaw);
+      const Eigen::Isometry3d grasp = TopDownTcpPose(p + Eigen::Vector3d(0, 0, z_grasp), yaw);
+      const auto q_lift = SelectNearest(SolveTcpIk(lift, q_current[5]), q_current, options.selection);
+      if (!q_lift) continue;
+      const auto q_pre = SelectNearest(SolveTcpIk(pregrasp, q_lift->q[5]), q_lift->q, options.selection);
+      if (!q_pre || !SelectNearest(SolveTcpIk(grasp, q_pre->q[5]), q_pre->q, options.selection)) continue;
+      const double distance = (q_lift->q - q_current).norm();
+      if (plan.status == GraspStatus::kOk && distance >= best_distance) continue;
+      plan.status = GraspStatus::kOk;
+      best_distance = distance;
+      plan.X_WT_pregrasp = pregrasp;
+      plan.X_WT_grasp = grasp;
+      plan.X_WT_lift = lift;
+      plan.q_lift = q_lift->q;
     }
-    const double distance = (q_pre->q - q_current).norm();
-    if (plan.status == GraspStatus::kOk && distance >= best_distance) continue;
-    plan.status = GraspStatus::kOk;
-    best_distance = distance;
-    plan.X_WT_pregrasp = pregrasp;
-    plan.X_WT_grasp = grasp;
-    plan.X_WT_lift = lift;
-    plan.q_pregrasp = q_pre->q;
+    if (plan.status == GraspStatus::kOk) break;
+  }
+  return plan;
+}
+
+PlacePlan PlanPlacement(const Eigen::Vector3d& p_W_floor, double grasp_height, const Joints& q_current,
+                        const GraspOptions& options) {
+  PlacePlan plan;
+  for (double clearance = options.lift_clearance; clearance >= options.min_lift_clearance - 1e-9; clearance -= 0.02) {
+    const Eigen::Vector3d p_above = p_W_floor + Eigen::Vector3d(0, 0, clearance + grasp_height);
+    if (!NearestTopDownPose(p_above, q_current, options.selection, plan.X_WT_above, plan.q_above)) continue;
+    plan.X_WT_release = plan.X_WT_above;
+    plan.X_WT_release.translation().z() = p_W_floor.z() + options.release_clearance + grasp_height;
+    const auto q_release = SelectNearest(SolveTcpIk(plan.X_WT_release, plan.q_above[5]), plan.q_above, options.selection);
+    if (!q_release) continue;
+    plan.ok = true;
+    return plan;
   }
   return plan;
 }

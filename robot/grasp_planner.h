@@ -26,7 +26,14 @@ struct GraspOptions {
   double palm_clearance = 0.015;     ///< Between the object's top and the palm (m).
   double table_clearance = 0.010;    ///< Between finger tips and the table (m).
   double approach_height = 0.06;     ///< Finger tips above the object's top before descending (m).
-  double lift_clearance = 0.17;      ///< Lift the object's bottom this high above the table (m).
+  /// Lift the object's bottom this high above the table before carrying it anywhere (m): above the
+  /// tallest objects of the sets (0.224 m bottles) and the bins' 0.10 m walls.
+  double lift_clearance = 0.30;
+  /// Where the arm cannot reach that high (the workspace's far corners), the lift is lowered in
+  /// 2 cm steps down to this clearance, still above the bins' walls (m).
+  double min_lift_clearance = 0.15;
+  /// At release, the object's bottom this high above the bin floor (m).
+  double release_clearance = 0.03;
   SelectionOptions selection;
 };
 
@@ -38,7 +45,8 @@ struct GraspPlan {
   Eigen::Isometry3d X_WT_pregrasp = Eigen::Isometry3d::Identity();  ///< Above the grasp, fingers open.
   Eigen::Isometry3d X_WT_grasp = Eigen::Isometry3d::Identity();     ///< Pads around the object.
   Eigen::Isometry3d X_WT_lift = Eigen::Isometry3d::Identity();      ///< Straight above, object lifted.
-  Joints q_pregrasp = Joints::Zero();  ///< IK of the pre-grasp nearest to the current joints.
+  Joints q_lift = Joints::Zero();  ///< IK of the lift pose nearest to the current joints: the arm
+                                   ///< arrives there first (above everything) and descends in lines.
   double open_gap = 0;                 ///< Gap to open to before the descent (m).
   double grasp_height = 0;             ///< TCP height above the object's base (m).
 };
@@ -46,11 +54,26 @@ struct GraspPlan {
 /// A top-down TCP pose (z_T pointing down) at p_W whose fingers close along `pinch_yaw`.
 Eigen::Isometry3d TopDownTcpPose(const Eigen::Vector3d& p_W, double pinch_yaw);
 
-/// Plans pre-grasp, grasp and lift poses for `object`. Of the two equivalent yaws (pinch_yaw and
-/// pinch_yaw + pi), takes the one whose pre-grasp IK lies nearer to `q_current`. The grasp height is
+/// Plans lift, pre-grasp and grasp poses for `object` (approach: lift -> pre-grasp -> grasp in
+/// straight lines; retreat: back to lift). Of the two equivalent yaws (pinch_yaw and pinch_yaw + pi),
+/// takes the one whose lift-pose IK lies nearer to `q_current`. The grasp height is
 /// the object's middle, raised if needed so the palm clears its top. Expected failures are statuses:
 /// too wide for the stroke, too flat to hold, or no valid IK for a pose on the way.
 GraspPlan PlanTopDownGrasp(const ObjectFootprint& object, const Joints& q_current, const GraspOptions& options = {});
+
+struct PlacePlan {
+  bool ok = false;
+  Eigen::Isometry3d X_WT_above = Eigen::Isometry3d::Identity();    ///< Above the bin, object clear of the walls.
+  Eigen::Isometry3d X_WT_release = Eigen::Isometry3d::Identity();  ///< Lowered into the bin.
+  Joints q_above = Joints::Zero();
+};
+
+/// Placing a held object (grasped `grasp_height` above its bottom) into a bin whose floor centre is
+/// p_W_floor: the highest reachable top-down pose above it between the lift clearances (any yaw,
+/// nearest IK to q_current), then straight down until the object's bottom is release_clearance above
+/// the floor.
+PlacePlan PlanPlacement(const Eigen::Vector3d& p_W_floor, double grasp_height, const Joints& q_current,
+                        const GraspOptions& options = {});
 
 /// The top-down TCP pose at p_W (any yaw in steps of pi/8) whose valid IK lies nearest to q_current;
 /// false if none is reachable.

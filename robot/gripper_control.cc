@@ -20,6 +20,10 @@ const char* ToString(HoldState state) {
   return "?";
 }
 
+double SqueezeTarget(double half_gap_at_contact, double grip_force) {
+  return half_gap_at_contact - grip_force / kFingerServoKp;
+}
+
 double HalfGapTarget(double gap) { return std::fmax(0.0, std::fmin(0.5 * gap, 0.5 * kMaxGap)); }
 
 }  // namespace sortcell::robot

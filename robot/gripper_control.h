@@ -39,4 +39,16 @@ const char* ToString(HoldState state);
 /// Half-gap target (m) for opening to `gap` (m), clamped to the stroke.
 double HalfGapTarget(double gap);
 
+/// Squeezing what the fingers closed on: each finger's target is set `grip_force / kFingerServoKp`
+/// inside where it stopped. Closing against a target of 0 saturates both servos at their force limit,
+/// which makes them two equal and opposite force sources: the held object and both fingers can then
+/// drift together along the closing axis under any sideways acceleration (measured: 2-3 mm over a
+/// carry). Unsaturated, each finger is a spring to its own target and the pair resists that drift
+/// with 2 kp = 4000 N/m. @pre grip_force in (0, kFingerForceLimit).
+double SqueezeTarget(double half_gap_at_contact, double grip_force);
+
+/// The default grip force per finger (N): with mu = 1.5 on two pads it holds 90 N of load, ~25x the
+/// heaviest object's weight (0.35 kg), with headroom for the carry's accelerations.
+inline constexpr double kDefaultGripForce = 30;
+
 }  // namespace sortcell::robot

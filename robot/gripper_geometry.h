@@ -9,7 +9,7 @@ namespace sortcell::robot {
 /// The TCP (between the finger pads' centres) lies this far along z_F from the flange (m).
 inline constexpr double kTcpOffsetZ = 0.185;
 /// Largest gap between the pads (m); the finger joint is the half-gap, 0 .. kMaxGap / 2.
-inline constexpr double kMaxGap = 0.085;
+inline constexpr double kMaxGap = 0.110;
 /// The finger tips reach this far beyond the TCP along z_F (m).
 inline constexpr double kFingerTipBeyondTcp = 0.018;
 /// The palm's lowest point lies this far before the TCP along z_F (m): an object may reach this far
@@ -17,5 +17,8 @@ inline constexpr double kFingerTipBeyondTcp = 0.018;
 inline constexpr double kPalmBeforeTcp = 0.082;
 /// Half the pads' length along x_F (m).
 inline constexpr double kPadHalfLength = 0.020;
+/// Each finger is a position servo with this stiffness (N/m), its force limited to kFingerForceLimit (N).
+inline constexpr double kFingerServoKp = 2000;
+inline constexpr double kFingerForceLimit = 60;
 
 }  // namespace sortcell::robot

@@ -1,0 +1,38 @@
+#pragma once
+/// @file
+/// Ground truth read from the simulator, for scoring results and for the scripted `sortcell pick`
+/// (which is allowed to know where an object is). Never used by a decision of the sorting loop.
+
+#include <string>
+#include <vector>
+
+#include <Eigen/Geometry>
+
+#include "sim/model.h"
+
+namespace sortcell::sim {
+
+/// An object's extent as a top-down grasp needs it, from its collision geoms in the current state.
+struct ObjectExtent {
+  Eigen::Vector2d centre_xy;  ///< Middle of the extent along pinch_yaw; across it, the centre of mass.
+  double base_z = 0, top_z = 0;
+  double pinch_yaw = 0;  ///< Horizontal direction of the smallest width, in [0, pi) (1 degree steps).
+  double width = 0;      ///< Extent along pinch_yaw (m).
+};
+
+/// @throws std::invalid_argument naming the scene and body if `body` has no collision geom.
+ObjectExtent ObjectExtentOf(const Model& model, const Data& data, int body);
+
+/// Pose of a body in the world frame (after mj_kinematics / a step).
+Eigen::Isometry3d BodyPose(const Data& data, int body);
+/// Pose of a site in the world frame.
+Eigen::Isometry3d SitePose(const Data& data, int site);
+
+/// Names of the bins: the bodies named "bin_<category>".
+std::vector<std::string> BinNames(const Model& model);
+
+/// True when the body's centre of mass lies inside the bin: within the inner 0.20 x 0.20 m square
+/// and below the top of its 0.10 m walls (models/cell/cell.inc.xml).
+bool InBin(const Data& data, int object_body, int bin_body);
+
+}  // namespace sortcell::sim

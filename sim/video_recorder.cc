@@ -1,0 +1,47 @@
+#include "sim/video_recorder.h"
+
+#include <opencv2/imgproc.hpp>
+
+#include <chrono>
+#include <cstdio>
+#include <stdexcept>
+
+
+namespace sortcell::sim {
+
+VideoRecorder::VideoRecorder(const Model& model, const std::filesystem::path& path, const VideoOptions& options)
+    : path_(path), options_(options), renderer_(model) {
+  if (!(options.fps > 0)) throw std::invalid_argument("video: frames per second must be > 0");
+  view_ = {model.Id(mjOBJ_CAMERA, options.camera), options.width, options.height};
+  renderer_.CheckViewSize(options.width, options.height);
+  // H.264 in MP4 through OpenCV's FFmpeg backend ("avc1" selects libx264 there).
+  writer_.open(path.string(), cv::CAP_FFMPEG, cv::VideoWriter::fourcc('a', 'v', 'c', '1'), options.fps,
+               cv::Size(options.width, options.height));
+  if (!writer_.isOpened()) throw std::runtime_error("video '" + path.string() + "': cannot open for H.264 writing");
+}
+
+void VideoRecorder::Update(const Data& data) {
+  // Frame k shows the state at simulated time k / fps.
+  if (writer_.isOpened() && data->time + 1e-9 >= frames_ / options_.fps) WriteFrame(data);
+}
+
+void VideoRecorder::WriteFrame(const Data& data) {
+  const auto start = std::chrono::steady_clock::now();
+  renderer_.Render(data, view_, rgb_, depth_);
+  cv::cvtColor(rgb_, bgr_, cv::COLOR_RGB2BGR);
+  char clock[32];
+  std::snprintf(clock, sizeof clock, "t = %6.2f s", data->time);
+  const std::string line = std::string(clock) + (caption_.empty() ? "" : "   " + caption_);
+  const cv::Point origin(16, 36);
+  cv::putText(bgr_, line, origin, cv::FONT_HERSHEY_SIMPLEX, 0.8, cv::Scalar(0, 0, 0), 4, cv::LINE_AA);
+  cv::putText(bgr_, line, origin, cv::FONT_HERSHEY_SIMPLEX, 0.8, cv::Scalar(255, 255, 255), 2, cv::LINE_AA);
+  writer_.write(bgr_);
+  ++frames_;
+  render_wall_s_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+void VideoRecorder::Close() {
+  if (writer_.isOpened()) writer_.release();
+}
+
+}  // namespace sortcell::sim

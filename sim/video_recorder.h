@@ -1,0 +1,57 @@
+#pragma once
+/// @file
+/// Off-screen video of a simulation for review: H.264 MP4 at a fixed number of frames per simulated
+/// second from one of the model's cameras, with a caption line drawn on every frame. Rendering reads
+/// the state only, so recording never changes what the simulation does.
+
+#include <filesystem>
+#include <memory>
+#include <string>
+
+#include <opencv2/core/mat.hpp>
+#include <opencv2/videoio.hpp>
+
+#include "sim/model.h"
+#include "sim/offscreen_renderer.h"
+
+namespace sortcell::sim {
+
+struct VideoOptions {
+  std::string camera = "review";
+  int width = 1280;
+  int height = 720;
+  double fps = 30;  ///< Frames per simulated second.
+};
+
+class VideoRecorder {
+ public:
+  /// @throws std::invalid_argument for an unknown camera, a size beyond the model's off-screen
+  ///         buffer or fps <= 0; std::runtime_error naming `path` if the file cannot be opened for
+  ///         H.264 writing.
+  VideoRecorder(const Model& model, const std::filesystem::path& path, const VideoOptions& options = {});
+
+  /// Writes a frame if the simulated time has reached the next frame time (call after every step).
+  void Update(const Data& data);
+  /// The caption drawn on the following frames (phase, object, ...).
+  void SetCaption(std::string caption) { caption_ = std::move(caption); }
+  /// Finishes the file. Also done by the destructor.
+  void Close();
+
+  int frames() const { return frames_; }
+  double render_wall_s() const { return render_wall_s_; }
+
+ private:
+  void WriteFrame(const Data& data);
+
+  std::filesystem::path path_;
+  VideoOptions options_;
+  OffscreenRenderer renderer_;
+  RenderView view_;
+  cv::VideoWriter writer_;
+  cv::Mat rgb_, depth_, bgr_;
+  std::string caption_;
+  int frames_ = 0;
+  double render_wall_s_ = 0;
+};
+
+}  // namespace sortcell::sim
