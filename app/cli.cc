@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "app/capture_command.h"
+#include "app/kinematics_commands.h"
 #include "app/pick_command.h"
 
 namespace sortcell::app {
@@ -36,6 +37,7 @@ int RunCli(int argc, char** argv) {
   std::function<int()> run;
   AddCaptureCommand(app, run, command_line);
   AddPickCommand(app, run, command_line);
+  AddKinematicsCommands(app, run);
 
   try {
     app.parse(argc, argv);

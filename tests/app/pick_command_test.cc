@@ -1,0 +1,106 @@
+// Physical pick-and-place (sim): friction grasps only, every paper object into its category's bin.
+#include "app/pick_command.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include <nlohmann/json.hpp>
+
+#include "run_sortcell.h"
+#include "sim/model.h"
+
+namespace sortcell::app {
+namespace {
+
+namespace fs = std::filesystem;
+using sortcell_test::ExpectOneLineError;
+using sortcell_test::RunSortcell;
+
+const fs::path kRoot = SORTCELL_SOURCE_DIR;
+
+PickResult Pick(const std::string& scene, const std::string& object, const std::string& bin, const fs::path& video = {}) {
+  PickOptions options;
+  options.scene = kRoot / scene;
+  options.object = object;
+  options.bin = bin;
+  options.video = video;
+  options.out = fs::path(::testing::TempDir()) / ("pick_" + object + "_" + bin);
+  return RunPick(options, {"sortcell", "pick"});
+}
+
+TEST(PickScenes, NoWeldsNoEqualityConstraints) {
+  for (const char* scene : {"scenes/cell.xml", "scenes/produce.xml"}) {
+    const sim::Model model = sim::Model::FromFile((kRoot / scene).string());
+    EXPECT_EQ(model.get()->neq, 0) << scene;
+  }
+}
+
+struct PaperObject {
+  const char* name;
+  const char* bin;
+};
+
+class PaperPick : public ::testing::TestWithParam<PaperObject> {};
+
+TEST_P(PaperPick, HeldByFrictionAndPlacedInItsBin) {
+  const PickResult r = Pick("scenes/cell.xml", GetParam().name, GetParam().bin);
+  EXPECT_EQ(r.status, "sorted");
+  EXPECT_TRUE(r.in_bin);
+  EXPECT_TRUE(r.held);  // still squeezed when lowered into the bin
+  EXPECT_LT(r.slip_mm, 5.0);
+  EXPECT_LT(r.slip_total_mm, 5.0);
+  EXPECT_GT(r.cycle_time_s, 5.0);  // at working speed, not teleported
+  EXPECT_LT(r.cycle_time_s, 20.0);
+}
+
+INSTANTIATE_TEST_SUITE_P(PaperSet, PaperPick,
+                         ::testing::Values(PaperObject{"bottle1", "bottle"}, PaperObject{"cup", "cup"},
+                                           PaperObject{"ball", "ball"}, PaperObject{"bottle2", "others"},
+                                           PaperObject{"bottle3", "others"}, PaperObject{"box", "others"}),
+                         [](const auto& info) { return std::string(info.param.name); });
+
+TEST(Pick, WidestProduceFitsTheStroke) {
+  const PickResult r = Pick("scenes/produce.xml", "orange2", "others");  // 80 mm
+  EXPECT_EQ(r.status, "sorted");
+  EXPECT_LT(r.slip_mm, 5.0);
+}
+
+TEST(Pick, PlateIsTooWideAndNothingMoves) {
+  const PickResult r = Pick("scenes/produce.xml", "plate1", "others");
+  EXPECT_EQ(r.status, "too_wide");
+  EXPECT_FALSE(r.in_bin);
+}
+
+TEST(Pick, SameSceneSameResult) {
+  const PickResult a = Pick("scenes/cell.xml", "box", "ball");
+  const PickResult b = Pick("scenes/cell.xml", "box", "ball");
+  EXPECT_EQ(a.slip_mm, b.slip_mm);
+  EXPECT_EQ(a.cycle_time_s, b.cycle_time_s);
+}
+
+TEST(Pick, ResultJsonHasTheDocumentedFields) {
+  Pick("scenes/cell.xml", "ball", "ball");
+  std::ifstream in(fs::path(::testing::TempDir()) / "pick_ball_ball" / "result.json");
+  const nlohmann::json j = nlohmann::json::parse(in);
+  for (const char* key : {"in_bin", "slip_mm", "cycle_time_s", "wall_time_s", "scripted", "phases", "tracking"}) {
+    EXPECT_TRUE(j.contains(key)) << key;
+  }
+  EXPECT_EQ(j["scripted"], true);
+  EXPECT_LT(j["tracking"]["max_error_rad"].get<double>(), 0.05);
+  EXPECT_EQ(j["tracking"]["saturated_samples"], 0);
+}
+
+TEST(PickCli, UnknownObjectOrBinIsOneLineExitTwo) {
+  const std::string scene = (kRoot / "scenes/cell.xml").string();
+  const std::string out = " --out " + ::testing::TempDir() + "/pick_cli";
+  ExpectOneLineError(RunSortcell("pick --scene " + scene + " --object teapot --bin cup" + out), "no object named 'teapot'");
+  ExpectOneLineError(RunSortcell("pick --scene " + scene + " --object cup --bin trash" + out), "no bin named 'trash'");
+  ExpectOneLineError(RunSortcell("pick --scene " + scene + " --object table --bin cup" + out), "no object named 'table'");
+  ExpectOneLineError(RunSortcell("pick --scene missing.xml --object cup --bin cup" + out), "missing.xml");
+  ExpectOneLineError(RunSortcell("pick --scene " + scene + " --object cup" + out), "--bin");
+}
+
+}  // namespace
+}  // namespace sortcell::app
