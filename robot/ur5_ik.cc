@@ -14,9 +14,12 @@ constexpr double d4 = kUr5Dh[3].d, d5 = kUr5Dh[4].d, d6 = kUr5Dh[5].d;
 constexpr double kCosineSlack = 1e-9;
 constexpr double kDuplicateTolerance = 1e-7;  // rad, per joint, modulo 2 pi
 
+// Into (-pi, pi]. The IK's angles lie within a few turns of zero, so shifting beats std::remainder
+// (which costs ~20 ns and is called 48 times per solve).
 double Wrap(double angle) {
-  const double w = std::remainder(angle, 2.0 * M_PI);  // [-pi, pi]
-  return w <= -M_PI ? w + 2.0 * M_PI : w;
+  while (angle > M_PI) angle -= 2.0 * M_PI;
+  while (angle <= -M_PI) angle += 2.0 * M_PI;
+  return angle;
 }
 
 bool ClampCosine(double& c) {
@@ -25,41 +28,28 @@ bool ClampCosine(double& c) {
   return true;
 }
 
+// Both wrapped to (-pi, pi]: equal modulo 2 pi when their difference is near 0 or near +-2 pi.
 bool SameModulo2Pi(const Joints& a, const Joints& b) {
   for (int i = 0; i < 6; ++i) {
-    if (std::abs(std::remainder(a[i] - b[i], 2.0 * M_PI)) > kDuplicateTolerance) return false;
+    const double d = std::abs(a[i] - b[i]);
+    if (std::fmin(d, 2.0 * M_PI - d) > kDuplicateTolerance) return false;
   }
   return true;
 }
 
-// Frame 6 in frame 4 for given q5, q6 (see FlangePose).
-Eigen::Isometry3d WristTransform(double q5, double q6) {
-  const double c5 = std::cos(q5), s5 = std::sin(q5), c6 = std::cos(q6), s6 = std::sin(q6);
-  Eigen::Isometry3d T;
-  T.linear() << c5 * c6, -c5 * s6, -s5,  //
-      s5 * c6, -s5 * s6, c5,             //
+// R46 and p46 (frame 6 in frame 4) from the sines and cosines of q5, q6 (see FlangePose).
+void WristTransform(double c5, double s5, double c6, double s6, Eigen::Matrix3d& R46, Eigen::Vector3d& p46) {
+  R46 << c5 * c6, -c5 * s6, -s5,  //
+      s5 * c6, -s5 * s6, c5,      //
       -s6, -c6, 0;
-  T.translation() << -s5 * d6, c5 * d6, d5;
-  T.makeAffine();
-  return T;
-}
-
-// Frame 1 in frame 0 for q1: Rz(q1) Tz(d1) Rx(pi/2).
-Eigen::Isometry3d ShoulderTransform(double c1, double s1) {
-  Eigen::Isometry3d T;
-  T.linear() << c1, 0, s1,  //
-      s1, 0, -c1,           //
-      0, 1, 0;
-  T.translation() << 0, 0, d1;
-  T.makeAffine();
-  return T;
+  p46 << -s5 * d6, c5 * d6, d5;
 }
 
 void AddChecked(const Eigen::Isometry3d& X_BF, const Joints& q_raw, bool singular, const IkOptions& options,
                 IkResult& result) {
+  if (!q_raw.allFinite()) return;
   Joints q;
   for (int i = 0; i < 6; ++i) q[i] = Wrap(q_raw[i]);
-  if (!q.allFinite()) return;
   for (int k = 0; k < result.count; ++k) {
     if (SameModulo2Pi(result.solutions[k].q, q)) return;
   }
@@ -88,30 +78,46 @@ IkResult SolveIk(const Eigen::Isometry3d& X_BF, double q6_current, const IkOptio
     // z1 = (s1, -c1, 0); p . z1 = d4 + d6 cos q5.
     double c5 = (p.x() * s1 - p.y() * c1 - d4) / d6;
     if (!ClampCosine(c5)) continue;
-    const Eigen::Isometry3d X_10 = ShoulderTransform(c1, s1).inverse();
+    const double x6_z1 = R(0, 0) * s1 - R(1, 0) * c1;  // z1 in frame 6 is (s5 c6, -s5 s6, c5)
+    const double y6_z1 = R(0, 1) * s1 - R(1, 1) * c1;
     for (const double wrist : {1.0, -1.0}) {
-      double q5 = wrist * std::acos(c5);
-      double s5 = std::sin(q5);
-      double q6;
+      // Sines and cosines from the geometry directly: cheaper and more exact than sin(acos(.)).
+      double s5 = wrist * std::sqrt(1.0 - c5 * c5);
+      double q5, q6, c6, s6;
       const bool singular = std::abs(s5) < options.wrist_singular_sin;
       if (singular) {
         q5 = c5 > 0 ? 0.0 : M_PI;
+        c5 = c5 > 0 ? 1.0 : -1.0;
+        s5 = 0;
         q6 = q6_current;
+        c6 = std::cos(q6);
+        s6 = std::sin(q6);
       } else {
-        // z1 in frame 6 is (s5 c6, -s5 s6, c5).
-        const double x6_z1 = R(0, 0) * s1 - R(1, 0) * c1;
-        const double y6_z1 = R(0, 1) * s1 - R(1, 1) * c1;
-        q6 = std::atan2(-y6_z1 / s5, x6_z1 / s5);
+        q5 = std::atan2(s5, c5);
+        c6 = x6_z1 / s5;
+        s6 = -y6_z1 / s5;
+        const double norm = std::hypot(c6, s6);
+        c6 /= norm;
+        s6 /= norm;
+        q6 = std::atan2(s6, c6);
       }
-      // The planar chain of joints 2-4 in frame 1.
-      const Eigen::Isometry3d X_14 = X_10 * X_BF * WristTransform(q5, q6).inverse();
-      const double q234 = std::atan2(X_14.linear()(1, 0), X_14.linear()(0, 0));
-      const double px = X_14.translation().x(), py = X_14.translation().y();
+      // The planar chain of joints 2-4 in frame 1: X_14 = X_10 X_BF X_46^-1, written out because
+      // only its first column and its x, y are needed. R10 = Rx(-pi/2) Rz(-q1), p10 = (0, -d1, 0).
+      Eigen::Matrix3d R46;
+      Eigen::Vector3d p46;
+      WristTransform(c5, s5, c6, s6, R46, p46);
+      const Eigen::Vector3d m0 = R * R46.row(0).transpose();  // first column of R_B4
+      const Eigen::Vector3d p_B4 = p - R * (R46.transpose() * p46);
+      const double q234 = std::atan2(m0.z(), c1 * m0.x() + s1 * m0.y());
+      const double px = c1 * p_B4.x() + s1 * p_B4.y(), py = p_B4.z() - d1;
       double c3 = (px * px + py * py - a2 * a2 - a3 * a3) / (2.0 * a2 * a3);
       if (!ClampCosine(c3)) continue;
       for (const double elbow : {1.0, -1.0}) {
-        const double q3 = elbow * std::acos(c3);
-        const double q2 = std::atan2(py, px) - std::atan2(a3 * std::sin(q3), a2 + a3 * std::cos(q3));
+        const double s3 = elbow * std::sqrt(1.0 - c3 * c3);
+        const double q3 = std::atan2(s3, c3);
+        // q2 = atan2(py, px) - atan2(a3 s3, a2 + a3 c3), as one atan2.
+        const double k1 = a2 + a3 * c3, k2 = a3 * s3;
+        const double q2 = std::atan2(py * k1 - px * k2, px * k1 + py * k2);
         Joints q;
         q << q1, q2, q3, q234 - q2 - q3, q5, q6;
         AddChecked(X_BF, q, singular, options, result);

@@ -97,7 +97,10 @@ double RotationError(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
   // atan2 form of the angle of R_a^T R_b: accurate for tiny angles, where acos((tr - 1) / 2) is not.
   const Eigen::Matrix3d R = a.linear().transpose() * b.linear();
   const Eigen::Vector3d axis(R(2, 1) - R(1, 2), R(0, 2) - R(2, 0), R(1, 0) - R(0, 1));
-  return std::atan2(0.5 * axis.norm(), 0.5 * (R.trace() - 1.0));
+  const double sine = 0.5 * axis.norm(), cosine = 0.5 * (R.trace() - 1.0);
+  // Below 1e-4 rad, angle = sin(angle) to a relative 2e-9: skip the atan2 (IK checks 8 poses per call).
+  if (sine < 1e-4 && cosine > 0) return sine;
+  return std::atan2(sine, cosine);
 }
 
 }  // namespace sortcell::robot
