@@ -12,6 +12,7 @@
 #include "robot/gripper_geometry.h"
 #include "robot/ur5_kinematics.h"
 #include "robot/urdf_chain.h"
+#include "sim/ground_truth.h"
 #include "sim/model.h"
 
 namespace {
@@ -23,13 +24,6 @@ using robot::Joints;
 const fs::path kRoot = SORTCELL_SOURCE_DIR;
 const std::vector<std::string> kBodies = {"shoulder_link", "upper_arm_link", "forearm_link",
                                           "wrist_1_link",  "wrist_2_link",   "wrist_3_link"};
-
-Eigen::Isometry3d BodyPose(const mjData* d, int body) {
-  Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
-  X.translation() = Eigen::Map<const Eigen::Vector3d>(d->xpos + 3 * body);
-  X.linear() = Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(d->xmat + 9 * body);
-  return X;
-}
 
 TEST(KinematicsAgreement, DhUrdfAndMujocoAgreeOver1000Configurations) {
   const robot::UrdfChain urdf = robot::UrdfChain::FromFile((kRoot / "models/ur5/ur5.urdf").string());
@@ -59,7 +53,7 @@ TEST(KinematicsAgreement, DhUrdfAndMujocoAgreeOver1000Configurations) {
       // Link i+1's frame is D-H frame i turned by q_{i+1}; the flange is D-H frame 6.
       Eigen::Isometry3d expected = dh[i];
       if (i < 6) expected.rotate(Eigen::AngleAxisd(q[i], Eigen::Vector3d::UnitZ()));
-      const Eigen::Isometry3d mujoco = BodyPose(data.get(), i < 6 ? body[i] : flange);
+      const Eigen::Isometry3d mujoco = sim::BodyPose(data, i < 6 ? body[i] : flange);
       for (const Eigen::Isometry3d& other : {links[i], mujoco}) {
         worst_position = std::max(worst_position, robot::PositionError(expected, other));
         worst_rotation = std::max(worst_rotation, robot::RotationError(expected, other));
@@ -81,7 +75,7 @@ TEST(KinematicsAgreement, TcpOfTheGripperModelMatchesTheRobotLayer) {
   mj_kinematics(model.get(), data.get());
   const int tcp = model.Id(mjOBJ_SITE, "tcp");
   const int flange = model.Id(mjOBJ_BODY, "flange");
-  Eigen::Isometry3d X_WF = BodyPose(data.get(), flange);
+  Eigen::Isometry3d X_WF = sim::BodyPose(data, flange);
   const Eigen::Vector3d p_WT = Eigen::Map<const Eigen::Vector3d>(data.get()->site_xpos + 3 * tcp);
   EXPECT_TRUE((X_WF.inverse() * p_WT).isApprox(robot::TcpInFlange().translation(), 1e-12));
   // Finger stroke: the joint range is the half-gap.
