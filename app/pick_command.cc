@@ -35,8 +35,7 @@ std::string Join(const std::vector<std::string>& names) {
 // One pick, step by step; each step records its phase and simulated time span.
 class PickRun {
  public:
-  PickRun(const sim::Model& model, sim::Data& data, sim::VideoRecorder* video)
-      : model_(model), data_(data), exec_(model, data, video) {}
+  PickRun(const sim::Model& model, sim::Data& data, sim::VideoRecorder* video) : exec_(model, data, video) {}
 
   ArmExecutor& exec() { return exec_; }
   nlohmann::json& phases() { return phases_; }
@@ -78,8 +77,6 @@ class PickRun {
   }
 
  private:
-  const sim::Model& model_;
-  sim::Data& data_;
   ArmExecutor exec_;
   nlohmann::json phases_ = nlohmann::json::array();
   std::string failure_;
@@ -180,6 +177,7 @@ PickResult RunPick(const PickOptions& options, const std::vector<std::string>& c
   if (video) {
     video->Close();
     result.video_frames = video->frames();
+    result.video_render_wall_s = video->render_wall_s();
   }
   result.wall_time_s = std::chrono::duration<double>(Clock::now() - wall_start).count();
   result.real_time_factor = exec.time() / result.wall_time_s;
@@ -215,7 +213,8 @@ PickResult RunPick(const PickOptions& options, const std::vector<std::string>& c
         {"control_rate_hz", 500}}},
       {"phases", run.phases()},
       {"video", options.video.empty() ? nlohmann::json(nullptr) : nlohmann::json(options.video.string())},
-      {"video_frames", result.video_frames}};
+      {"video_frames", result.video_frames},
+      {"video_render_wall_s", result.video_render_wall_s}};
   WriteJson(options.out / "result.json", json);
   WriteJson(options.out / "run.json",
             RunRecord(command_line, 0, {{"command", "pick"}, {"scene", options.scene.string()}, {"wall_time_s", result.wall_time_s}}));

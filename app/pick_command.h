@@ -36,6 +36,7 @@ struct PickResult {
   double wall_time_s = 0;
   double real_time_factor = 0;
   int video_frames = 0;
+  double video_render_wall_s = 0;  ///< Wall time spent rendering and encoding the video.
 };
 
 /// The arm's home (= observe) pose: folded back over the base, tool pointing down, out of the Kinect's

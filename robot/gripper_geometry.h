@@ -15,8 +15,6 @@ inline constexpr double kFingerTipBeyondTcp = 0.018;
 /// The palm's lowest point lies this far before the TCP along z_F (m): an object may reach this far
 /// up between the fingers.
 inline constexpr double kPalmBeforeTcp = 0.082;
-/// Half the pads' length along x_F (m).
-inline constexpr double kPadHalfLength = 0.020;
 /// Each finger is a position servo with this stiffness (N/m), its force limited to kFingerForceLimit (N).
 inline constexpr double kFingerServoKp = 2000;
 inline constexpr double kFingerForceLimit = 60;

@@ -1,7 +1,5 @@
 #include "sim/arm_io.h"
 
-#include <algorithm>
-
 namespace sortcell::sim {
 namespace {
 
@@ -90,7 +88,5 @@ GripperReading ArmIo::ReadGripper(const Data& data) const {
   }
   return r;
 }
-
-bool ArmIo::IsPadGeom(int geom) const { return std::find(pads_.begin(), pads_.end(), geom) != pads_.end(); }
 
 }  // namespace sortcell::sim

@@ -44,9 +44,6 @@ class ArmIo {
   /// Puts both fingers at this half-gap at rest, with the servos holding it.
   void SetGripperPosition(Data& data, double half_gap) const;
 
-  /// Geoms of the gripper and the arm (for scoring contacts, e.g. "is the object touching the pads").
-  bool IsPadGeom(int geom) const;
-
  private:
   const mjModel* m_;
   std::array<int, 6> qpos_{}, dof_{}, motor_{};

@@ -81,6 +81,10 @@ TEST(KinematicsAgreement, TcpOfTheGripperModelMatchesTheRobotLayer) {
   // Finger stroke: the joint range is the half-gap.
   const int joint = model.Id(mjOBJ_JOINT, "finger_left_joint");
   EXPECT_DOUBLE_EQ(2 * model.get()->jnt_range[2 * joint + 1], robot::kMaxGap);
+  // Finger servos: the stiffness and force limit the squeeze is computed from.
+  const int servo = model.Id(mjOBJ_ACTUATOR, "finger_left");
+  EXPECT_DOUBLE_EQ(model.get()->actuator_gainprm[servo * mjNGAIN], robot::kFingerServoKp);
+  EXPECT_DOUBLE_EQ(model.get()->actuator_forcerange[2 * servo + 1], robot::kFingerForceLimit);
 }
 
 TEST(UrdfChain, BadFilesAreOneClearError) {
