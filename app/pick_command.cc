@@ -233,8 +233,8 @@ void AddPickCommand(CLI::App& app, std::function<int()>& run, const std::vector<
   cmd->add_option("--bin", options->bin, "Bin to place it in: bottle, cup, ball or others (or bin_<name>)")
       ->required();
   cmd->add_option("--video", options->video, "Also write an H.264 MP4 from the review camera (30 fps)");
-  cmd->add_option("--out", options->out, "Output folder (created if missing)")->capture_default_str();
   options->out = "out/pick";
+  cmd->add_option("--out", options->out, "Output folder (created if missing)")->capture_default_str();
   cmd->callback([&run, options, command_line] {
     run = [options, command_line] {
       const PickResult r = RunPick(*options, command_line);
