@@ -58,8 +58,7 @@ CaptureSummary RunCapture(const CaptureOptions& options, const std::vector<std::
   PrepareOutputDir(options.out);
   const sim::Model model = sim::Model::FromFile(options.scene.string());
   sim::Data data(model);
-  const int observe = mj_name2id(model.get(), mjOBJ_KEY, "observe");
-  if (observe >= 0) mj_resetDataKeyframe(model.get(), data.get(), observe);
+  sim::ResetToObserve(model, data);
   mj_forward(model.get(), data.get());
 
   sim::KinectCamera kinect(model, options.camera);

@@ -114,8 +114,7 @@ PickResult RunPick(const PickOptions& options, const std::vector<std::string>& c
   const int bin_site = model.Id(mjOBJ_SITE, bin_name);
 
   sim::Data data(model);
-  const int observe = mj_name2id(model.get(), mjOBJ_KEY, "observe");
-  if (observe >= 0) mj_resetDataKeyframe(model.get(), data.get(), observe);
+  sim::ResetToObserve(model, data);
   std::unique_ptr<sim::VideoRecorder> video;
   if (!options.video.empty()) {
     if (options.video.has_parent_path()) std::filesystem::create_directories(options.video.parent_path());

@@ -39,8 +39,8 @@ struct PickResult {
   double video_render_wall_s = 0;  ///< Wall time spent rendering and encoding the video.
 };
 
-/// The arm's home (= observe) pose: folded back over the base, tool pointing down, out of the Kinect's
-/// view of the workspace.
+/// The arm's home (= observe) pose: tool down, upper arm leaning back, TCP at (0.281, 0.109, 0.446),
+/// behind and above the workspace (see pick_command.cc). scenes/cell.xml's "observe" keyframe holds it.
 robot::Joints HomeJoints();
 
 /// Runs the pick and writes result.json and run.json into options.out.

@@ -18,7 +18,7 @@ struct Cell {
   Model model = Model::FromFile(SORTCELL_SOURCE_DIR "/scenes/cell.xml");
   Data data{model};
   Cell() {
-    mj_resetDataKeyframe(model.get(), data.get(), mj_name2id(model.get(), mjOBJ_KEY, "observe"));
+    sortcell::sim::ResetToObserve(model, data);
     mj_forward(model.get(), data.get());
   }
 };

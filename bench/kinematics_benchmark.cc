@@ -25,6 +25,12 @@ std::vector<Joints> RandomConfigurations(int n) {
   return qs;
 }
 
+std::vector<Eigen::Isometry3d> FlangePoses(const std::vector<Joints>& qs) {
+  std::vector<Eigen::Isometry3d> poses;
+  for (const Joints& q : qs) poses.push_back(FlangePose(q));
+  return poses;
+}
+
 void BM_FlangePose(benchmark::State& state) {
   const auto qs = RandomConfigurations(1024);
   size_t i = 0;
@@ -50,8 +56,7 @@ BENCHMARK(BM_UrdfChainFk);
 // All solutions (8 for almost every random pose), each checked by FK and de-duplicated.
 void BM_SolveIkAllSolutionsChecked(benchmark::State& state) {
   const auto qs = RandomConfigurations(1024);
-  std::vector<Eigen::Isometry3d> poses;
-  for (const Joints& q : qs) poses.push_back(FlangePose(q));
+  const auto poses = FlangePoses(qs);
   size_t i = 0;
   long solutions = 0;
   for (auto _ : state) {
@@ -66,8 +71,7 @@ BENCHMARK(BM_SolveIkAllSolutionsChecked);
 // IK plus the choice of the nearest valid solution (limits, links above the table).
 void BM_SolveIkAndSelectNearest(benchmark::State& state) {
   const auto qs = RandomConfigurations(1024);
-  std::vector<Eigen::Isometry3d> poses;
-  for (const Joints& q : qs) poses.push_back(FlangePose(q));
+  const auto poses = FlangePoses(qs);
   size_t i = 0;
   for (auto _ : state) {
     const size_t k = i++ & 1023;

@@ -86,6 +86,16 @@ Data::Data(const Model& model) : data_(mj_makeData(model.get())) {
   if (!data_) throw std::runtime_error("scene '" + model.source() + "': mj_makeData failed");
 }
 
+bool ResetToObserve(const Model& model, Data& data) {
+  const int observe = mj_name2id(model.get(), mjOBJ_KEY, "observe");
+  if (observe >= 0) {
+    mj_resetDataKeyframe(model.get(), data.get(), observe);
+  } else {
+    mj_resetData(model.get(), data.get());
+  }
+  return observe >= 0;
+}
+
 StepStatus Step(const Model& model, Data& data, int n) {
   std::array<int, mjNWARNING> before{};
   for (int i = 0; i < mjNWARNING; ++i) before[i] = data->warning[i].number;

@@ -73,6 +73,10 @@ struct StepStatus {
   std::string detail;  ///< The warning's name and count when code != kOk.
 };
 
+/// Resets `data` to the scene's keyframe "observe" (the cell's start: arm at its observe pose, objects
+/// in place) if it has one, else to the default state. Returns whether the keyframe exists.
+bool ResetToObserve(const Model& model, Data& data);
+
 /// Steps `n` times and checks d->warning[] for counters that grew during these steps.
 StepStatus Step(const Model& model, Data& data, int n = 1);
 

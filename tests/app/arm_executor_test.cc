@@ -13,35 +13,43 @@ namespace {
 
 const std::string kCell = std::string(SORTCELL_SOURCE_DIR) + "/scenes/cell.xml";
 
-TEST(ArmExecutor, TracksAJointMoveWithinTheTorqueLimits) {
-  const sim::Model model = sim::Model::FromFile(kCell);
-  sim::Data data(model);
-  mj_resetDataKeyframe(model.get(), data.get(), 0);
-  ArmExecutor exec(model, data);
-  exec.Reset(HomeJoints(), 0.055);
+class ArmExecutorTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    ASSERT_TRUE(sim::ResetToObserve(model_, data_));
+    exec_.Reset(HomeJoints(), 0.055);
+  }
+  const sim::Model model_ = sim::Model::FromFile(kCell);
+  sim::Data data_{model_};
+  ArmExecutor exec_{model_, data_};
+};
+
+TEST_F(ArmExecutorTest, ObserveKeyframeIsTheHomePose) {
+  ASSERT_TRUE(sim::ResetToObserve(model_, data_));
+  mj_forward(model_.get(), data_.get());
+  EXPECT_LT((exec_.JointPositions() - HomeJoints()).cwiseAbs().maxCoeff(), 1e-6);
+  EXPECT_NEAR(exec_.Gripper().gap(), robot::kMaxGap, 1e-9);  // open
+}
+
+TEST_F(ArmExecutorTest, TracksAJointMoveWithinTheTorqueLimits) {
   robot::Joints goal = HomeJoints();
   goal[0] -= 1.0;  // swing towards the bins, above everything
   goal[1] += 0.3;
-  ASSERT_EQ(exec.Follow(robot::PlanJointMove(HomeJoints(), goal)).code, sim::StepStatus::kOk);
-  ASSERT_EQ(exec.Wait(0.5).code, sim::StepStatus::kOk);
-  EXPECT_LT((exec.JointPositions() - goal).cwiseAbs().maxCoeff(), 2e-3);
-  EXPECT_LT(exec.tracking().max_error, 0.01);
-  EXPECT_EQ(exec.tracking().saturated_samples, 0);
+  ASSERT_EQ(exec_.Follow(robot::PlanJointMove(HomeJoints(), goal)).code, sim::StepStatus::kOk);
+  ASSERT_EQ(exec_.Wait(0.5).code, sim::StepStatus::kOk);
+  EXPECT_LT((exec_.JointPositions() - goal).cwiseAbs().maxCoeff(), 2e-3);
+  EXPECT_LT(exec_.tracking().max_error, 0.01);
+  EXPECT_EQ(exec_.tracking().saturated_samples, 0);
   // The motors never exceed 150 / 28 N m.
-  for (int i = 0; i < 6; ++i) EXPECT_LE(std::abs(data->ctrl[i]), robot::Ur5TorqueLimits()[i] + 1e-9);
+  for (int i = 0; i < 6; ++i) EXPECT_LE(std::abs(data_->ctrl[i]), robot::Ur5TorqueLimits()[i] + 1e-9);
 }
 
-TEST(ArmExecutor, ClosingOnNothingIsEmpty) {
-  const sim::Model model = sim::Model::FromFile(kCell);
-  sim::Data data(model);
-  mj_resetDataKeyframe(model.get(), data.get(), 0);
-  ArmExecutor exec(model, data);
-  exec.Reset(HomeJoints(), 0.055);
+TEST_F(ArmExecutorTest, ClosingOnNothingIsEmpty) {
   robot::HoldState hold = robot::HoldState::kMoving;
-  ASSERT_EQ(exec.Grasp(robot::kDefaultGripForce, 1.5, hold).code, sim::StepStatus::kOk);
+  ASSERT_EQ(exec_.Grasp(robot::kDefaultGripForce, 1.5, hold).code, sim::StepStatus::kOk);
   EXPECT_EQ(hold, robot::HoldState::kEmpty);
-  EXPECT_LT(exec.Gripper().gap(), 0.004);
-  EXPECT_EQ(exec.Gripper().left_pad_force, 0.0);
+  EXPECT_LT(exec_.Gripper().gap(), 0.004);
+  EXPECT_EQ(exec_.Gripper().left_pad_force, 0.0);
 }
 
 TEST(ArmExecutor, ControlPeriodMustBeWholeTimesteps) {

@@ -67,7 +67,7 @@ TEST(Pick, WidestProduceFitsTheStroke) {
   EXPECT_LT(r.slip_mm, 5.0);
 }
 
-TEST(Pick, PlateIsTooWideAndNothingMoves) {
+TEST(Pick, PlateIsRefusedAsTooWide) {
   const PickResult r = Pick("scenes/produce.xml", "plate1", "others");
   EXPECT_EQ(r.status, "too_wide");
   EXPECT_FALSE(r.in_bin);
