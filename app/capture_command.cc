@@ -9,6 +9,7 @@
 #include <iostream>
 #include <stdexcept>
 
+#include "app/camera_file.h"
 #include "app/cli_validators.h"
 #include "app/output_dir.h"
 #include "app/seeding.h"
@@ -36,19 +37,6 @@ cv::Mat DepthMillimetres(const cv::Mat& depth) {
     }
   }
   return mm;
-}
-
-nlohmann::json CameraJson(const std::string& camera, const sim::KinectFrame& frame) {
-  const auto& k = frame.intrinsics;
-  nlohmann::json X_WC = nlohmann::json::array();
-  for (int r = 0; r < 4; ++r) {
-    nlohmann::json row = nlohmann::json::array();
-    for (int c = 0; c < 4; ++c) row.push_back(frame.X_WC.matrix()(r, c));
-    X_WC.push_back(row);
-  }
-  return {{"camera", camera}, {"fx", k.fx}, {"fy", k.fy}, {"cx", k.cx}, {"cy", k.cy},
-          {"width", k.width}, {"height", k.height}, {"frame", "optical: x right, y down, z forward"},
-          {"X_WC", X_WC}};
 }
 
 }  // namespace

@@ -12,6 +12,7 @@
 #include "app/capture_command.h"
 #include "app/kinematics_commands.h"
 #include "app/pick_command.h"
+#include "app/segment_command.h"
 
 namespace sortcell::app {
 namespace {
@@ -37,6 +38,7 @@ int RunCli(int argc, char** argv) {
   std::function<int()> run;
   AddCaptureCommand(app, run, command_line);
   AddPickCommand(app, run, command_line);
+  AddSegmentCommand(app, run, command_line);
   AddKinematicsCommands(app, run);
 
   try {

@@ -37,6 +37,9 @@ class KinectCamera {
   /// @throws std::invalid_argument if `noise` is given without `rng`.
   KinectFrame Capture(const Data& data, const KinectNoiseParams* noise, std::mt19937_64* rng);
 
+  /// Lighting of the following captures (default: the scene's own).
+  void SetLighting(const Lighting& lighting) { renderer_.SetLighting(lighting); }
+
   /// Names of the objects the label image numbers (the scene's free bodies, in body order).
   const std::vector<std::string>& object_names() const { return object_names_; }
   const CameraIntrinsics& intrinsics() const { return intrinsics_; }

@@ -3,6 +3,7 @@
 #include <GL/osmesa.h>
 #include <mujoco/mujoco.h>
 
+#include <cmath>
 #include <cstring>
 #include <mutex>
 #include <stdexcept>
@@ -49,6 +50,7 @@ struct OffscreenRenderer::Impl {
   mjrContext context;
   std::vector<unsigned char> rgb_buffer;
   std::vector<float> depth_buffer;
+  Lighting lighting;
 
   void CheckViewSize(int width, int height) const {
     if (width <= 0 || height <= 0 || width > context.offWidth || height > context.offHeight) {
@@ -56,6 +58,24 @@ struct OffscreenRenderer::Impl {
           "scene '" + model->source() + "': a " + std::to_string(width) + "x" + std::to_string(height) +
           " render needs <visual><global offwidth offheight> at least that large, found " +
           std::to_string(context.offWidth) + "x" + std::to_string(context.offHeight));
+    }
+  }
+
+  void ApplyLighting() {
+    const float k = static_cast<float>(lighting.intensity);
+    for (int i = 0; i < scene.nlight; ++i) {
+      mjvLight& light = scene.lights[i];
+      for (int c = 0; c < 3; ++c) {
+        light.ambient[c] *= k;
+        light.diffuse[c] *= k;
+        light.specular[c] *= k;
+      }
+      light.dir[0] += static_cast<float>(lighting.tilt_x);
+      light.dir[1] += static_cast<float>(lighting.tilt_y);
+      const float n = std::sqrt(light.dir[0] * light.dir[0] + light.dir[1] * light.dir[1] + light.dir[2] * light.dir[2]);
+      if (n > 0) {
+        for (float& d : light.dir) d /= n;
+      }
     }
   }
 
@@ -73,6 +93,7 @@ struct OffscreenRenderer::Impl {
     // mjv_updateScene only reads the simulation state, but its signature is not const-correct.
     mjv_updateScene(model->get(), const_cast<mjData*>(data.get()), &option, nullptr, &camera, mjCAT_ALL,
                     &scene);
+    ApplyLighting();
     const mjrRect viewport = {0, 0, view.width, view.height};
     mjr_render(viewport, &scene, &context);
     const size_t pixels = static_cast<size_t>(view.width) * view.height;
@@ -110,6 +131,8 @@ OffscreenRenderer::~OffscreenRenderer() {
   mjr_freeContext(&impl_->context);
   mjv_freeScene(&impl_->scene);
 }
+
+void OffscreenRenderer::SetLighting(const Lighting& lighting) { impl_->lighting = lighting; }
 
 void OffscreenRenderer::CheckViewSize(int width, int height) const { impl_->CheckViewSize(width, height); }
 

@@ -19,6 +19,13 @@ struct RenderView {
   int height = 480;
 };
 
+/// Lighting variation applied to every light of the scene (headlight included) at render time,
+/// leaving the model untouched: datasets randomise it per capture.
+struct Lighting {
+  double intensity = 1.0;  ///< Scales ambient, diffuse and specular.
+  double tilt_x = 0.0, tilt_y = 0.0;  ///< Added to each light direction's x and y before normalising.
+};
+
 /// Renders a model's fixed cameras to colour, the raw depth buffer and segment ids. The OSMesa
 /// context is created once per process and shared; each renderer owns its model's GPU resources.
 class OffscreenRenderer {
@@ -38,6 +45,9 @@ class OffscreenRenderer {
   /// Per-pixel geom id (CV_32SC1, top row first), -1 where no geom is seen: MuJoCo's
   /// segmentation render (mjRND_SEGMENT + mjRND_IDCOLOR), decoded through the scene's segids.
   void RenderGeomIds(const Data& data, const RenderView& view, cv::Mat& geom_ids);
+
+  /// Lighting for the following colour renders.
+  void SetLighting(const Lighting& lighting);
 
   /// @throws std::invalid_argument naming the model's <visual><global offwidth/offheight> if a
   ///         width x height view does not fit the off-screen buffer.

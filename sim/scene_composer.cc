@@ -1,5 +1,6 @@
 #include "sim/scene_composer.h"
 
+#include <sstream>
 #include <stdexcept>
 
 namespace sortcell::sim {
@@ -9,16 +10,34 @@ std::string Include(const std::filesystem::path& file) {
   return "  <include file=\"" + std::filesystem::absolute(file).lexically_normal().string() + "\"/>\n";
 }
 
+// MuJoCo cameras look along their -z with +y up: xyaxes = (right, up) of the image.
+std::string CameraElement(const CameraSpec& camera) {
+  const Eigen::Vector3d forward = (camera.target_W - camera.p_W).normalized();
+  const Eigen::Vector3d right = forward.cross(Eigen::Vector3d::UnitZ()).normalized();
+  const Eigen::Vector3d up = right.cross(forward);
+  std::ostringstream xml;
+  xml.precision(9);
+  xml << "    <camera name=\"" << camera.name << "\" pos=\"" << camera.p_W.transpose() << "\" xyaxes=\""
+      << right.transpose() << " " << up.transpose() << "\" fovy=\"49.13\"/>\n";
+  return xml.str();
+}
+
 }  // namespace
 
 std::vector<Model::VirtualFile> ComposeCell(const std::filesystem::path& models_dir,
-                                            const std::vector<std::filesystem::path>& object_models) {
+                                            const std::vector<std::filesystem::path>& object_models,
+                                            const std::vector<CameraSpec>& cameras) {
   std::string main = "<mujoco model=\"sortcell_composed\">\n  <compiler angle=\"radian\" autolimits=\"true\"/>\n";
   main += Include(models_dir / "cell" / "cell.inc.xml");
   main += Include(models_dir / "gripper" / "gripper.inc.xml");
   main += Include(models_dir / "ur5" / "ur5.inc.xml");
   main += Include(models_dir / "objects" / "objects.inc.xml");
   for (const auto& object : object_models) main += Include(object);
+  if (!cameras.empty()) {
+    main += "  <worldbody>\n";
+    for (const auto& camera : cameras) main += CameraElement(camera);
+    main += "  </worldbody>\n";
+  }
   main += "</mujoco>\n";
   // The arm's flange includes "flange_tool.inc.xml" from the main file's folder: here, a virtual file.
   std::string tool = "<mujoco>\n" + Include(models_dir / "gripper" / "gripper_body.inc.xml") + "</mujoco>\n";
@@ -26,14 +45,15 @@ std::vector<Model::VirtualFile> ComposeCell(const std::filesystem::path& models_
 }
 
 Model LoadComposedCell(const std::filesystem::path& models_dir,
-                       const std::vector<std::filesystem::path>& object_models, const std::string& name) {
+                       const std::vector<std::filesystem::path>& object_models, const std::string& name,
+                       const std::vector<CameraSpec>& cameras) {
   for (const auto& object : object_models) {
     std::error_code ec;
     if (!std::filesystem::is_regular_file(object, ec)) {
       throw std::invalid_argument(name + ": object model '" + object.string() + "' not found");
     }
   }
-  return Model::FromVirtualFiles(ComposeCell(models_dir, object_models), name);
+  return Model::FromVirtualFiles(ComposeCell(models_dir, object_models, cameras), name);
 }
 
 }  // namespace sortcell::sim

@@ -1,0 +1,94 @@
+#include "perception/cvfh_descriptor.h"
+
+#include <pcl/features/cvfh.h>
+#include <pcl/features/normal_3d.h>
+#include <pcl/filters/voxel_grid.h>
+#include <pcl/search/kdtree.h>
+
+#include <chrono>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace sortcell::perception {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double Since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+}  // namespace
+
+CvfhResult ComputeCvfh(const Cloud& object_C, const CvfhParams& params) {
+  auto valid = std::make_shared<Cloud>();
+  valid->reserve(object_C.size());
+  for (const PointT& p : object_C) {
+    if (std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z)) valid->push_back(p);
+  }
+  auto points = std::make_shared<Cloud>();
+  if (!valid->empty()) {
+    pcl::VoxelGrid<PointT> grid;
+    const float leaf = static_cast<float>(params.voxel_leaf_m);
+    grid.setLeafSize(leaf, leaf, leaf);
+    grid.setInputCloud(valid);
+    grid.filter(*points);
+  }
+  CvfhResult result;
+  result.points = static_cast<int>(points->size());
+  if (result.points < params.min_points) {
+    throw std::invalid_argument("CVFH: the object has " + std::to_string(result.points) + " valid points after " +
+                                std::to_string(params.voxel_leaf_m * 1000) + " mm downsampling, need at least " +
+                                std::to_string(params.min_points));
+  }
+
+  auto t = Clock::now();
+  auto tree = std::make_shared<pcl::search::KdTree<PointT>>();
+  auto normals = std::make_shared<pcl::PointCloud<pcl::Normal>>();
+  pcl::NormalEstimation<PointT, pcl::Normal> estimate_normals;
+  estimate_normals.setInputCloud(points);
+  estimate_normals.setSearchMethod(tree);
+  estimate_normals.setRadiusSearch(params.normal_radius_m);
+  estimate_normals.setViewPoint(0, 0, 0);  // Normals face the camera.
+  estimate_normals.compute(*normals);
+  // CVFH puts NaN normals into bin 0: drop points without a normal (too few neighbours).
+  auto with_normal = std::make_shared<Cloud>();
+  auto clean_normals = std::make_shared<pcl::PointCloud<pcl::Normal>>();
+  for (size_t i = 0; i < points->size(); ++i) {
+    const pcl::Normal& n = (*normals)[i];
+    if (std::isfinite(n.normal_x) && std::isfinite(n.normal_y) && std::isfinite(n.normal_z) &&
+        std::isfinite(n.curvature)) {
+      with_normal->push_back((*points)[i]);
+      clean_normals->push_back(n);
+    }
+  }
+  result.normals_s = Since(t);
+  if (static_cast<int>(with_normal->size()) < params.min_points) {
+    throw std::invalid_argument("CVFH: only " + std::to_string(with_normal->size()) + " points have a normal, need " +
+                                std::to_string(params.min_points));
+  }
+
+  t = Clock::now();
+  pcl::CVFHEstimation<PointT, pcl::Normal, pcl::VFHSignature308> cvfh;  // Fresh per object.
+  cvfh.setInputCloud(with_normal);
+  cvfh.setInputNormals(clean_normals);
+  cvfh.setSearchMethod(std::make_shared<pcl::search::KdTree<PointT>>());
+  cvfh.setEPSAngleThreshold(static_cast<float>(params.eps_angle_rad));
+  cvfh.setCurvatureThreshold(static_cast<float>(params.curvature_threshold));
+  cvfh.setClusterTolerance(static_cast<float>(params.cluster_tolerance_m));
+  cvfh.setMinPoints(params.min_region_points);
+  cvfh.setNormalizeBins(false);  // Raw counts; normalisation is the descriptor's choice.
+  pcl::PointCloud<pcl::VFHSignature308> regions;
+  cvfh.compute(regions);
+  result.cvfh_s = Since(t);
+  result.regions = static_cast<int>(regions.size());
+  if (regions.empty()) throw std::invalid_argument("CVFH: PCL returned no histogram");
+
+  result.histogram = Eigen::VectorXf::Zero(kCvfhBins);
+  for (const auto& region : regions) {
+    result.histogram += Eigen::Map<const Eigen::VectorXf>(region.histogram, kCvfhBins);
+  }
+  result.histogram /= static_cast<float>(regions.size());
+  if (!result.histogram.allFinite()) throw std::invalid_argument("CVFH: PCL returned a non-finite histogram");
+  return result;
+}
+
+}  // namespace sortcell::perception

@@ -1,0 +1,82 @@
+#include "perception/descriptor.h"
+
+#include <chrono>
+#include <stdexcept>
+
+namespace sortcell::perception {
+namespace {
+
+// Divides v[first, first + size) by `divisor` (an empty block stays zero).
+void DivideBlock(Eigen::VectorXf& v, int first, int size, float divisor) {
+  if (divisor > 0) v.segment(first, size) /= divisor;
+}
+
+Eigen::VectorXf NormalisedCvfh(const Eigen::VectorXf& raw) {
+  Eigen::VectorXf cvfh = raw;
+  for (const auto& [first, size] : kCvfhBlocks) DivideBlock(cvfh, first, size, raw.segment(first, size).sum());
+  return cvfh;
+}
+
+}  // namespace
+
+std::string DescriptorName(DescriptorKind kind) {
+  switch (kind) {
+    case DescriptorKind::kCvfh: return "cvfh";
+    case DescriptorKind::kColorCvfh: return "color-cvfh";
+    case DescriptorKind::kColorCvfhNorm: return "color-cvfh-norm";
+  }
+  return "";
+}
+
+std::string DescriptorTitle(DescriptorKind kind) {
+  switch (kind) {
+    case DescriptorKind::kCvfh: return "CVFH";
+    case DescriptorKind::kColorCvfh: return "Color-CVFH";
+    case DescriptorKind::kColorCvfhNorm: return "Color-CVFH (normalization)";
+  }
+  return "";
+}
+
+DescriptorKind ParseDescriptorKind(const std::string& name) {
+  for (DescriptorKind kind : {DescriptorKind::kCvfh, DescriptorKind::kColorCvfh, DescriptorKind::kColorCvfhNorm}) {
+    if (DescriptorName(kind) == name) return kind;
+  }
+  throw std::invalid_argument("unknown descriptor '" + name + "' (expected cvfh, color-cvfh or color-cvfh-norm)");
+}
+
+int DescriptorSize(DescriptorKind kind) { return kind == DescriptorKind::kCvfh ? kCvfhBins : kHsvBins + kCvfhBins; }
+
+DescriptorParts ComputeDescriptorParts(const Cloud& object_C, const DescriptorParams& params) {
+  DescriptorParts parts;
+  const CvfhResult cvfh = ComputeCvfh(object_C, params.cvfh);
+  parts.cvfh = cvfh.histogram;
+  parts.cvfh_regions = cvfh.regions;
+  parts.normals_s = cvfh.normals_s;
+  parts.cvfh_s = cvfh.cvfh_s;
+  const auto t = std::chrono::steady_clock::now();
+  parts.hsv = HsvHistogram(object_C, params.hsv);
+  parts.hsv_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+  return parts;
+}
+
+Eigen::VectorXf AssembleDescriptor(const DescriptorParts& parts, DescriptorKind kind) {
+  if (parts.hsv.size() != kHsvBins || parts.cvfh.size() != kCvfhBins) {
+    throw std::invalid_argument("descriptor parts have " + std::to_string(parts.hsv.size()) + " HSV and " +
+                                std::to_string(parts.cvfh.size()) + " CVFH bins, expected 192 and 308");
+  }
+  if (kind == DescriptorKind::kCvfh) return NormalisedCvfh(parts.cvfh);
+  Eigen::VectorXf out(kHsvBins + kCvfhBins);
+  if (kind == DescriptorKind::kColorCvfh) {
+    out << parts.hsv, parts.cvfh;
+    return out;
+  }
+  Eigen::VectorXf hsv = parts.hsv;
+  const float points = parts.hsv.segment(kHueBins, kSaturationBins).sum();  // S counts every point.
+  DivideBlock(hsv, 0, kHueBins, points);
+  DivideBlock(hsv, kHueBins, kSaturationBins, points);
+  DivideBlock(hsv, kHueBins + kSaturationBins, kValueBins, points);
+  out << hsv, NormalisedCvfh(parts.cvfh);
+  return out;
+}
+
+}  // namespace sortcell::perception

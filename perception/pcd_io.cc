@@ -1,0 +1,54 @@
+#include "perception/pcd_io.h"
+
+#include <pcl/PCLPointCloud2.h>
+#include <pcl/conversions.h>
+#include <pcl/console/print.h>
+#include <pcl/io/pcd_io.h>
+
+#include <algorithm>
+#include <stdexcept>
+#include <string>
+
+namespace sortcell::perception {
+namespace {
+
+bool HasField(const pcl::PCLPointCloud2& blob, const std::string& name) {
+  return std::any_of(blob.fields.begin(), blob.fields.end(), [&](const pcl::PCLPointField& f) { return f.name == name; });
+}
+
+}  // namespace
+
+Cloud::Ptr LoadCloud(const std::filesystem::path& file, bool organized) {
+  const std::string where = "PCD '" + file.string() + "': ";
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(file, ec)) throw std::invalid_argument(where + "no such file");
+  pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS);  // Errors are ours, one line each.
+  pcl::PCLPointCloud2 blob;
+  pcl::PCDReader reader;
+  if (reader.read(file.string(), blob) < 0) throw std::invalid_argument(where + "not a readable PCD file");
+  for (const char* field : {"x", "y", "z"}) {
+    if (!HasField(blob, field)) throw std::invalid_argument(where + "missing field '" + field + "'");
+  }
+  if (!HasField(blob, "rgb")) {
+    auto rgba = std::find_if(blob.fields.begin(), blob.fields.end(), [](const auto& f) { return f.name == "rgba"; });
+    if (rgba == blob.fields.end()) throw std::invalid_argument(where + "missing field 'rgb' (or 'rgba'): colour is needed");
+    rgba->name = "rgb";  // Same packing; PCL matches fields by name.
+  }
+  if (blob.width == 0 || blob.height == 0) throw std::invalid_argument(where + "the cloud is empty");
+  if (organized && blob.height <= 1) {
+    throw std::invalid_argument(where + "not organized (" + std::to_string(blob.width) + "x" +
+                                std::to_string(blob.height) + "): expected one point per pixel, e.g. 640x480");
+  }
+  auto cloud = std::make_shared<Cloud>();
+  pcl::fromPCLPointCloud2(blob, *cloud);
+  return cloud;
+}
+
+void SaveCloud(const std::filesystem::path& file, const Cloud& cloud) {
+  pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS);
+  if (cloud.empty() || pcl::io::savePCDFileBinaryCompressed(file.string(), cloud) != 0) {
+    throw std::runtime_error("cannot write '" + file.string() + "'");
+  }
+}
+
+}  // namespace sortcell::perception

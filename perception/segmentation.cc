@@ -1,0 +1,252 @@
+#include "perception/segmentation.h"
+
+#include <pcl/ModelCoefficients.h>
+#include <pcl/filters/project_inliers.h>
+#include <pcl/filters/voxel_grid.h>
+#include <pcl/search/kdtree.h>
+#include <pcl/segmentation/extract_clusters.h>
+#include <pcl/segmentation/extract_polygonal_prism_data.h>
+#include <pcl/segmentation/sac_segmentation.h>
+#include <pcl/surface/convex_hull.h>
+
+#include <Eigen/Eigenvalues>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace sortcell::perception {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double Since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+bool Finite(const PointT& p) { return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z); }
+
+// Kinect v1 axial noise at depth z (DESIGN.md section 5), for the background tolerance.
+double AxialSigma(double z) { return 0.0012 + 0.0019 * (z - 0.4) * (z - 0.4); }
+
+void CheckInput(const Cloud& cloud, const Cloud* background) {
+  if (cloud.empty()) throw std::invalid_argument("segmentation: the cloud is empty");
+  if (!cloud.isOrganized() || cloud.size() != static_cast<size_t>(cloud.width) * cloud.height) {
+    throw std::invalid_argument("segmentation: the cloud is not organized (height " + std::to_string(cloud.height) +
+                                "): expected one point per pixel, e.g. 640x480 from a Kinect");
+  }
+  if (std::none_of(cloud.begin(), cloud.end(), Finite)) {
+    throw std::invalid_argument("segmentation: the cloud has no valid point (all NaN)");
+  }
+  if (background != nullptr && (background->width != cloud.width || background->height != cloud.height)) {
+    throw std::invalid_argument("segmentation: the background cloud is " + std::to_string(background->width) + "x" +
+                                std::to_string(background->height) + ", the cloud " + std::to_string(cloud.width) +
+                                "x" + std::to_string(cloud.height));
+  }
+}
+
+// Pixels inside the region of interest: valid, inside the world workspace box (with a pose).
+std::vector<int> RegionOfInterest(const Cloud& cloud, const std::optional<Eigen::Isometry3d>& X_WC,
+                                  const SegmentationParams& params) {
+  std::vector<int> roi;
+  roi.reserve(cloud.size());
+  for (int i = 0; i < static_cast<int>(cloud.size()); ++i) {
+    const PointT& p = cloud[i];
+    if (!Finite(p)) continue;
+    if (X_WC) {
+      const Eigen::Vector3d p_W = *X_WC * Eigen::Vector3d(p.x, p.y, p.z);
+      if ((p_W.array() < params.workspace_min_W.array()).any() ||
+          (p_W.array() > params.workspace_max_W.array()).any()) {
+        continue;
+      }
+    }
+    roi.push_back(i);
+  }
+  return roi;
+}
+
+// Drops pixels whose depth matches the empty cell's (the paper's foreground/background subtraction).
+std::vector<int> SubtractBackground(const Cloud& cloud, const Cloud& background, const std::vector<int>& pixels,
+                                    double tolerance) {
+  std::vector<int> foreground;
+  foreground.reserve(pixels.size());
+  for (int i : pixels) {
+    const PointT& b = background[i];
+    if (Finite(b) && std::abs(cloud[i].z - b.z) < tolerance + 3.0 * AxialSigma(b.z)) continue;
+    foreground.push_back(i);
+  }
+  return foreground;
+}
+
+struct PlaneFit {
+  Eigen::Vector4d plane_C;  // Oriented: the camera (origin) on the positive side.
+  pcl::PointIndices::Ptr inliers;
+  Cloud::Ptr sample;
+};
+
+// RANSAC on every stride-th pixel of the region of interest. With a pose, the plane must be near
+// horizontal in the world (the table), so a large object face can never be taken for it.
+PlaneFit FitSupportingPlane(const Cloud& cloud, const std::vector<int>& roi,
+                            const std::optional<Eigen::Isometry3d>& X_WC, const SegmentationParams& params) {
+  auto sample = std::make_shared<Cloud>();
+  const int stride = std::max(1, params.plane_stride);
+  for (int i : roi) {
+    const int row = i / static_cast<int>(cloud.width), col = i % static_cast<int>(cloud.width);
+    if (row % stride == 0 && col % stride == 0) sample->push_back(cloud[i]);
+  }
+  pcl::SACSegmentation<PointT> sac;  // Not randomly seeded: the same cloud gives the same plane.
+  sac.setOptimizeCoefficients(true);
+  sac.setMethodType(pcl::SAC_RANSAC);
+  sac.setDistanceThreshold(params.plane_distance_m);
+  sac.setMaxIterations(params.plane_iterations);
+  if (X_WC) {
+    const Eigen::Vector3f up_C = (X_WC->rotation().transpose() * Eigen::Vector3d::UnitZ()).cast<float>();
+    sac.setModelType(pcl::SACMODEL_PERPENDICULAR_PLANE);
+    sac.setAxis(up_C);
+    sac.setEpsAngle(params.plane_max_tilt_rad);
+  } else {
+    sac.setModelType(pcl::SACMODEL_PLANE);
+  }
+  PlaneFit fit{Eigen::Vector4d::Zero(), std::make_shared<pcl::PointIndices>(), sample};
+  pcl::ModelCoefficients coefficients;
+  if (static_cast<int>(sample->size()) >= params.min_plane_points) {
+    sac.setInputCloud(sample);
+    sac.segment(*fit.inliers, coefficients);
+  }
+  if (static_cast<int>(fit.inliers->indices.size()) < params.min_plane_points || coefficients.values.size() != 4) {
+    throw std::invalid_argument("segmentation: no supporting plane found (" +
+                                std::to_string(fit.inliers->indices.size()) + " sampled inliers of " +
+                                std::to_string(sample->size()) + ", need " + std::to_string(params.min_plane_points) +
+                                "): expected objects standing on a table or floor");
+  }
+  Eigen::Vector4d plane(coefficients.values[0], coefficients.values[1], coefficients.values[2],
+                        coefficients.values[3]);
+  plane /= plane.head<3>().norm();
+  if (plane[3] < 0) plane = -plane;  // n.0 + d = d: positive on the camera's side.
+  fit.plane_C = plane;
+  return fit;
+}
+
+// Without a pose: keep what stands on the plane's inlier area (its convex hull), up to a height.
+std::vector<int> OnPlaneArea(const Cloud& cloud, const std::vector<int>& pixels, const PlaneFit& fit,
+                             const SegmentationParams& params) {
+  pcl::ModelCoefficients::Ptr coefficients = std::make_shared<pcl::ModelCoefficients>();
+  coefficients->values = {static_cast<float>(fit.plane_C[0]), static_cast<float>(fit.plane_C[1]),
+                          static_cast<float>(fit.plane_C[2]), static_cast<float>(fit.plane_C[3])};
+  auto projected = std::make_shared<Cloud>();
+  pcl::ProjectInliers<PointT> project;
+  project.setModelType(pcl::SACMODEL_PLANE);
+  project.setInputCloud(fit.sample);
+  project.setIndices(fit.inliers);
+  project.setModelCoefficients(coefficients);
+  project.filter(*projected);
+  auto hull = std::make_shared<Cloud>();
+  pcl::ConvexHull<PointT> convex;
+  convex.setDimension(2);
+  convex.setInputCloud(projected);
+  convex.reconstruct(*hull);
+  if (hull->size() < 3) return {};
+
+  auto input = std::make_shared<Cloud>(cloud);
+  auto candidates = std::make_shared<pcl::PointIndices>();
+  candidates->indices = pixels;
+  pcl::ExtractPolygonalPrismData<PointT> prism;
+  prism.setInputCloud(input);
+  prism.setIndices(candidates);
+  prism.setInputPlanarHull(hull);
+  prism.setHeightLimits(params.above_plane_m, params.max_object_height_m);
+  pcl::PointIndices inside;
+  prism.segment(inside);
+  return inside.indices;
+}
+
+}  // namespace
+
+SegmentationResult SegmentObjects(const Cloud& cloud, const std::optional<Eigen::Isometry3d>& X_WC,
+                                  const Cloud* background, const SegmentationParams& params) {
+  CheckInput(cloud, background);
+  SegmentationResult result;
+  result.world_frame = X_WC.has_value();
+
+  auto t = Clock::now();
+  const std::vector<int> roi = RegionOfInterest(cloud, X_WC, params);
+  std::vector<int> candidates =
+      background != nullptr ? SubtractBackground(cloud, *background, roi, params.background_tolerance_m) : roi;
+  result.timings.crop_s = Since(t);
+
+  t = Clock::now();
+  const PlaneFit fit = FitSupportingPlane(cloud, roi, X_WC, params);
+  result.plane_C = fit.plane_C;
+  std::vector<int> above;
+  if (X_WC) {
+    above.reserve(candidates.size());
+    const Eigen::Vector3f n = fit.plane_C.head<3>().cast<float>();
+    const float d = static_cast<float>(fit.plane_C[3]);
+    for (int i : candidates) {
+      if (n.dot(cloud[i].getVector3fMap()) + d > params.above_plane_m) above.push_back(i);
+    }
+  } else {
+    above = OnPlaneArea(cloud, candidates, fit, params);
+  }
+  result.timings.plane_s = Since(t);
+  if (above.empty()) return result;
+
+  t = Clock::now();
+  auto kept = std::make_shared<Cloud>();
+  kept->reserve(above.size());
+  for (int i : above) kept->push_back(cloud[i]);
+  auto voxels = std::make_shared<Cloud>();
+  pcl::VoxelGrid<PointT> grid;
+  grid.setInputCloud(kept);
+  const float leaf = static_cast<float>(params.voxel_leaf_m);
+  grid.setLeafSize(leaf, leaf, leaf);
+  grid.setSaveLeafLayout(true);
+  grid.filter(*voxels);
+  result.timings.voxel_s = Since(t);
+
+  t = Clock::now();
+  auto tree = std::make_shared<pcl::search::KdTree<PointT>>();
+  tree->setInputCloud(voxels);
+  std::vector<pcl::PointIndices> clusters;
+  pcl::EuclideanClusterExtraction<PointT> extract;
+  extract.setClusterTolerance(params.cluster_tolerance_m);
+  extract.setMinClusterSize(params.min_cluster_voxels);
+  extract.setMaxClusterSize(params.max_cluster_voxels);
+  extract.setSearchMethod(tree);
+  extract.setInputCloud(voxels);
+  extract.extract(clusters);
+  std::sort(clusters.begin(), clusters.end(),
+            [](const pcl::PointIndices& a, const pcl::PointIndices& b) { return a.indices.size() > b.indices.size(); });
+
+  std::vector<int> cluster_of_voxel(voxels->size(), -1);
+  for (size_t c = 0; c < clusters.size(); ++c) {
+    for (int v : clusters[c].indices) cluster_of_voxel[v] = static_cast<int>(c);
+  }
+  result.segments.resize(clusters.size());
+  for (size_t k = 0; k < above.size(); ++k) {
+    const int v = grid.getCentroidIndex((*kept)[k]);
+    if (v < 0 || cluster_of_voxel[v] < 0) continue;
+    result.segments[cluster_of_voxel[v]].indices.push_back(above[k]);
+  }
+  const Eigen::Isometry3d X_OC = X_WC.value_or(Eigen::Isometry3d::Identity());  // Output frame O.
+  for (size_t c = 0; c < clusters.size(); ++c) {
+    Segment& segment = result.segments[c];
+    segment.voxels = static_cast<int>(clusters[c].indices.size());
+    segment.cloud_C = std::make_shared<Cloud>();
+    segment.cloud_C->reserve(segment.indices.size());
+    for (int i : segment.indices) segment.cloud_C->push_back(cloud[i]);
+    Eigen::Matrix3Xd p_O(3, segment.voxels);
+    for (int k = 0; k < segment.voxels; ++k) {
+      p_O.col(k) = X_OC * (*voxels)[clusters[c].indices[k]].getVector3fMap().cast<double>();
+    }
+    segment.centroid = p_O.rowwise().mean();
+    segment.bbox_min = p_O.rowwise().minCoeff();
+    segment.bbox_max = p_O.rowwise().maxCoeff();
+    const Eigen::Matrix3Xd centred = p_O.colwise() - segment.centroid;
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> pca(centred * centred.transpose());
+    segment.principal_axes = pca.eigenvectors().rowwise().reverse();  // Largest variance first.
+  }
+  result.timings.cluster_s = Since(t);
+  return result;
+}
+
+}  // namespace sortcell::perception

@@ -1,0 +1,87 @@
+#include "sim/object_placement.h"
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace sortcell::sim {
+namespace {
+
+int FreeJointQposAddress(const Model& model, int body) {
+  const mjModel* m = model.get();
+  const int joint = body >= 0 && body < m->nbody ? m->body_jntadr[body] : -1;
+  if (joint < 0 || m->jnt_type[joint] != mjJNT_FREE) {
+    throw std::invalid_argument("scene '" + model.source() + "': body " + std::to_string(body) +
+                                " is not a free body (an object)");
+  }
+  return m->jnt_qposadr[joint];
+}
+
+void SetFreePose(const Model& model, Data& data, int body, const Eigen::Vector3d& p, double yaw) {
+  const int q = FreeJointQposAddress(model, body);
+  double* qpos = data->qpos + q;
+  qpos[0] = p.x();
+  qpos[1] = p.y();
+  qpos[2] = p.z();
+  qpos[3] = std::cos(yaw / 2);
+  qpos[4] = 0;
+  qpos[5] = 0;
+  qpos[6] = std::sin(yaw / 2);
+  const int v = model->jnt_dofadr[model->body_jntadr[body]];
+  for (int i = 0; i < 6; ++i) data->qvel[v + i] = 0;
+}
+
+}  // namespace
+
+void PlaceObject(const Model& model, Data& data, int body, double x, double y, double yaw) {
+  SetFreePose(model, data, body, Eigen::Vector3d(x, y, 0), yaw);
+}
+
+void ParkObject(const Model& model, Data& data, int body, int slot) {
+  SetFreePose(model, data, body, Eigen::Vector3d(-3.0 - 0.5 * (slot % 10), 0.5 * (slot / 10), -3.0), 0);
+}
+
+double FootprintRadius(const Model& model, const Data& data, int body) {
+  const mjModel* m = model.get();
+  const Eigen::Vector2d origin(data->xpos[3 * body], data->xpos[3 * body + 1]);
+  double radius = 0;
+  for (int g = 0; g < m->ngeom; ++g) {
+    if (m->geom_bodyid[g] != body || (m->geom_contype[g] == 0 && m->geom_conaffinity[g] == 0)) continue;
+    const Eigen::Vector2d c(data->geom_xpos[3 * g], data->geom_xpos[3 * g + 1]);
+    const double* s = m->geom_size + 3 * g;
+    double r = m->geom_rbound[g];  // Meshes: the bounding sphere.
+    switch (m->geom_type[g]) {
+      case mjGEOM_SPHERE: case mjGEOM_CYLINDER: case mjGEOM_CAPSULE: r = s[0]; break;
+      case mjGEOM_ELLIPSOID: r = std::fmax(s[0], s[1]); break;
+      case mjGEOM_BOX: r = std::hypot(s[0], s[1]); break;
+      default: break;
+    }
+    // Capsules and cylinders stand upright in the object models; a tilted one is bounded by rbound.
+    radius = std::fmax(radius, (c - origin).norm() + r);
+  }
+  return radius;
+}
+
+std::optional<std::vector<TablePose>> SampleTablePoses(const std::vector<double>& radii, const Eigen::Vector2d& min,
+                                                       const Eigen::Vector2d& max, double gap, std::mt19937_64& rng,
+                                                       int max_tries) {
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  std::vector<TablePose> poses;
+  for (size_t i = 0; i < radii.size(); ++i) {
+    bool placed = false;
+    for (int attempt = 0; attempt < max_tries && !placed; ++attempt) {
+      const double r = radii[i];
+      TablePose pose{min.x() + r + unit(rng) * std::fmax(0.0, max.x() - min.x() - 2 * r),
+                     min.y() + r + unit(rng) * std::fmax(0.0, max.y() - min.y() - 2 * r), unit(rng) * 2 * M_PI};
+      placed = true;
+      for (size_t j = 0; j < poses.size() && placed; ++j) {
+        placed = std::hypot(pose.x - poses[j].x, pose.y - poses[j].y) >= r + radii[j] + gap;
+      }
+      if (placed) poses.push_back(pose);
+    }
+    if (!placed) return std::nullopt;
+  }
+  return poses;
+}
+
+}  // namespace sortcell::sim

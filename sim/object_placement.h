@@ -1,0 +1,39 @@
+#pragma once
+/// @file
+/// Puts objects where a scene generator wants them (datasets, randomised scenes): directly in the
+/// state, at rest, standing on the table. Ground-truth tools, never used by the sorting loop.
+
+#include <Eigen/Core>
+
+#include <optional>
+#include <random>
+#include <vector>
+
+#include "sim/model.h"
+
+namespace sortcell::sim {
+
+/// Sets free body `body` upright with its base centre at (x, y, 0) and yaw about z, velocity zero.
+/// @throws std::invalid_argument naming the scene and body if it is not a free body.
+void PlaceObject(const Model& model, Data& data, int body, double x, double y, double yaw);
+
+/// Moves free body `body` out of the way: below the table, out of every camera's view, at a spot of
+/// its own (`slot`) so parked objects never overlap.
+void ParkObject(const Model& model, Data& data, int body, int slot);
+
+/// Radius of the object's footprint about its body origin (collision geoms, current pose).
+double FootprintRadius(const Model& model, const Data& data, int body);
+
+/// An object pose on the table: base centre and yaw.
+struct TablePose {
+  double x = 0, y = 0, yaw = 0;
+};
+
+/// Random non-overlapping poses for objects of footprint `radii` inside the rectangle [min, max]
+/// (x, y): centres at least r_i + r_j + gap apart, yaw uniform. Rejection sampling, at most
+/// `max_tries` draws per object; nullopt when the objects do not fit.
+std::optional<std::vector<TablePose>> SampleTablePoses(const std::vector<double>& radii, const Eigen::Vector2d& min,
+                                                       const Eigen::Vector2d& max, double gap, std::mt19937_64& rng,
+                                                       int max_tries = 500);
+
+}  // namespace sortcell::sim
