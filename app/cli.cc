@@ -10,8 +10,10 @@
 #include <vector>
 
 #include "app/capture_command.h"
+#include "app/experiment_command.h"
 #include "app/kinematics_commands.h"
 #include "app/pick_command.h"
+#include "app/recognition_commands.h"
 #include "app/segment_command.h"
 
 namespace sortcell::app {
@@ -39,6 +41,10 @@ int RunCli(int argc, char** argv) {
   AddCaptureCommand(app, run, command_line);
   AddPickCommand(app, run, command_line);
   AddSegmentCommand(app, run, command_line);
+  AddDatasetCommand(app, run, command_line);
+  AddTrainCommand(app, run, command_line);
+  AddEvalCommand(app, run, command_line);
+  AddExperimentCommand(app, run, command_line);
   AddKinematicsCommands(app, run);
 
   try {

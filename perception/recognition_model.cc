@@ -95,6 +95,7 @@ void SaveModel(const std::filesystem::path& file, const RecognitionModel& model)
        << "cvfh_eps_angle_rad" << c.eps_angle_rad << "cvfh_curvature_threshold" << c.curvature_threshold
        << "cvfh_cluster_tolerance_m" << c.cluster_tolerance_m << "cvfh_min_region_points" << c.min_region_points
        << "cvfh_min_points" << c.min_points << "}";
+    fs << "training" << "{" << "samples" << model.train_samples << "cv_accuracy" << model.cv_accuracy << "}";
     fs << "scaling" << "{" << "min" << ToMat(model.classifier.scaling().min) << "scale"
        << ToMat(model.classifier.scaling().scale) << "}";
     fs << "svm" << "{" << "C" << a.C << "gamma" << a.gamma << "label" << IntOrDoubleRow(a.label) << "nSV"
@@ -159,6 +160,9 @@ RecognitionModel LoadModel(const std::filesystem::path& file, std::optional<Desc
     c.min_region_points = static_cast<int>(r.Number(p, "cvfh_min_region_points"));
     c.min_points = static_cast<int>(r.Number(p, "cvfh_min_points"));
 
+    const cv::FileNode t = r.Node(r.root, "training");
+    model.train_samples = static_cast<int>(r.Number(t, "samples"));
+    model.cv_accuracy = r.Number(t, "cv_accuracy");
     const cv::FileNode s = r.Node(r.root, "scaling");
     FeatureScaling scaling;
     cv::Mat min = r.Matrix(s, "min"), scale = r.Matrix(s, "scale");

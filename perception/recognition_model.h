@@ -21,6 +21,8 @@ struct RecognitionModel {
   std::string label_kind = "category";  ///< What the classes are: "category" or "instance".
   std::vector<std::string> classes;
   SvmClassifier classifier;
+  int train_samples = 0;     ///< Rows it was trained on.
+  double cv_accuracy = 0;    ///< Grouped cross-validation accuracy of the chosen (C, gamma).
 
   /// Class name and confidence of one object's descriptor parts.
   struct Result {

@@ -68,8 +68,8 @@ std::vector<svm_node> ToNodes(const Eigen::VectorXf& x) {
 
 // Fold of each sample: whole groups per fold, groups dealt to folds in a fixed shuffled order.
 std::vector<int> GroupFolds(const std::vector<int>& groups, int folds) {
-  std::vector<int> unique(std::set<int>(groups.begin(), groups.end()).begin(),
-                          std::set<int>(groups.begin(), groups.end()).end());
+  const std::set<int> distinct(groups.begin(), groups.end());
+  std::vector<int> unique(distinct.begin(), distinct.end());
   if (static_cast<int>(unique.size()) < folds) {
     throw std::invalid_argument("SVM training: " + std::to_string(unique.size()) + " groups for " +
                                 std::to_string(folds) + "-fold grouped cross-validation");

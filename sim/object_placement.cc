@@ -7,6 +7,10 @@
 namespace sortcell::sim {
 namespace {
 
+// Parked objects float high above the cell: every camera looks down from below this height, and up
+// there nothing touches them (below the floor plane, everything would be in contact with it).
+constexpr double kParkHeight = 10.0;
+
 int FreeJointQposAddress(const Model& model, int body) {
   const mjModel* m = model.get();
   const int joint = body >= 0 && body < m->nbody ? m->body_jntadr[body] : -1;
@@ -38,7 +42,7 @@ void PlaceObject(const Model& model, Data& data, int body, double x, double y, d
 }
 
 void ParkObject(const Model& model, Data& data, int body, int slot) {
-  SetFreePose(model, data, body, Eigen::Vector3d(-3.0 - 0.5 * (slot % 10), 0.5 * (slot / 10), -3.0), 0);
+  SetFreePose(model, data, body, Eigen::Vector3d(0.5 * (slot % 10), 0.5 * (slot / 10), kParkHeight), 0);
 }
 
 double FootprintRadius(const Model& model, const Data& data, int body) {
@@ -62,10 +66,13 @@ double FootprintRadius(const Model& model, const Data& data, int body) {
   return radius;
 }
 
-std::optional<std::vector<TablePose>> SampleTablePoses(const std::vector<double>& radii, const Eigen::Vector2d& min,
-                                                       const Eigen::Vector2d& max, double gap, std::mt19937_64& rng,
-                                                       int max_tries) {
-  std::uniform_real_distribution<double> unit(0.0, 1.0);
+namespace {
+
+constexpr int kArrangements = 50;  // Fresh starts before giving up: early objects can block the rest.
+
+std::optional<std::vector<TablePose>> SampleOnce(const std::vector<double>& radii, const Eigen::Vector2d& min,
+                                                 const Eigen::Vector2d& max, double gap, std::mt19937_64& rng,
+                                                 int max_tries, std::uniform_real_distribution<double>& unit) {
   std::vector<TablePose> poses;
   for (size_t i = 0; i < radii.size(); ++i) {
     bool placed = false;
@@ -82,6 +89,18 @@ std::optional<std::vector<TablePose>> SampleTablePoses(const std::vector<double>
     if (!placed) return std::nullopt;
   }
   return poses;
+}
+
+}  // namespace
+
+std::optional<std::vector<TablePose>> SampleTablePoses(const std::vector<double>& radii, const Eigen::Vector2d& min,
+                                                       const Eigen::Vector2d& max, double gap, std::mt19937_64& rng,
+                                                       int max_tries) {
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  for (int arrangement = 0; arrangement < kArrangements; ++arrangement) {
+    if (auto poses = SampleOnce(radii, min, max, gap, rng, max_tries, unit)) return poses;
+  }
+  return std::nullopt;
 }
 
 }  // namespace sortcell::sim

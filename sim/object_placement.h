@@ -17,8 +17,8 @@ namespace sortcell::sim {
 /// @throws std::invalid_argument naming the scene and body if it is not a free body.
 void PlaceObject(const Model& model, Data& data, int body, double x, double y, double yaw);
 
-/// Moves free body `body` out of the way: below the table, out of every camera's view, at a spot of
-/// its own (`slot`) so parked objects never overlap.
+/// Moves free body `body` out of the way: high above the cell, out of every camera's view, at a spot
+/// of its own (`slot`) so parked objects never touch. For rendering only (they would fall if stepped).
 void ParkObject(const Model& model, Data& data, int body, int slot);
 
 /// Radius of the object's footprint about its body origin (collision geoms, current pose).
@@ -31,7 +31,7 @@ struct TablePose {
 
 /// Random non-overlapping poses for objects of footprint `radii` inside the rectangle [min, max]
 /// (x, y): centres at least r_i + r_j + gap apart, yaw uniform. Rejection sampling, at most
-/// `max_tries` draws per object; nullopt when the objects do not fit.
+/// `max_tries` draws per object and up to 50 fresh arrangements; nullopt when the objects do not fit.
 std::optional<std::vector<TablePose>> SampleTablePoses(const std::vector<double>& radii, const Eigen::Vector2d& min,
                                                        const Eigen::Vector2d& max, double gap, std::mt19937_64& rng,
                                                        int max_tries = 500);

@@ -84,6 +84,9 @@ struct OffscreenRenderer::Impl {
     CheckCameraId(*model, view.camera_id);
     CheckViewSize(view.width, view.height);
     GlContext::Instance().MakeCurrent();
+    // Every renderer shares the one GL context but has its own framebuffer: bind ours, or a render
+    // after another renderer's would read back the other one's buffer.
+    mjr_setBuffer(mjFB_OFFSCREEN, &context);
     mjvCamera camera;
     mjv_defaultCamera(&camera);
     camera.type = mjCAMERA_FIXED;
