@@ -131,7 +131,7 @@ nlohmann::json RunExperiment(const ExperimentOptions& options, const std::vector
   }
   const auto start = std::chrono::steady_clock::now();
   PrepareOutputDir(options.out);
-  const std::filesystem::path data = options.out / "data";
+  const std::filesystem::path data = options.data.empty() ? options.out / "data" : options.data;
   const nlohmann::json turntable_settings = {{"kind", "turntable"}, {"views", options.views}};
 
   Dataset train_data, scene_data;
@@ -216,6 +216,9 @@ void AddExperimentCommand(CLI::App& app, std::function<int()>& run, const std::v
       ->check(CLI::Range(1, 100000))->capture_default_str();
   cmd->add_option("--seed", o->seed, "Seed (uint64)")->check(kUnsignedInteger)->capture_default_str();
   cmd->add_option("--out", o->out, "Output folder (created if missing)")->required();
+  cmd->add_option("--data", o->data,
+                  "Folder of the captured datasets, reused when they match (default DIR/data); experiments 1 "
+                  "and 2 share the produce turntable data");
   cmd->callback([&run, o, command_line] {
     run = [o, command_line] {
       const nlohmann::json r = RunExperiment(*o, command_line);

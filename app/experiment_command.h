@@ -29,10 +29,11 @@ struct ExperimentOptions {
   int scenes = 150;
   uint64_t seed = 0;
   std::filesystem::path out;
+  std::filesystem::path data;  ///< Captured datasets; empty: out/data. Share it between experiments.
 };
 
 /// Runs the experiment and writes results.json, tables.md, metrics.csv, confusion_*.csv/.png,
-/// models/ and run.json into options.out (data under options.out/data, reused when it matches).
+/// models/ and run.json into options.out (datasets under options.data, reused when they match).
 /// Returns results.json's content.
 /// @throws std::invalid_argument for an unknown experiment or split, or an unusable folder.
 nlohmann::json RunExperiment(const ExperimentOptions& options, const std::vector<std::string>& command_line);

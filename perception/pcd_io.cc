@@ -25,7 +25,16 @@ Cloud::Ptr LoadCloud(const std::filesystem::path& file, bool organized) {
   pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS);  // Errors are ours, one line each.
   pcl::PCLPointCloud2 blob;
   pcl::PCDReader reader;
-  if (reader.read(file.string(), blob) < 0) throw std::invalid_argument(where + "not a readable PCD file");
+  // PCL 1.13's read() crashes on a file without a PCD header: check the header first.
+  Eigen::Vector4f origin;
+  Eigen::Quaternionf orientation;
+  int version = 0, binary = 0;
+  unsigned int data_start = 0;
+  if (reader.readHeader(file.string(), blob, origin, orientation, version, binary, data_start) < 0 ||
+      blob.fields.empty() || blob.width == 0 || blob.height == 0) {
+    throw std::invalid_argument(where + "not a readable PCD file (no FIELDS or no points in the header)");
+  }
+  if (reader.read(file.string(), blob) < 0) throw std::invalid_argument(where + "not a readable PCD file (damaged data)");
   for (const char* field : {"x", "y", "z"}) {
     if (!HasField(blob, field)) throw std::invalid_argument(where + "missing field '" + field + "'");
   }

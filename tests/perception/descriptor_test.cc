@@ -1,0 +1,129 @@
+// Descriptor invariants: sizes, block sums, achromatic pixels, determinism, no state carried between
+// objects, NaN handling, bad input.
+#include "perception/descriptor.h"
+
+#include <gtest/gtest.h>
+
+#include "test_clouds.h"
+
+namespace sortcell::perception {
+namespace {
+
+using sortcell_test::CylinderFront;
+using sortcell_test::SphereFront;
+
+constexpr float kTol = 1e-4f;
+
+TEST(HsvHistogram, BlocksCountEveryPointAndHueOnlyChromaticOnes) {
+  Cloud cloud = CylinderFront(0.03, 0.1, 1.0, 200, 20, 20);   // red
+  const int red = static_cast<int>(cloud.size());
+  Cloud grey = CylinderFront(0.03, 0.05, 1.0, 128, 128, 128);  // achromatic
+  cloud += grey;
+  const Eigen::VectorXf h = HsvHistogram(cloud);
+  ASSERT_EQ(h.size(), kHsvBins);
+  EXPECT_EQ(h.head(kHueBins).sum(), red);
+  EXPECT_EQ(h.segment(kHueBins, kSaturationBins).sum(), static_cast<float>(cloud.size()));
+  EXPECT_EQ(h.tail(kValueBins).sum(), static_cast<float>(cloud.size()));
+  EXPECT_EQ(h[0], red) << "pure red has OpenCV hue 0: bin 0";
+  // Grey: saturation 0 (bin 0), value 128 -> bin 128 * 51 / 256 = 25.
+  EXPECT_GE(h[kHueBins + 0], static_cast<float>(grey.size()));
+  EXPECT_GE(h[kHueBins + kSaturationBins + 25], static_cast<float>(grey.size()));
+}
+
+TEST(HsvHistogram, GreenLandsInHueBin30) {
+  const Eigen::VectorXf h = HsvHistogram(CylinderFront(0.03, 0.05, 1.0, 0, 255, 0));
+  EXPECT_EQ(h[30], h.head(kHueBins).sum()) << "OpenCV hue of green is 60 of 180: bin 60 / 2";
+}
+
+TEST(Cvfh, ReducesRegionsToOne308VectorWithoutNaN) {
+  const CvfhResult r = ComputeCvfh(CylinderFront(0.033, 0.2, 1.0, 0, 128, 0));
+  ASSERT_EQ(r.histogram.size(), kCvfhBins);
+  EXPECT_TRUE(r.histogram.allFinite());
+  EXPECT_GE(r.regions, 1);
+  // Raw counts: each angular block sums to about the point count (the centroid pair may be skipped).
+  for (const auto& [first, size] : kCvfhBlocks) {
+    EXPECT_NEAR(r.histogram.segment(first, size).sum(), r.points, 1.0) << "block at " << first;
+  }
+}
+
+TEST(Cvfh, SameObjectSameResultWhateverCameBefore) {
+  const Cloud bottle = CylinderFront(0.033, 0.2, 1.0, 0, 128, 0);
+  const Cloud ball = SphereFront(0.035, 0.9, 200, 0, 0);
+  const CvfhResult first = ComputeCvfh(bottle);
+  ComputeCvfh(ball);  // A reused PCL estimator would carry state from here into the next call.
+  const CvfhResult again = ComputeCvfh(bottle);
+  EXPECT_EQ(first.regions, again.regions);
+  EXPECT_TRUE(first.histogram.isApprox(again.histogram, 0.0f));
+  EXPECT_FALSE(first.histogram.isApprox(ComputeCvfh(ball).histogram, 1e-3f)) << "shapes must differ";
+}
+
+TEST(Cvfh, IgnoresNaNPoints) {
+  Cloud cloud = CylinderFront(0.033, 0.2, 1.0, 0, 128, 0);
+  const CvfhResult clean = ComputeCvfh(cloud);
+  sortcell_test::AddNan(cloud, 500);
+  const CvfhResult with_nan = ComputeCvfh(cloud);
+  EXPECT_TRUE(clean.histogram.isApprox(with_nan.histogram, 0.0f));
+}
+
+TEST(Cvfh, RejectsEmptyAllNanAndTinyClouds) {
+  Cloud empty;
+  try {
+    ComputeCvfh(empty);
+    FAIL() << "no exception";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("0 valid points"), std::string::npos) << e.what();
+  }
+  Cloud nan;
+  sortcell_test::AddNan(nan, 100);
+  EXPECT_THROW(ComputeCvfh(nan), std::invalid_argument);
+  Cloud tiny;
+  for (int i = 0; i < 5; ++i) tiny.push_back(sortcell_test::Point(0.01 * i, 0, 1, 1, 1, 1));
+  EXPECT_THROW(ComputeCvfh(tiny), std::invalid_argument);
+}
+
+TEST(Descriptor, KindsHaveTheirSizesAndDocumentedBlockSums) {
+  Cloud cloud = CylinderFront(0.033, 0.2, 1.0, 30, 160, 40);
+  Cloud cap = CylinderFront(0.015, 0.02, 0.99, 230, 230, 230);  // a white cap: achromatic
+  cloud += cap;
+  const DescriptorParts parts = ComputeDescriptorParts(cloud);
+  const Eigen::VectorXf cvfh = AssembleDescriptor(parts, DescriptorKind::kCvfh);
+  const Eigen::VectorXf raw = AssembleDescriptor(parts, DescriptorKind::kColorCvfh);
+  const Eigen::VectorXf norm = AssembleDescriptor(parts, DescriptorKind::kColorCvfhNorm);
+  EXPECT_EQ(cvfh.size(), 308);
+  EXPECT_EQ(raw.size(), 500);
+  EXPECT_EQ(norm.size(), 500);
+  EXPECT_EQ(DescriptorSize(DescriptorKind::kColorCvfhNorm), kHsvBins + kCvfhBins);
+  // Raw: [HSV counts | CVFH counts].
+  EXPECT_TRUE(raw.head(kHsvBins).isApprox(parts.hsv));
+  EXPECT_TRUE(raw.tail(kCvfhBins).isApprox(parts.cvfh));
+  // Normalised: S, V and each CVFH block sum to 1; H to the chromatic fraction.
+  const float chromatic = static_cast<float>(cloud.size() - cap.size()) / cloud.size();
+  EXPECT_NEAR(norm.head(kHueBins).sum(), chromatic, kTol);
+  EXPECT_NEAR(norm.segment(kHueBins, kSaturationBins).sum(), 1.0f, kTol);
+  EXPECT_NEAR(norm.segment(kHueBins + kSaturationBins, kValueBins).sum(), 1.0f, kTol);
+  for (const auto& [first, size] : kCvfhBlocks) {
+    EXPECT_NEAR(norm.segment(kHsvBins + first, size).sum(), 1.0f, kTol);
+    EXPECT_NEAR(cvfh.segment(first, size).sum(), 1.0f, kTol);
+  }
+  EXPECT_TRUE(norm.allFinite() && raw.allFinite() && cvfh.allFinite());
+}
+
+TEST(Descriptor, Deterministic) {
+  const Cloud cloud = SphereFront(0.04, 1.1, 250, 140, 0);
+  const DescriptorParts a = ComputeDescriptorParts(cloud), b = ComputeDescriptorParts(cloud);
+  EXPECT_TRUE(a.hsv.isApprox(b.hsv, 0.0f));
+  EXPECT_TRUE(a.cvfh.isApprox(b.cvfh, 0.0f));
+}
+
+TEST(Descriptor, UnknownNameIsAClearError) {
+  EXPECT_EQ(ParseDescriptorKind("color-cvfh-norm"), DescriptorKind::kColorCvfhNorm);
+  try {
+    ParseDescriptorKind("vfh");
+    FAIL() << "no exception";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_STREQ(e.what(), "unknown descriptor 'vfh' (expected cvfh, color-cvfh or color-cvfh-norm)");
+  }
+}
+
+}  // namespace
+}  // namespace sortcell::perception

@@ -1,0 +1,166 @@
+// SVM training, prediction, model file round trip and rejection of foreign or damaged models.
+#include "perception/recognition_model.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <numeric>
+#include <random>
+#include <unistd.h>
+
+namespace sortcell::perception {
+namespace {
+
+// Three noisy clusters in descriptor space, ten groups (sequences) per class.
+struct Data {
+  Eigen::MatrixXf x;
+  std::vector<int> y, groups;
+};
+
+Data Blobs(int dim, int per_class, uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::normal_distribution<float> noise(0.0f, 0.3f);
+  Data d;
+  d.x.resize(3 * per_class, dim);
+  for (int c = 0; c < 3; ++c) {
+    for (int i = 0; i < per_class; ++i) {
+      const int row = c * per_class + i;
+      for (int k = 0; k < dim; ++k) d.x(row, k) = (k % 3 == c ? 1.0f : 0.0f) + noise(rng);
+      d.y.push_back(c);
+      d.groups.push_back(c * 10 + i % 10);
+    }
+  }
+  return d;
+}
+
+SvmGrid SmallGrid() {
+  SvmGrid g;
+  g.C = {1, 16};
+  g.gamma = {1.0 / 512, 1.0 / 32};
+  return g;
+}
+
+std::filesystem::path Temp(const std::string& name) {
+  return std::filesystem::path(::testing::TempDir()) / (std::to_string(::getpid()) + "_" + name);
+}
+
+RecognitionModel TrainedModel() {
+  const Data d = Blobs(308, 30, 1);
+  RecognitionModel m;
+  m.descriptor = DescriptorKind::kCvfh;
+  m.classes = {"bottle", "cup", "ball"};
+  m.classifier = SvmClassifier::Train(d.x, d.y, d.groups, 3, SmallGrid());
+  m.train_samples = 90;
+  return m;
+}
+
+std::string ErrorOf(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const std::invalid_argument& e) {
+    return e.what();
+  }
+  return "no exception";
+}
+
+TEST(SvmClassifier, LearnsSeparableClassesWithConfidence) {
+  const RecognitionModel m = TrainedModel();
+  const Data test = Blobs(308, 10, 2);
+  int correct = 0;
+  for (int r = 0; r < test.x.rows(); ++r) {
+    const Prediction p = m.classifier.Predict(test.x.row(r).transpose());
+    correct += p.label == test.y[r];
+    EXPECT_GT(p.confidence, 1.0 / 3);
+    EXPECT_NEAR(std::accumulate(p.probabilities.begin(), p.probabilities.end(), 0.0), 1.0, 1e-6);
+  }
+  EXPECT_GE(correct, 28);
+  EXPECT_EQ(m.classifier.cv_scores().size(), 4u);
+}
+
+TEST(SvmClassifier, SameDataSameModel) {
+  const RecognitionModel a = TrainedModel(), b = TrainedModel();
+  const Data test = Blobs(308, 3, 3);
+  for (int r = 0; r < test.x.rows(); ++r) {
+    EXPECT_EQ(a.classifier.Predict(test.x.row(r).transpose()).probabilities,
+              b.classifier.Predict(test.x.row(r).transpose()).probabilities);
+  }
+}
+
+TEST(SvmClassifier, RejectsTooFewGroupsAndOneClass) {
+  const Data d = Blobs(10, 5, 1);
+  EXPECT_NE(ErrorOf([&] { SvmClassifier::Train(d.x, d.y, std::vector<int>(d.y.size(), 0), 3, SmallGrid()); })
+                .find("1 groups for 3-fold"),
+            std::string::npos);
+  EXPECT_NE(ErrorOf([&] { SvmClassifier::Train(d.x, std::vector<int>(d.y.size(), 1), d.groups, 3, SmallGrid()); })
+                .find("fewer than two classes"),
+            std::string::npos);
+}
+
+TEST(RecognitionModel, SaveLoadRoundTripPredictsIdentically) {
+  const RecognitionModel m = TrainedModel();
+  const auto file = Temp("model.json");
+  SaveModel(file, m);
+  const RecognitionModel loaded = LoadModel(file, DescriptorKind::kCvfh);
+  EXPECT_EQ(loaded.classes, m.classes);
+  EXPECT_EQ(loaded.descriptor, DescriptorKind::kCvfh);
+  EXPECT_EQ(loaded.train_samples, 90);
+  EXPECT_DOUBLE_EQ(loaded.classifier.C(), m.classifier.C());
+  const Data test = Blobs(308, 5, 4);
+  for (int r = 0; r < test.x.rows(); ++r) {
+    const Prediction a = m.classifier.Predict(test.x.row(r).transpose());
+    const Prediction b = loaded.classifier.Predict(test.x.row(r).transpose());
+    EXPECT_EQ(a.label, b.label);
+    for (size_t c = 0; c < a.probabilities.size(); ++c) EXPECT_NEAR(a.probabilities[c], b.probabilities[c], 1e-9);
+  }
+}
+
+TEST(RecognitionModel, RejectsAnotherDescriptor) {
+  const auto file = Temp("cvfh.json");
+  SaveModel(file, TrainedModel());
+  EXPECT_EQ(ErrorOf([&] { LoadModel(file, DescriptorKind::kColorCvfhNorm); }),
+            "model '" + file.string() + "': trained for descriptor 'cvfh', expected 'color-cvfh-norm'");
+}
+
+TEST(RecognitionModel, RejectsDamagedForeignAndMissingFiles) {
+  const auto file = Temp("damaged.json");
+  SaveModel(file, TrainedModel());
+  std::filesystem::resize_file(file, std::filesystem::file_size(file) / 2);  // Truncated.
+  EXPECT_NE(ErrorOf([&] { LoadModel(file); }).find("model '" + file.string() + "'"), std::string::npos);
+
+  const auto foreign = Temp("foreign.json");
+  std::ofstream(foreign) << "{\"name\": \"not a model\"}";
+  EXPECT_NE(ErrorOf([&] { LoadModel(foreign); }).find("not a SortCell recognition model"), std::string::npos);
+
+  const auto garbage = Temp("garbage.json");
+  std::ofstream(garbage) << "\x01\x02 this is not JSON at all";
+  EXPECT_NE(ErrorOf([&] { LoadModel(garbage); }).find("model '" + garbage.string() + "'"), std::string::npos);
+
+  EXPECT_EQ(ErrorOf([] { LoadModel("/nonexistent/model.json"); }), "model '/nonexistent/model.json': no such file");
+}
+
+TEST(RecognitionModel, RejectsAnotherFormatVersionAndInconsistentArrays) {
+  const auto file = Temp("version.json");
+  SaveModel(file, TrainedModel());
+  std::ifstream in(file);
+  std::string text((std::istreambuf_iterator<char>(in)), {});
+  const std::string version = "\"version\": 1";
+  ASSERT_NE(text.find(version), std::string::npos);
+  std::string v2 = text;
+  v2.replace(v2.find(version), version.size(), "\"version\": 2");
+  std::ofstream(file) << v2;
+  EXPECT_NE(ErrorOf([&] { LoadModel(file); }).find("format version 2"), std::string::npos);
+
+  std::string wrong_kind = text;
+  wrong_kind.replace(wrong_kind.find("\"descriptor\": \"cvfh\""), 20, "\"descriptor\": \"color-cvfh\"");
+  std::ofstream(file) << wrong_kind;
+  EXPECT_NE(ErrorOf([&] { LoadModel(file); }).find("scaling has 308 features, descriptor 'color-cvfh' has 500"),
+            std::string::npos);
+}
+
+TEST(SvmClassifier, LinksDebiansLibsvmNotPclsCopy) {
+  EXPECT_EQ(LinkedLibsvmVersion(), 324) << "libpcl_ml embeds libsvm 3.11; -lsvm must come first";
+}
+
+}  // namespace
+}  // namespace sortcell::perception

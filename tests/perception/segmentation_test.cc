@@ -1,0 +1,164 @@
+// Segmentation on synthetic organized clouds: a table plane with objects, and bad input.
+#include "perception/segmentation.h"
+
+#include <gtest/gtest.h>
+
+#include <pcl/io/pcd_io.h>
+#include <opencv2/core/types.hpp>
+
+#include <filesystem>
+#include <fstream>
+#include <limits>
+
+#include "perception/pcd_io.h"
+#include <unistd.h>
+#include "test_clouds.h"
+
+namespace sortcell::perception {
+namespace {
+
+// A 160x120 camera (f = 130 px) looking straight down from 1 m at a table (z_C = 1), with boxes of
+// height h standing on it at the given pixel rectangles. Camera = world rotated: X_WC flips y and z.
+struct Scene {
+  Cloud cloud;
+  Eigen::Isometry3d X_WC = Eigen::Isometry3d::Identity();
+};
+
+Scene TableWithBoxes(const std::vector<cv::Rect>& boxes, double h) {
+  Scene s;
+  s.cloud = Cloud(160, 120);
+  const double f = 130;
+  for (int v = 0; v < 120; ++v) {
+    for (int u = 0; u < 160; ++u) {
+      double z = 1.0;
+      for (const auto& b : boxes) {
+        if (b.contains(cv::Point(u, v))) z = 1.0 - h;
+      }
+      s.cloud.at(u, v) = sortcell_test::Point((u - 79.5) * z / f, (v - 59.5) * z / f, z, 180, 160, 120);
+    }
+  }
+  // World: table top z = 0, camera 1 m above it looking down (optical z = -world z).
+  s.X_WC.linear() << 1, 0, 0, 0, -1, 0, 0, 0, -1;
+  s.X_WC.translation() = Eigen::Vector3d(0.5, 0, 1.0);
+  return s;
+}
+
+SegmentationParams OpenBox() {
+  SegmentationParams p;
+  p.workspace_min_W = Eigen::Vector3d(-1, -1, -0.05);
+  p.workspace_max_W = Eigen::Vector3d(2, 1, 0.5);
+  return p;
+}
+
+std::string ErrorOf(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const std::invalid_argument& e) {
+    return e.what();
+  }
+  return "no exception";
+}
+
+TEST(Segmentation, FindsEachObjectOnTheTableWithAndWithoutPose) {
+  const Scene s = TableWithBoxes({cv::Rect(20, 20, 25, 25), cv::Rect(100, 60, 30, 20)}, 0.08);
+  for (const bool with_pose : {true, false}) {
+    const auto pose = with_pose ? std::optional<Eigen::Isometry3d>(s.X_WC) : std::nullopt;
+    const SegmentationResult r = SegmentObjects(s.cloud, pose, nullptr, OpenBox());
+    ASSERT_EQ(r.segments.size(), 2u) << (with_pose ? "with pose" : "camera frame");
+    EXPECT_EQ(r.world_frame, with_pose);
+    // Largest first: the 30x20 box (600 px) then 25x25 (625 px) ... by voxels; check pixels instead.
+    size_t pixels = r.segments[0].indices.size() + r.segments[1].indices.size();
+    EXPECT_EQ(pixels, 25u * 25 + 30 * 20);
+    for (const auto& seg : r.segments) {
+      EXPECT_EQ(seg.cloud_C->size(), seg.indices.size());
+      if (with_pose) {
+        EXPECT_NEAR(seg.centroid.z(), 0.08, 0.002) << "box tops, 8 cm above the table";
+      } else {
+        EXPECT_NEAR(seg.centroid.z(), 0.92, 0.002) << "camera frame: 0.92 m away";
+      }
+    }
+    EXPECT_NEAR(std::abs(r.plane_C[2]), 1.0, 1e-3);
+    EXPECT_GT(r.plane_C[3], 0) << "the camera is on the plane's positive side";
+  }
+}
+
+TEST(Segmentation, BackgroundSubtractionRemovesWhatTheEmptySceneHas) {
+  const Scene s = TableWithBoxes({cv::Rect(20, 20, 25, 25), cv::Rect(100, 60, 30, 20)}, 0.08);
+  const Scene background = TableWithBoxes({cv::Rect(100, 60, 30, 20)}, 0.08);  // That box is fixture.
+  const SegmentationResult r = SegmentObjects(s.cloud, s.X_WC, &background.cloud, OpenBox());
+  ASSERT_EQ(r.segments.size(), 1u);
+  EXPECT_EQ(r.segments[0].indices.size(), 25u * 25);
+}
+
+TEST(Segmentation, WorkspaceBoxCropsOutsideObjects) {
+  const Scene s = TableWithBoxes({cv::Rect(20, 20, 25, 25), cv::Rect(100, 60, 30, 20)}, 0.08);
+  SegmentationParams p = OpenBox();
+  p.workspace_min_W.x() = 0.5;  // Keeps the right half of the image only.
+  const SegmentationResult r = SegmentObjects(s.cloud, s.X_WC, nullptr, p);
+  ASSERT_EQ(r.segments.size(), 1u);
+  EXPECT_GT(r.segments[0].centroid.x(), 0.5);
+}
+
+TEST(Segmentation, RejectsEmptyAllNanUnorganizedAndPlaneless) {
+  Cloud empty;
+  EXPECT_EQ(ErrorOf([&] { SegmentObjects(empty, std::nullopt, nullptr); }), "segmentation: the cloud is empty");
+  Cloud nan(40, 30);
+  for (auto& p : nan) p.x = p.y = p.z = std::numeric_limits<float>::quiet_NaN();
+  EXPECT_EQ(ErrorOf([&] { SegmentObjects(nan, std::nullopt, nullptr); }),
+            "segmentation: the cloud has no valid point (all NaN)");
+  Cloud flat = TableWithBoxes({}, 0).cloud;
+  flat.height = 1;
+  flat.width = static_cast<uint32_t>(flat.size());
+  EXPECT_NE(ErrorOf([&] { SegmentObjects(flat, std::nullopt, nullptr); }).find("not organized"), std::string::npos);
+  Cloud sparse(40, 30);  // Few valid points, no plane.
+  for (auto& p : sparse) p.x = p.y = p.z = std::numeric_limits<float>::quiet_NaN();
+  sparse.at(3, 3) = sortcell_test::Point(0, 0, 1, 1, 1, 1);
+  EXPECT_NE(ErrorOf([&] { SegmentObjects(sparse, std::nullopt, nullptr); }).find("no supporting plane"),
+            std::string::npos);
+  const Scene s = TableWithBoxes({}, 0);
+  Cloud small(10, 10);
+  EXPECT_NE(ErrorOf([&] { SegmentObjects(s.cloud, s.X_WC, &small); }).find("background cloud is 10x10"),
+            std::string::npos);
+}
+
+TEST(PcdIo, ReadsAnOpenNiStyleXyzrgbaCaptureAndRejectsBadFiles) {
+  const Scene s = TableWithBoxes({cv::Rect(20, 20, 25, 25)}, 0.08);
+  pcl::PointCloud<pcl::PointXYZRGBA> grabber(160, 120);
+  for (size_t i = 0; i < s.cloud.size(); ++i) {
+    grabber[i].getVector3fMap() = s.cloud[i].getVector3fMap();
+    grabber[i].r = 10;
+    grabber[i].g = 20;
+    grabber[i].b = 30;
+    grabber[i].a = 255;
+  }
+  const std::string dir = ::testing::TempDir() + "/" + std::to_string(::getpid());
+  std::filesystem::create_directories(dir);
+  pcl::io::savePCDFileBinaryCompressed(dir + "/grabber.pcd", grabber);
+  const Cloud::Ptr loaded = LoadCloud(dir + "/grabber.pcd", true);
+  ASSERT_EQ(loaded->width, 160u);
+  ASSERT_EQ(loaded->height, 120u);
+  EXPECT_EQ(loaded->at(5, 5).g, 20);
+  EXPECT_EQ(SegmentObjects(*loaded, std::nullopt, nullptr, OpenBox()).segments.size(), 1u);
+
+  pcl::PointCloud<pcl::PointXYZ> xyz(160, 120);
+  pcl::io::savePCDFileBinary(dir + "/xyz.pcd", xyz);
+  EXPECT_EQ(ErrorOf([&] { LoadCloud(dir + "/xyz.pcd", true); }),
+            "PCD '" + dir + "/xyz.pcd': missing field 'rgb' (or 'rgba'): colour is needed");
+  Cloud unorganized = s.cloud;
+  unorganized.height = 1;
+  unorganized.width = static_cast<uint32_t>(unorganized.size());
+  pcl::io::savePCDFileBinary(dir + "/flat.pcd", unorganized);
+  EXPECT_NE(ErrorOf([&] { LoadCloud(dir + "/flat.pcd", true); }).find("not organized (19200x1)"), std::string::npos);
+  std::ofstream(dir + "/junk.pcd") << "hello";
+  EXPECT_EQ(ErrorOf([&] { LoadCloud(dir + "/junk.pcd", true); }),
+            "PCD '" + dir + "/junk.pcd': not a readable PCD file (no FIELDS or no points in the header)");
+  std::ofstream(dir + "/truncated.pcd") << "VERSION .7\nFIELDS x y z rgb\nSIZE 4 4 4 4\nTYPE F F F U\nCOUNT 1 1 1 1\n"
+                                           "WIDTH 640\nHEIGHT 480\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS 307200\n"
+                                           "DATA binary_compressed\nabc";
+  EXPECT_EQ(ErrorOf([&] { LoadCloud(dir + "/truncated.pcd", true); }),
+            "PCD '" + dir + "/truncated.pcd': not a readable PCD file (damaged data)");
+  EXPECT_EQ(ErrorOf([&] { LoadCloud(dir + "/none.pcd", true); }), "PCD '" + dir + "/none.pcd': no such file");
+}
+
+}  // namespace
+}  // namespace sortcell::perception
