@@ -1,0 +1,53 @@
+// Bad input to segment, dataset, train, eval and experiment: one line naming the culprit, exit 2.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "run_sortcell.h"
+
+namespace {
+
+using sortcell_test::ExpectOneLineError;
+using sortcell_test::RunSortcell;
+
+std::string Dir() {
+  const std::string d = ::testing::TempDir() + "/recognition_cli_" + std::to_string(::getpid());
+  std::filesystem::create_directories(d);
+  return d;
+}
+
+TEST(RecognitionCli, SegmentRejectsMissingAndNonPcdFiles) {
+  ExpectOneLineError(RunSortcell("segment --pcd /nonexistent/cloud.pcd --out " + Dir() + "/s"),
+                     "PCD '/nonexistent/cloud.pcd': no such file");
+  std::ofstream(Dir() + "/junk.pcd") << "not a cloud";
+  ExpectOneLineError(RunSortcell("segment --pcd " + Dir() + "/junk.pcd --out " + Dir() + "/s"),
+                     "not a readable PCD file");
+  std::ofstream(Dir() + "/camera.json") << "{\"X_WC\": [[1, 0, 0]]}";
+  std::ofstream(Dir() + "/flat.pcd") << "VERSION .7\nFIELDS x y z rgb\nSIZE 4 4 4 4\nTYPE F F F U\nCOUNT 1 1 1 1\n"
+                                        "WIDTH 1\nHEIGHT 1\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS 1\nDATA ascii\n0 0 1 0\n";
+  ExpectOneLineError(RunSortcell("segment --pcd " + Dir() + "/flat.pcd --out " + Dir() + "/s"), "not organized (1x1)");
+}
+
+TEST(RecognitionCli, TrainAndEvalRejectUnknownDescriptorMissingDatasetAndBadModel) {
+  ExpectOneLineError(RunSortcell("train --dataset " + Dir() + " --descriptor vfh --out " + Dir() + "/m.json"),
+                     "unknown descriptor 'vfh' (expected cvfh, color-cvfh or color-cvfh-norm)");
+  ExpectOneLineError(RunSortcell("train --dataset /nonexistent --descriptor cvfh --out " + Dir() + "/m.json"),
+                     "dataset '/nonexistent': no manifest.json");
+  std::ofstream(Dir() + "/bad.model.json") << "{\"format\": \"something else\"}";
+  ExpectOneLineError(RunSortcell("eval --dataset " + Dir() + " --model " + Dir() + "/bad.model.json --out " + Dir() + "/e"),
+                     "not a SortCell recognition model");
+  ExpectOneLineError(RunSortcell("train --dataset " + Dir() + " --descriptor cvfh --label colour --out " + Dir() + "/m"),
+                     "--label: unknown label kind 'colour'");
+}
+
+TEST(RecognitionCli, ExperimentAndDatasetRejectBadValues) {
+  ExpectOneLineError(RunSortcell("experiment 4 --out " + Dir() + "/x"), "experiment");
+  ExpectOneLineError(RunSortcell("experiment 2 --split unseen-instance --out " + Dir() + "/x"),
+                     "--split: experiment 2 has only the paper split");
+  ExpectOneLineError(RunSortcell("experiment 1 --split random --out " + Dir() + "/x"), "unknown split 'random'");
+  ExpectOneLineError(RunSortcell("dataset --objects /nonexistent.yaml --out " + Dir() + "/d"), "/nonexistent.yaml");
+  ExpectOneLineError(RunSortcell("dataset --objects x.yaml --views 2 --out " + Dir() + "/d"), "--views");
+}
+
+}  // namespace

@@ -1,0 +1,77 @@
+// End to end with the CLI: a small experiment 3 (few views, few scenes) and the dataset -> train ->
+// eval chain on two bottles of one shape and two colours: Color-CVFH must beat CVFH there.
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+#include <fstream>
+
+#include "run_sortcell.h"
+
+namespace {
+
+using sortcell_test::RunSortcell;
+const std::filesystem::path kRoot = SORTCELL_SOURCE_DIR;
+
+nlohmann::json ReadJson(const std::filesystem::path& file) {
+  std::ifstream in(file);
+  return nlohmann::json::parse(in);
+}
+
+std::string Dir(const std::string& name) {
+  return ::testing::TempDir() + "/recognition_e2e_" + std::to_string(::getpid()) + "_" + name;
+}
+
+TEST(RecognitionE2e, SmallExperiment3ColourBeatsShapeAlone) {
+  const std::string out = Dir("exp3");
+  const auto r = RunSortcell("experiment 3 --views 6 --scenes 8 --out " + out);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json results = ReadJson(out + "/results.json");
+  EXPECT_EQ(results["experiment"], 3);
+  EXPECT_EQ(results["split"], "paper");
+  const auto& d = results["descriptors"];
+  for (const char* kind : {"cvfh", "color-cvfh", "color-cvfh-norm"}) {
+    ASSERT_TRUE(d.contains(kind)) << kind;
+    EXPECT_TRUE(d[kind].contains("macro_f1") && d[kind].contains("accuracy") && d[kind].contains("per_class") &&
+                d[kind].contains("confusion"));
+    EXPECT_TRUE(std::filesystem::exists(out + "/confusion_" + std::string(kind) + ".png"));
+  }
+  // bottle1 (category bottle) and bottle2 (others) share a shape: only colour tells them apart.
+  EXPECT_GT(d["color-cvfh-norm"]["per_class"]["bottle"]["f1"].get<double>(),
+            d["cvfh"]["per_class"]["bottle"]["f1"].get<double>() + 0.3);
+  EXPECT_GT(d["color-cvfh-norm"]["macro_f1"].get<double>(), d["cvfh"]["macro_f1"].get<double>());
+  EXPECT_TRUE(std::filesystem::exists(out + "/tables.md"));
+  EXPECT_TRUE(std::filesystem::exists(out + "/metrics.csv"));
+
+  // Run again: the data is reused and the results are the same (same seed, same results).
+  const auto again = RunSortcell("experiment 3 --views 6 --scenes 8 --out " + out);
+  ASSERT_EQ(again.exit_code, 0) << again.err;
+  EXPECT_NE(again.err.find("reusing the dataset"), std::string::npos) << again.err;
+  EXPECT_EQ(ReadJson(out + "/results.json")["descriptors"]["cvfh"]["confusion"], d["cvfh"]["confusion"]);
+}
+
+TEST(RecognitionE2e, DatasetTrainEvalOnTwoColoursOfOneShape) {
+  const std::string set = Dir("set.yaml");
+  std::ofstream(set) << "name: two_bottles\nobjects:\n"
+                     << "  - {name: bottle1, category: green, instance: bottle1, model: "
+                     << (kRoot / "models/objects/bottle1.inc.xml").string() << "}\n"
+                     << "  - {name: bottle2, category: blue, instance: bottle2, model: "
+                     << (kRoot / "models/objects/bottle2.inc.xml").string() << "}\n";
+  const std::string train = Dir("train"), test = Dir("test");
+  ASSERT_EQ(RunSortcell("dataset --objects " + set + " --views 6 --out " + train).exit_code, 0);
+  ASSERT_EQ(RunSortcell("dataset --objects " + set + " --views 5 --seed 9 --out " + test).exit_code, 0);
+  const nlohmann::json manifest = ReadJson(train + "/manifest.json");
+  EXPECT_EQ(manifest["samples"].size(), 36u) << "2 objects x 3 elevations x 6 views";
+  std::map<std::string, double> accuracy;
+  for (const std::string kind : {"cvfh", "color-cvfh-norm"}) {
+    const auto t = RunSortcell("train --dataset " + train + " --descriptor " + kind + " --out " + Dir(kind + ".json"));
+    ASSERT_EQ(t.exit_code, 0) << t.err;
+    const auto e = RunSortcell("eval --dataset " + test + " --model " + Dir(kind + ".json") + " --out " + Dir("eval_" + kind));
+    ASSERT_EQ(e.exit_code, 0) << e.err;
+    accuracy[kind] = ReadJson(Dir("eval_" + kind) + "/results.json")["accuracy"].get<double>();
+  }
+  EXPECT_GE(accuracy["color-cvfh-norm"], 0.95);
+  EXPECT_GT(accuracy["color-cvfh-norm"], accuracy["cvfh"] + 0.2) << "shape alone cannot tell them apart";
+}
+
+}  // namespace
