@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include "error_of.h"
+
 #include <filesystem>
 #include <fstream>
 #include <numeric>
@@ -55,14 +57,7 @@ RecognitionModel TrainedModel() {
   return m;
 }
 
-std::string ErrorOf(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const std::invalid_argument& e) {
-    return e.what();
-  }
-  return "no exception";
-}
+using sortcell_test::ErrorOf;
 
 TEST(SvmClassifier, LearnsSeparableClassesWithConfidence) {
   const RecognitionModel m = TrainedModel();

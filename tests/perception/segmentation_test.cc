@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include "error_of.h"
+
 #include <pcl/io/pcd_io.h>
 #include <opencv2/core/types.hpp>
 
@@ -50,14 +52,7 @@ SegmentationParams OpenBox() {
   return p;
 }
 
-std::string ErrorOf(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const std::invalid_argument& e) {
-    return e.what();
-  }
-  return "no exception";
-}
+using sortcell_test::ErrorOf;
 
 TEST(Segmentation, FindsEachObjectOnTheTableWithAndWithoutPose) {
   const Scene s = TableWithBoxes({cv::Rect(20, 20, 25, 25), cv::Rect(100, 60, 30, 20)}, 0.08);

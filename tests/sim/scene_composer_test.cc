@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include "error_of.h"
+
 #include "sim/kinect_camera.h"
 #include "sim/offscreen_renderer.h"
 
@@ -11,14 +13,7 @@ namespace {
 using namespace sortcell::sim;
 const std::filesystem::path kModels = SORTCELL_SOURCE_DIR "/models";
 
-std::string ErrorOf(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const std::invalid_argument& e) {
-    return e.what();
-  }
-  return "no exception";
-}
+using sortcell_test::ErrorOf;
 
 TEST(SceneComposer, ComposesTheCellWithChosenObjects) {
   const Model scene = LoadComposedCell(kModels, {kModels / "objects/apple1.inc.xml", kModels / "objects/box.inc.xml"},
