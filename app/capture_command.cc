@@ -1,6 +1,5 @@
 #include "app/capture_command.h"
 
-#include <pcl/io/pcd_io.h>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
@@ -13,6 +12,7 @@
 #include "app/cli_validators.h"
 #include "app/output_dir.h"
 #include "app/seeding.h"
+#include "perception/pcd_io.h"
 #include "sim/kinect_camera.h"
 #include "sim/model.h"
 #include "sim/point_cloud.h"
@@ -68,9 +68,7 @@ CaptureSummary RunCapture(const CaptureOptions& options, const std::vector<std::
   WriteImage(options.out / "depth.png", DepthMillimetres(frame.depth));
   WriteImage(options.out / "labels.png", frame.labels);
   const auto cloud = sim::ToOrganizedCloud(frame);
-  if (pcl::io::savePCDFileBinaryCompressed((options.out / "cloud.pcd").string(), *cloud) != 0) {
-    throw std::runtime_error("cannot write '" + (options.out / "cloud.pcd").string() + "'");
-  }
+  perception::SaveCloud(options.out / "cloud.pcd", *cloud);
 
   nlohmann::json labels = {{"0", "none"}};
   nlohmann::json pixels = nlohmann::json::object();

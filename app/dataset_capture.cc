@@ -7,6 +7,7 @@
 #include <random>
 #include <stdexcept>
 
+#include "app/data_dir.h"
 #include "app/output_dir.h"
 #include "app/pick_command.h"
 #include "app/progress.h"
@@ -214,7 +215,6 @@ Dataset CaptureTurntable(const ObjectSet& set, const TurntableOptions& options, 
   dataset.capture = {{"kind", "turntable"}, {"captures", total}, {"samples", dataset.samples.size()},
                      {"skipped", skipped}, {"elevations_deg", options.elevations_deg},
                      {"distance_m", options.distance_m}, {"jitter_m", options.jitter_m}};
-  SaveDataset(dir, dataset);
   return dataset;
 }
 
@@ -290,7 +290,6 @@ Dataset CaptureScenes(const ObjectSet& set, const SceneOptions& options, const s
                      {"objects_not_segmented", missed}, {"segments_without_object", spurious},
                      {"segments_not_described", undescribed}, {"samples", dataset.samples.size()},
                      {"objects_per_scene", {options.min_objects, options.max_objects}}};
-  SaveDataset(dir, dataset);
   return dataset;
 }
 

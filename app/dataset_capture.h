@@ -39,8 +39,8 @@ struct SceneOptions {
   double gap_m = 0.03;  ///< Free space between footprints, so objects segment apart.
 };
 
-/// Renders, segments and describes the turntable views of every object of `set`; writes clouds/,
-/// manifest.json, descriptors.csv into `dir`. Deterministic for a seed.
+/// Renders, segments and describes the turntable views of every object of `set`; writes the clouds
+/// into `dir`/clouds (the caller saves the rest with SaveDataset). Deterministic for a seed.
 Dataset CaptureTurntable(const ObjectSet& set, const TurntableOptions& options, const std::filesystem::path& dir);
 
 /// The same for random cell scenes; a sample per labelled segment (scene and object index recorded).

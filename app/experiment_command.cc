@@ -12,6 +12,7 @@
 #include "app/cli_validators.h"
 #include "app/dataset_capture.h"
 #include "app/object_set.h"
+#include "app/data_dir.h"
 #include "app/output_dir.h"
 #include "app/progress.h"
 #include "app/recognition.h"
@@ -47,7 +48,7 @@ Dataset ReuseOrCapture(const std::filesystem::path& dir, const ObjectSet& set, i
     // No dataset there yet (or a damaged one): capture it.
   }
   std::filesystem::remove_all(dir);
-  Dataset d = capture();
+  Dataset d = capture(dir);
   d.capture["settings"] = capture_settings;
   SaveDataset(dir, d);
   return d;
@@ -134,32 +135,31 @@ nlohmann::json RunExperiment(const ExperimentOptions& options, const std::vector
   const std::filesystem::path data = options.data.empty() ? options.out / "data" : options.data;
   const nlohmann::json turntable_settings = {{"kind", "turntable"}, {"views", options.views}};
 
+  auto turntable = [&](const ObjectSet& set) {
+    return ReuseOrCapture(data / (set.name + "_turntable"), set, options.views, options.seed, turntable_settings,
+                          [&](const std::filesystem::path& dir) {
+                            TurntableOptions t;
+                            t.views = options.views;
+                            t.seed = options.seed;
+                            return CaptureTurntable(set, t, dir);
+                          });
+  };
+
   Dataset train_data, scene_data;
   Split split;
   if (options.number == 1 || options.number == 2) {
-    const ObjectSet produce = Set("produce");
-    train_data = ReuseOrCapture(data / "produce_turntable", produce, options.views, options.seed, turntable_settings, [&] {
-      TurntableOptions t;
-      t.views = options.views;
-      t.seed = options.seed;
-      return CaptureTurntable(produce, t, data / "produce_turntable");
-    });
+    train_data = turntable(Set("produce"));
     split = options.number == 2 ? SequenceSplit(train_data, options.seed)
             : options.split == "paper" ? FrameSplit(train_data) : UnseenInstanceSplit(train_data, options.seed);
   } else {
     const ObjectSet paper = Set("paper");
-    train_data = ReuseOrCapture(data / "paper_turntable", paper, options.views, options.seed, turntable_settings, [&] {
-      TurntableOptions t;
-      t.views = options.views;
-      t.seed = options.seed;
-      return CaptureTurntable(paper, t, data / "paper_turntable");
-    });
+    train_data = turntable(paper);
     scene_data = ReuseOrCapture(data / "paper_scenes", paper, 0, options.seed,
-                                {{"kind", "scenes"}, {"scenes", options.scenes}}, [&] {
+                                {{"kind", "scenes"}, {"scenes", options.scenes}}, [&](const std::filesystem::path& dir) {
                                   SceneOptions s;
                                   s.scenes = options.scenes;
                                   s.seed = options.seed;
-                                  return CaptureScenes(paper, s, data / "paper_scenes");
+                                  return CaptureScenes(paper, s, dir);
                                 });
     for (size_t i = 0; i < train_data.samples.size(); ++i) split.train.push_back(static_cast<int>(i));
     for (size_t i = 0; i < scene_data.samples.size(); ++i) split.test.push_back(static_cast<int>(i));

@@ -4,7 +4,6 @@
 
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 
 namespace sortcell::app {
 namespace {
@@ -37,11 +36,6 @@ void Progress::Print(bool final) {
   std::fprintf(stderr, "%s%s: %d/%d (%.1f/s, %s %.0f s)%s", terminal_ ? "\r" : "", label_.c_str(), done_, total_,
                rate, final ? "took" : "ETA", final ? elapsed : eta, terminal_ && !final ? "   " : "\n");
   std::fflush(stderr);
-}
-
-std::string DataDir() {
-  const char* env = std::getenv("SORTCELL_DATA_DIR");
-  return env != nullptr && *env != '\0' ? env : SORTCELL_DEFAULT_DATA_DIR;
 }
 
 }  // namespace sortcell::app

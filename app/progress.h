@@ -24,8 +24,4 @@ class Progress {
   std::chrono::steady_clock::time_point start_, last_print_;
 };
 
-/// Where the repository's models/ and scenes/ live: $SORTCELL_DATA_DIR, else the source tree this
-/// binary was built from.
-std::string DataDir();
-
 }  // namespace sortcell::app

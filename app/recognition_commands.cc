@@ -70,6 +70,7 @@ void AddDatasetCommand(CLI::App& app, std::function<int()>& run, const std::vect
         options.seed = o->seed;
         d = CaptureTurntable(set, options, o->out);
       }
+      SaveDataset(o->out, d);
       const double wall = Since(start);
       WriteJson(o->out / "run.json", RunRecord(command_line, o->seed, {{"command", "dataset"},
                                                                       {"objects", o->objects.string()},

@@ -87,7 +87,6 @@ TEST(SegmentationScene, CellSceneEveryObjectFoundWithAndWithoutBackground) {
   std::mt19937_64 rng(7);
   const std::vector<std::string> names = kinect.object_names();
   int slot = 0;
-  for (const auto& name : names) sim::ParkObject(model, data, model.Id(mjOBJ_BODY, name), slot++);
   sim::ResetToObserve(model, data);
   for (const auto& name : names) sim::ParkObject(model, data, model.Id(mjOBJ_BODY, name), slot++);
   mj_forward(model.get(), data.get());
