@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "app/capture_command.h"
+#include "app/episode_command.h"
 #include "app/experiment_command.h"
 #include "app/kinematics_commands.h"
 #include "app/pick_command.h"
@@ -45,6 +46,7 @@ int RunCli(int argc, char** argv) {
   AddTrainCommand(app, run, command_line);
   AddEvalCommand(app, run, command_line);
   AddExperimentCommand(app, run, command_line);
+  AddEpisodeCommand(app, run, command_line);
   AddKinematicsCommands(app, run);
 
   try {

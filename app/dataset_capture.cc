@@ -12,6 +12,7 @@
 #include "app/pick_command.h"
 #include "app/progress.h"
 #include "app/seeding.h"
+#include "app/segment_labels.h"
 #include "perception/pcd_io.h"
 #include "perception/segmentation.h"
 #include "sim/arm_io.h"
@@ -94,17 +95,13 @@ class CaptureRig {
     const sim::KinectFrame frame = kinect.Capture(data_, &noise, &rng);
     const auto cloud = sim::ToOrganizedCloud(frame);
     perception::SegmentationResult result = perception::SegmentObjects(*cloud, frame.X_WC, background_.at(camera).get());
-    std::vector<int> mask_size(names_.size() + 1, 0);
-    for (auto it = frame.labels.begin<uint16_t>(); it != frame.labels.end<uint16_t>(); ++it) ++mask_size[*it];
     std::vector<LabelledSegment> out;
     for (auto& segment : result.segments) {
-      std::vector<int> votes(names_.size() + 1, 0);
-      for (int i : segment.indices) ++votes[frame.labels.at<uint16_t>(i / frame.labels.cols, i % frame.labels.cols)];
-      const int label = static_cast<int>(std::max_element(votes.begin(), votes.end()) - votes.begin());
+      const SegmentLabel truth = LabelSegment(frame.labels, segment.indices, static_cast<int>(names_.size()));
       LabelledSegment l;
-      l.label = label;
-      l.purity = static_cast<double>(votes[label]) / segment.indices.size();
-      l.iou = label > 0 ? static_cast<double>(votes[label]) / (mask_size[label] + segment.indices.size() - votes[label]) : 0;
+      l.label = truth.label;
+      l.purity = truth.purity;
+      l.iou = truth.iou;
       l.segment = std::move(segment);
       out.push_back(std::move(l));
     }

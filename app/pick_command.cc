@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "app/arm_executor.h"
+#include "app/motion_runner.h"
 #include "app/output_dir.h"
 #include "robot/grasp_planner.h"
 #include "robot/gripper_control.h"
@@ -24,64 +25,12 @@ using Clock = std::chrono::steady_clock;
 
 constexpr double kApproachSpeed = 0.10;    // m/s, the last straight descent onto the object
 constexpr double kSettleTime = 0.5;         // s, before the pick and before judging the result
-constexpr double kGripperTimeout = 1.5;     // s
 
 std::string Join(const std::vector<std::string>& names) {
   std::string text;
   for (const auto& n : names) text += (text.empty() ? "" : ", ") + n;
   return text;
 }
-
-// One pick, step by step; each step records its phase and simulated time span.
-class PickRun {
- public:
-  PickRun(const sim::Model& model, sim::Data& data, sim::VideoRecorder* video) : exec_(model, data, video) {}
-
-  ArmExecutor& exec() { return exec_; }
-  nlohmann::json& phases() { return phases_; }
-  const std::string& failure() const { return failure_; }
-  bool diverged() const { return diverged_; }
-  /// The status of a step that returned false.
-  std::string FailureStatus() const { return diverged_ ? "sim_diverged" : "unreachable"; }
-
-  // Runs `action` as phase `name`; false (and failure() says why) if the simulation diverged.
-  bool Phase(const std::string& name, const std::function<sim::StepStatus()>& action) {
-    exec_.SetPhase(name);
-    const double start = exec_.time();
-    const sim::StepStatus status = action();
-    phases_.push_back({{"phase", name}, {"start_s", start}, {"end_s", exec_.time()}});
-    if (status.code == sim::StepStatus::kOk) return true;
-    failure_ = name + ": simulation " + status.detail;
-    diverged_ = true;
-    return false;
-  }
-
-  bool MoveJ(const std::string& name, const robot::Joints& q_goal) {
-    const robot::JointTrajectory t = robot::PlanJointMove(exec_.ReferenceJoints(), q_goal);
-    return Phase(name, [&] { return exec_.Follow(t); });
-  }
-
-  // A straight TCP line; false with failure() set if it cannot be planned or run.
-  bool MoveL(const std::string& name, const Eigen::Isometry3d& X_WT, double speed) {
-    const robot::CartesianPlan plan =
-        robot::PlanCartesianLine(exec_.ReferenceJoints(), X_WT, speed, robot::kMovelAcceleration);
-    if (plan.status != robot::CartesianPlanStatus::kOk) {
-      failure_ = name + ": " + plan.detail;
-      return false;
-    }
-    return Phase(name, [&] { return exec_.Follow(plan.trajectory); });
-  }
-
-  bool Gripper(const std::string& name, double gap, robot::HoldState& hold) {
-    return Phase(name, [&] { return exec_.MoveGripper(robot::HalfGapTarget(gap), kGripperTimeout, hold); });
-  }
-
- private:
-  ArmExecutor exec_;
-  nlohmann::json phases_ = nlohmann::json::array();
-  std::string failure_;
-  bool diverged_ = false;
-};
 
 }  // namespace
 
@@ -120,10 +69,10 @@ PickResult RunPick(const PickOptions& options, const std::vector<std::string>& c
     if (options.video.has_parent_path()) std::filesystem::create_directories(options.video.parent_path());
     video = std::make_unique<sim::VideoRecorder>(model, options.video);
   }
-  PickRun run(model, data, video.get());
+  MotionRunner run(model, data, video.get());
   ArmExecutor& exec = run.exec();
   exec.Reset(HomeJoints(), robot::kMaxGap / 2);
-  run.Phase("settle", [&] { return exec.Wait(kSettleTime); });
+  run.Wait("settle", kSettleTime);
 
   // Scripted: the object's pose and shape from the scene (ground truth), as a grasp footprint.
   const sim::ObjectExtent extent = sim::ObjectExtentOf(model, data, object);
@@ -145,7 +94,7 @@ PickResult RunPick(const PickOptions& options, const std::vector<std::string>& c
     if (grasp.status != robot::GraspStatus::kOk) return robot::ToString(grasp.status);
     if (!run.Gripper("open", grasp.open_gap, hold) || !run.MoveJ("approach", grasp.q_lift) ||
         !run.MoveL("descend", grasp.X_WT_pregrasp, robot::kMovelSpeed) ||
-        !run.MoveL("reach", grasp.X_WT_grasp, kApproachSpeed) || !run.Phase("grasp", [&] { return exec.Grasp(robot::kDefaultGripForce, kGripperTimeout, hold); })) {
+        !run.MoveL("reach", grasp.X_WT_grasp, kApproachSpeed) || !run.Grasp("grasp", hold)) {
       return run.FailureStatus();
     }
     if (hold != robot::HoldState::kHolding) return "grasp_failed";
@@ -169,7 +118,7 @@ PickResult RunPick(const PickOptions& options, const std::vector<std::string>& c
   };
   std::string status = pick_and_place();
   result.cycle_time_s = exec.time() - t0;
-  run.Phase("settle_result", [&] { return exec.Wait(kSettleTime); });
+  run.Wait("settle_result", kSettleTime);
   result.in_bin = sim::InBin(data, object, bin);
   if (status.empty()) status = result.in_bin ? "sorted" : "missed_bin";
   result.status = status;

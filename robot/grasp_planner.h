@@ -34,6 +34,8 @@ struct GraspOptions {
   double min_lift_clearance = 0.15;
   /// At release, the object's bottom this high above the bin floor (m).
   double release_clearance = 0.03;
+  /// Yaws tried for the placement, in steps of this (rad); pi/2 keeps a held box square to the bin.
+  double place_yaw_step = M_PI / 8;
   SelectionOptions selection;
 };
 
@@ -69,15 +71,15 @@ struct PlacePlan {
 };
 
 /// Placing a held object (grasped `grasp_height` above its bottom) into a bin whose floor centre is
-/// p_W_floor: the highest reachable top-down pose above it between the lift clearances (any yaw,
+/// p_W_floor: the highest reachable top-down pose above it between the lift clearances (yaws in steps of place_yaw_step,
 /// nearest IK to q_current), then straight down until the object's bottom is release_clearance above
 /// the floor.
 PlacePlan PlanPlacement(const Eigen::Vector3d& p_W_floor, double grasp_height, const Joints& q_current,
                         const GraspOptions& options = {});
 
-/// The top-down TCP pose at p_W (any yaw in steps of pi/8) whose valid IK lies nearest to q_current;
-/// false if none is reachable.
+/// The top-down TCP pose at p_W (any yaw in steps of `yaw_step`) whose valid IK lies nearest to
+/// q_current; false if none is reachable.
 bool NearestTopDownPose(const Eigen::Vector3d& p_W, const Joints& q_current, const SelectionOptions& selection,
-                        Eigen::Isometry3d& X_WT, Joints& q);
+                        Eigen::Isometry3d& X_WT, Joints& q, double yaw_step = M_PI / 8);
 
 }  // namespace sortcell::robot

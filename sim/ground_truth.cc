@@ -8,7 +8,9 @@ namespace sortcell::sim {
 namespace {
 
 constexpr double kBinInnerHalf = 0.10;
-constexpr double kBinWallHeight = 0.10;
+// An object standing upright in a bin has its centre of mass up to half its height above the floor
+// (0.11 m for the 0.224 m bottles), above the 0.10 m walls: "in the bin" allows up to this height.
+constexpr double kBinMaxComHeight = 0.15;
 
 // Half-extent of a geom along unit direction u (world frame), from its primitive shape.
 double SupportHalfExtent(const mjModel* m, const mjData* d, int g, const Eigen::Vector3d& u) {
@@ -101,7 +103,7 @@ bool InBin(const Data& data, int object_body, int bin_body) {
   const Eigen::Vector3d p_WO = Eigen::Map<const Eigen::Vector3d>(data->xipos + 3 * object_body);
   const Eigen::Vector3d p_BO = BodyPose(data, bin_body).inverse() * p_WO;
   return std::abs(p_BO.x()) < kBinInnerHalf && std::abs(p_BO.y()) < kBinInnerHalf && p_BO.z() > 0 &&
-         p_BO.z() < kBinWallHeight;
+         p_BO.z() < kBinMaxComHeight;
 }
 
 }  // namespace sortcell::sim

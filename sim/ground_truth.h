@@ -32,7 +32,9 @@ Eigen::Isometry3d SitePose(const Data& data, int site);
 std::vector<std::string> BinNames(const Model& model);
 
 /// True when the body's centre of mass lies inside the bin: within the inner 0.20 x 0.20 m square
-/// and below the top of its 0.10 m walls (models/cell/cell.inc.xml).
+/// (models/cell/cell.inc.xml) and less than 0.15 m above its floor, which an object standing upright
+/// in the bin satisfies (the tallest, 0.224 m bottles, have it at 0.11 m) and one resting on the
+/// rim or held above the bin does not.
 bool InBin(const Data& data, int object_body, int bin_body);
 
 }  // namespace sortcell::sim

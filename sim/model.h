@@ -32,6 +32,8 @@ class Model {
 
   const mjModel* get() const { return model_.get(); }
   const mjModel* operator->() const { return model_.get(); }
+  /// Write access, for scene variations (sim/scene_variation.h) applied before any Data is made.
+  mjModel* mutable_get() { return model_.get(); }
   /// The file (or name) this model came from.
   const std::string& source() const { return source_; }
   /// The compiler's warning text, empty when the model compiled cleanly.

@@ -45,6 +45,10 @@ void ParkObject(const Model& model, Data& data, int body, int slot) {
   SetFreePose(model, data, body, Eigen::Vector3d(0.5 * (slot % 10), 0.5 * (slot / 10), kParkHeight), 0);
 }
 
+void StowObject(const Model& model, Data& data, int body, int slot) {
+  SetFreePose(model, data, body, Eigen::Vector3d(-2.5 - 0.4 * (slot % 10), -2.5 - 0.4 * (slot / 10), 0), 0);
+}
+
 double FootprintRadius(const Model& model, const Data& data, int body) {
   const mjModel* m = model.get();
   const Eigen::Vector2d origin(data->xpos[3 * body], data->xpos[3 * body + 1]);

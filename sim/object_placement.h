@@ -21,6 +21,11 @@ void PlaceObject(const Model& model, Data& data, int body, double x, double y, d
 /// of its own (`slot`) so parked objects never touch. For rendering only (they would fall if stepped).
 void ParkObject(const Model& model, Data& data, int body, int slot);
 
+/// Moves free body `body` out of the way for a simulation that is stepped: standing on the table's
+/// plane (unbounded for collision in MuJoCo 2.2) 2.5 m or more behind and beside the robot, out of
+/// every camera's view, at a spot of its own (`slot`) so stowed objects never touch.
+void StowObject(const Model& model, Data& data, int body, int slot);
+
 /// Radius of the object's footprint about its body origin (collision geoms, current pose).
 double FootprintRadius(const Model& model, const Data& data, int body);
 

@@ -8,6 +8,15 @@
 
 
 namespace sortcell::sim {
+namespace {
+
+// White text with a black outline: readable on any background.
+void DrawText(cv::Mat& image, const std::string& text, cv::Point origin, double scale) {
+  cv::putText(image, text, origin, cv::FONT_HERSHEY_SIMPLEX, scale, cv::Scalar(0, 0, 0), 4, cv::LINE_AA);
+  cv::putText(image, text, origin, cv::FONT_HERSHEY_SIMPLEX, scale, cv::Scalar(255, 255, 255), 2, cv::LINE_AA);
+}
+
+}  // namespace
 
 VideoRecorder::VideoRecorder(const Model& model, const std::filesystem::path& path, const VideoOptions& options)
     : path_(path), options_(options), renderer_(model) {
@@ -32,9 +41,17 @@ void VideoRecorder::WriteFrame(const Data& data) {
   char clock[32];
   std::snprintf(clock, sizeof clock, "t = %6.2f s", data->time);
   const std::string line = std::string(clock) + (caption_.empty() ? "" : "   " + caption_);
-  const cv::Point origin(16, 36);
-  cv::putText(bgr_, line, origin, cv::FONT_HERSHEY_SIMPLEX, 0.8, cv::Scalar(0, 0, 0), 4, cv::LINE_AA);
-  cv::putText(bgr_, line, origin, cv::FONT_HERSHEY_SIMPLEX, 0.8, cv::Scalar(255, 255, 255), 2, cv::LINE_AA);
+  DrawText(bgr_, line, cv::Point(16, 36), 0.8);
+  for (size_t i = 0; i < overlay_.size(); ++i) DrawText(bgr_, overlay_[i], cv::Point(16, 72 + 30 * static_cast<int>(i)), 0.65);
+  if (!inset_.empty()) {
+    const int width = bgr_.cols / 3;
+    const int height = inset_.rows * width / inset_.cols;
+    if (inset_scaled_.cols != width || inset_scaled_.rows != height) inset_scaled_.create(height, width, CV_8UC3);
+    cv::resize(inset_, inset_scaled_, inset_scaled_.size(), 0, 0, cv::INTER_AREA);
+    const cv::Rect where(bgr_.cols - width - 12, 12, width, std::min(height, bgr_.rows - 24));
+    inset_scaled_(cv::Rect(0, 0, where.width, where.height)).copyTo(bgr_(where));
+    cv::rectangle(bgr_, where, cv::Scalar(255, 255, 255), 2);
+  }
   writer_.write(bgr_);
   ++frames_;
   render_wall_s_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include <opencv2/core/mat.hpp>
 #include <opencv2/videoio.hpp>
@@ -34,6 +35,11 @@ class VideoRecorder {
   void Update(const Data& data);
   /// The caption drawn on the following frames (phase, object, ...).
   void SetCaption(std::string caption) { caption_ = std::move(caption); }
+  /// Heads-up lines drawn under the caption on the following frames (empty: none).
+  void SetOverlay(std::vector<std::string> lines) { overlay_ = std::move(lines); }
+  /// A BGR image drawn in the top-right corner of the following frames, scaled to a third of the
+  /// frame's width (empty: none), e.g. the robot's latest camera view.
+  void SetInset(const cv::Mat& bgr) { inset_ = bgr.clone(); }
   /// Finishes the file. Also done by the destructor.
   void Close();
 
@@ -50,6 +56,8 @@ class VideoRecorder {
   cv::VideoWriter writer_;
   cv::Mat rgb_, depth_, bgr_;
   std::string caption_;
+  std::vector<std::string> overlay_;
+  cv::Mat inset_, inset_scaled_;
   int frames_ = 0;
   double render_wall_s_ = 0;
 };

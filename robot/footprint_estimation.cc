@@ -1,0 +1,111 @@
+#include "robot/footprint_estimation.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace sortcell::robot {
+namespace {
+
+struct Extent {
+  double low = 0, high = 0;
+  double width() const { return high - low; }
+  double mid() const { return 0.5 * (low + high); }
+};
+
+double Quantile(std::vector<double>& values, double q) {
+  const size_t k = std::min(values.size() - 1, static_cast<size_t>(std::lround(q * (values.size() - 1))));
+  std::nth_element(values.begin(), values.begin() + k, values.end());
+  return values[k];
+}
+
+// The extent of the points' xy projections on `direction`, between the option's quantiles.
+Extent ExtentAlong(const std::vector<Eigen::Vector3d>& p_W, const Eigen::Vector2d& direction,
+                   const FootprintOptions& options, std::vector<double>& scratch) {
+  scratch.clear();
+  for (const auto& p : p_W) scratch.push_back(direction.dot(p.head<2>()));
+  Extent e;
+  e.low = Quantile(scratch, options.low_quantile);
+  e.high = Quantile(scratch, options.high_quantile);
+  return e;
+}
+
+double YawOf(const Eigen::Vector2d& d) {
+  double yaw = std::atan2(d.y(), d.x());
+  if (yaw < 0) yaw += M_PI;
+  if (yaw >= M_PI) yaw -= M_PI;
+  return yaw;
+}
+
+}  // namespace
+
+FootprintEstimate EstimateFootprint(const std::vector<Eigen::Vector3d>& p_W, const Eigen::Vector3d& p_W_camera,
+                                    double table_z, const FootprintOptions& options) {
+  if (p_W.size() < 10) {
+    throw std::invalid_argument("footprint: expected at least 10 object points, got " + std::to_string(p_W.size()));
+  }
+  Eigen::Vector2d mean = Eigen::Vector2d::Zero();
+  for (const auto& p : p_W) mean += p.head<2>();
+  mean /= static_cast<double>(p_W.size());
+  const Eigen::Vector2d ray = mean - p_W_camera.head<2>();
+  if (ray.norm() < 1e-3) throw std::invalid_argument("footprint: the camera stands right above the object");
+  const Eigen::Vector2d v = ray.normalized();  // Horizontal line of sight.
+  const Eigen::Vector2d u(-v.y(), v.x());      // Across it.
+
+  std::vector<double> scratch;
+  scratch.reserve(p_W.size());
+  for (const auto& p : p_W) scratch.push_back(p.z());
+  const double top_z = Quantile(scratch, options.high_quantile);
+  std::vector<Eigen::Vector3d> top;  // The top face (or cap) of the object.
+  for (const auto& p : p_W) {
+    if (p.z() >= top_z - options.top_slice) top.push_back(p);
+  }
+
+  FootprintEstimate estimate;
+  ObjectFootprint& f = estimate.footprint;
+  const Extent across = ExtentAlong(p_W, u, options, scratch);
+  // A prism (box, cup) shows its whole footprint in its top face; a tapered object (bottle, ball)
+  // shows only a cap there, and its back stays hidden.
+  const bool prism = top.size() >= 10 && ExtentAlong(top, u, options, scratch).width() >= options.prism_ratio * across.width();
+  double narrowest = across.width(), narrowest_yaw = YawOf(u);
+  if (prism) {
+    for (double yaw = 0; yaw < M_PI; yaw += options.yaw_step) {
+      const double width = ExtentAlong(p_W, Eigen::Vector2d(std::cos(yaw), std::sin(yaw)), options, scratch).width();
+      if (width < narrowest) {
+        narrowest = width;
+        narrowest_yaw = yaw;
+      }
+    }
+  }
+  const bool use_across = across.width() <= options.max_width &&
+                          (!prism || across.width() <= options.across_preference * narrowest);
+  if (use_across) {
+    const Extent along = ExtentAlong(p_W, v, options, scratch);
+    const double depth = std::max(along.width(), across.width());
+    f.centre_xy = across.mid() * u + (along.low + 0.5 * depth) * v;
+    f.pinch_yaw = YawOf(u);
+    f.width = across.width();
+  } else {
+    if (!prism) {  // Tapered and too wide across: the narrowest visible direction is all there is.
+      for (double yaw = 0; yaw < M_PI; yaw += options.yaw_step) {
+        const double width = ExtentAlong(p_W, Eigen::Vector2d(std::cos(yaw), std::sin(yaw)), options, scratch).width();
+        if (width < narrowest) {
+          narrowest = width;
+          narrowest_yaw = yaw;
+        }
+      }
+    }
+    const Eigen::Vector2d d(std::cos(narrowest_yaw), std::sin(narrowest_yaw)), e(-d.y(), d.x());
+    const Extent pinch = ExtentAlong(p_W, d, options, scratch), length = ExtentAlong(p_W, e, options, scratch);
+    f.centre_xy = pinch.mid() * d + length.mid() * e;
+    f.pinch_yaw = narrowest_yaw;
+    f.width = pinch.width();
+  }
+  estimate.across_view = use_across;
+  estimate.prism = prism;
+  f.top_z = top_z;
+  f.base_z = table_z;
+  return estimate;
+}
+
+}  // namespace sortcell::robot

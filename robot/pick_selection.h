@@ -1,0 +1,55 @@
+#pragma once
+/// @file
+/// Which object the sorting loop picks next, and what it remembers between captures. Objects move
+/// (a missed grasp nudges them, a neighbour's pick disturbs them) and the camera gives no identities,
+/// so the loop remembers table positions: "the cluster near here" is the object it tried before.
+
+#include <Eigen/Core>
+
+#include <vector>
+
+#include "robot/grasp_planner.h"
+
+namespace sortcell::robot {
+
+enum class SkipReason { kNone, kUnreachable, kGraspFailed };
+const char* ToString(SkipReason reason);
+
+class PickMemory {
+ public:
+  /// @param radius        Clusters whose centres are this close are the same object (m).
+  /// @param max_attempts  Grasp attempts at one position before it is given up.
+  explicit PickMemory(double radius = 0.04, int max_attempts = 3);
+
+  /// Counts a grasp attempt at xy; when the count reaches max_attempts, the position is given up
+  /// (kGraspFailed). Returns the count.
+  int RecordAttempt(const Eigen::Vector2d& xy);
+  /// Attempts recorded near xy.
+  int Attempts(const Eigen::Vector2d& xy) const;
+  /// Gives up the position xy for `reason`.
+  void Skip(const Eigen::Vector2d& xy, SkipReason reason);
+  /// Why the position xy was given up, or kNone.
+  SkipReason Skipped(const Eigen::Vector2d& xy) const;
+  int max_attempts() const { return max_attempts_; }
+
+ private:
+  struct Entry {
+    Eigen::Vector2d xy;
+    int attempts = 0;
+    SkipReason skipped = SkipReason::kNone;
+  };
+  int Find(const Eigen::Vector2d& xy) const;  // Index of the nearest entry within radius_, or -1.
+  Entry& FindOrAdd(const Eigen::Vector2d& xy);
+
+  double radius_;
+  int max_attempts_;
+  std::vector<Entry> entries_;
+};
+
+/// The candidate to pick next: of those not given up, the one with the most free room around it
+/// (distance from its centre to the nearest other object's centre, less both half-widths), so the
+/// open fingers are least likely to touch a neighbour and every pick makes room for the next.
+/// Returns its index, or -1 if every candidate was given up.
+int ChooseNextPick(const std::vector<ObjectFootprint>& candidates, const PickMemory& memory);
+
+}  // namespace sortcell::robot

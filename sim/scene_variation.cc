@@ -1,0 +1,60 @@
+#include "sim/scene_variation.h"
+
+#include <Eigen/Geometry>
+
+#include <stdexcept>
+
+namespace sortcell::sim {
+namespace {
+
+bool IsObject(const mjModel* m, int body) {
+  return body > 0 && m->body_jntnum[body] == 1 && m->jnt_type[m->body_jntadr[body]] == mjJNT_FREE;
+}
+
+Eigen::Vector3d RandomUnitVector(std::mt19937_64& rng) {
+  std::normal_distribution<double> normal;
+  Eigen::Vector3d v;
+  do {
+    v = Eigen::Vector3d(normal(rng), normal(rng), normal(rng));
+  } while (v.norm() < 1e-6);
+  return v.normalized();
+}
+
+}  // namespace
+
+void ApplyVariation(Model& model, const SceneVariation& variation, std::mt19937_64& rng) {
+  const std::string scene = "scene '" + model.source() + "': ";
+  if (!(variation.friction_scale > 0)) throw std::invalid_argument(scene + "friction scale must be > 0");
+  if (!(variation.mass_scale > 0)) throw std::invalid_argument(scene + "mass scale must be > 0");
+  if (!(variation.camera_shift_m >= 0) || !(variation.camera_turn_rad >= 0)) {
+    throw std::invalid_argument(scene + "camera jitter must be >= 0");
+  }
+  const int camera = model.Id(mjOBJ_CAMERA, variation.camera);
+  mjModel* m = model.mutable_get();
+  for (int g = 0; g < m->ngeom; ++g) {
+    if (IsObject(m, m->geom_bodyid[g])) m->geom_friction[3 * g] *= variation.friction_scale;
+  }
+  for (int b = 0; b < m->nbody; ++b) {
+    if (!IsObject(m, b)) continue;
+    m->body_mass[b] *= variation.mass_scale;
+    for (int k = 0; k < 3; ++k) m->body_inertia[3 * b + k] *= variation.mass_scale;
+  }
+  // Draws happen even at zero jitter, so the random stream does not depend on the jitter's size.
+  const Eigen::Vector3d shift = variation.camera_shift_m * RandomUnitVector(rng);
+  const Eigen::Vector3d axis = RandomUnitVector(rng);
+  Eigen::Map<Eigen::Vector3d>(m->cam_pos + 3 * camera) += shift;
+  const Eigen::Quaterniond q(m->cam_quat[4 * camera], m->cam_quat[4 * camera + 1], m->cam_quat[4 * camera + 2],
+                             m->cam_quat[4 * camera + 3]);
+  // The turn is about an axis in the camera's own frame (MuJoCo's quaternion is body-to-camera).
+  const Eigen::Quaterniond turned = (q * Eigen::AngleAxisd(variation.camera_turn_rad, axis)).normalized();
+  m->cam_quat[4 * camera] = turned.w();
+  m->cam_quat[4 * camera + 1] = turned.x();
+  m->cam_quat[4 * camera + 2] = turned.y();
+  m->cam_quat[4 * camera + 3] = turned.z();
+  // Derived quantities that depend on masses (subtree masses, armature-free inertias at qpos0).
+  mjData* d = mj_makeData(m);
+  mj_setConst(m, d);
+  mj_deleteData(d);
+}
+
+}  // namespace sortcell::sim
