@@ -16,6 +16,7 @@
 #include "app/pick_command.h"
 #include "app/recognition_commands.h"
 #include "app/segment_command.h"
+#include "app/sweep_command.h"
 
 namespace sortcell::app {
 namespace {
@@ -47,6 +48,7 @@ int RunCli(int argc, char** argv) {
   AddEvalCommand(app, run, command_line);
   AddExperimentCommand(app, run, command_line);
   AddEpisodeCommand(app, run, command_line);
+  AddSweepCommand(app, run, command_line);
   AddKinematicsCommands(app, run);
 
   try {

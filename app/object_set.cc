@@ -1,57 +1,12 @@
 #include "app/object_set.h"
 
-#include <yaml-cpp/yaml.h>
-
 #include <algorithm>
 #include <set>
 #include <stdexcept>
 
+#include "app/yaml_reader.h"
+
 namespace sortcell::app {
-namespace {
-
-std::string NodeKind(const YAML::Node& node) {
-  switch (node.Type()) {
-    case YAML::NodeType::Map: return "a map";
-    case YAML::NodeType::Sequence: return "a list";
-    case YAML::NodeType::Scalar: return "'" + node.Scalar() + "'";
-    case YAML::NodeType::Null: return "nothing";
-    default: return "an undefined value";
-  }
-}
-
-class Reader {
- public:
-  explicit Reader(std::filesystem::path file) : file_(std::move(file)) {}
-
-  [[noreturn]] void Fail(const std::string& what) const {
-    throw std::invalid_argument("object set '" + file_.string() + "': " + what);
-  }
-
-  void RejectUnknownKeys(const YAML::Node& map, const std::string& where, const std::set<std::string>& allowed) const {
-    for (const auto& item : map) {
-      const std::string key = item.first.as<std::string>();
-      if (!allowed.count(key)) {
-        std::string list;
-        for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + a;
-        Fail("unknown key '" + key + "' in " + where + " (expected " + list + ")");
-      }
-    }
-  }
-
-  std::string String(const YAML::Node& map, const std::string& key, const std::string& where) const {
-    const YAML::Node value = map[key];
-    if (!value) Fail("missing key '" + key + "' in " + where);
-    if (!value.IsScalar() || value.Scalar().empty()) {
-      Fail("key '" + where + "." + key + "': expected a non-empty string, found " + NodeKind(value));
-    }
-    return value.Scalar();
-  }
-
- private:
-  std::filesystem::path file_;
-};
-
-}  // namespace
 
 std::vector<std::string> ObjectSet::Categories() const {
   std::vector<std::string> categories;
@@ -71,16 +26,9 @@ const ObjectSpec& ObjectSet::Find(const std::string& name) const {
 }
 
 ObjectSet LoadObjectSet(const std::filesystem::path& file) {
-  Reader reader(file);
+  const YamlReader reader("object set", file);
+  const YAML::Node root = reader.LoadMap("name and objects");
   std::error_code ec;
-  if (!std::filesystem::is_regular_file(file, ec)) reader.Fail("file not found");
-  YAML::Node root;
-  try {
-    root = YAML::LoadFile(file.string());
-  } catch (const YAML::Exception& e) {
-    reader.Fail("not valid YAML: " + e.msg + " at line " + std::to_string(e.mark.line + 1));
-  }
-  if (!root.IsMap()) reader.Fail("expected a map with keys name and objects, found " + NodeKind(root));
   reader.RejectUnknownKeys(root, "the top level", {"name", "objects"});
 
   ObjectSet set;
