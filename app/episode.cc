@@ -491,6 +491,9 @@ nlohmann::json RunEpisode(const EpisodeOptions& options, const std::vector<std::
   if (options.max_attempts_per_object < 1) throw std::invalid_argument("--max-attempts: expected at least 1");
   if (!(options.light_intensity > 0)) throw std::invalid_argument("--light-intensity: expected > 0");
   if (!(options.noise_scale >= 0)) throw std::invalid_argument("--noise-scale: expected >= 0");
+  if (!std::filesystem::is_regular_file(options.scene)) {
+    throw std::invalid_argument("scene '" + options.scene.string() + "': file not found");
+  }
   const ObjectSet set = LoadObjectSet(options.object_set);
   const perception::RecognitionModel recognizer = perception::LoadModel(options.model);
   std::set<std::string> categories;

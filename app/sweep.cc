@@ -44,10 +44,11 @@ std::string Number(double v) {
   return text;
 }
 
-// The finished episodes in results.jsonl. A last line cut short by an interruption is dropped from
-// the file (its episode runs again).
-std::vector<nlohmann::json> ReadResults(const std::filesystem::path& file) {
+// The finished episodes in results.jsonl, and the length of the file up to the last complete
+// record (a last line cut short by an interruption is not one: its episode runs again).
+std::vector<nlohmann::json> ReadResults(const std::filesystem::path& file, size_t& complete_bytes) {
   std::vector<nlohmann::json> records;
+  complete_bytes = 0;
   if (!std::filesystem::exists(file)) return records;
   const std::string text = ReadText(file);
   size_t start = 0, good_end = 0;
@@ -62,10 +63,7 @@ std::vector<nlohmann::json> ReadResults(const std::filesystem::path& file) {
     good_end = end + 1;
     start = end + 1;
   }
-  if (good_end < text.size()) {
-    spdlog::warn("{}: dropping an incomplete last record ({} bytes)", file.string(), text.size() - good_end);
-    std::filesystem::resize_file(file, good_end);
-  }
+  complete_bytes = good_end;
   return records;
 }
 
@@ -120,6 +118,20 @@ SweepRun RunSweep(const SweepOptions& options, const std::vector<std::string>& c
   const SweepSpec spec = LoadSweepSpec(options.spec);
   const ObjectSet set = LoadObjectSet(spec.object_set);
   sim::Model::FromFile(spec.scene.string());  // Fails here, once, rather than in every worker.
+  PrepareOutputDir(options.out);
+  const std::filesystem::path results_file = options.out / "results.jsonl";
+  const std::filesystem::path spec_copy = options.out / "spec.yaml";
+  const std::string spec_text = ReadText(options.spec);
+  if (std::filesystem::exists(spec_copy) && ReadText(spec_copy) != spec_text) {
+    throw std::invalid_argument("output folder '" + options.out.string() + "' holds a sweep of another spec (" +
+                                spec_copy.string() + "): use another --out");
+  }
+  size_t complete_bytes = 0;
+  std::vector<nlohmann::json> records = ReadResults(results_file, complete_bytes);
+  if (!records.empty() && !options.resume) {
+    throw std::invalid_argument("output folder '" + options.out.string() + "' already holds " +
+                                std::to_string(records.size()) + " results: add --resume to run what is missing");
+  }
   std::filesystem::path model = spec.model;
   if (model.empty()) model = EnsureDefaultModel(set);
   std::vector<std::filesystem::path> models{model};
@@ -136,20 +148,12 @@ SweepRun RunSweep(const SweepOptions& options, const std::vector<std::string>& c
     }
   }
 
-  PrepareOutputDir(options.out);
-  const std::filesystem::path results_file = options.out / "results.jsonl";
-  const std::filesystem::path spec_copy = options.out / "spec.yaml";
-  const std::string spec_text = ReadText(options.spec);
-  if (std::filesystem::exists(spec_copy) && ReadText(spec_copy) != spec_text) {
-    throw std::invalid_argument("output folder '" + options.out.string() + "' holds a sweep of another spec (" +
-                                spec_copy.string() + "): use another --out");
-  }
-  std::vector<nlohmann::json> records = ReadResults(results_file);
-  if (!records.empty() && !options.resume) {
-    throw std::invalid_argument("output folder '" + options.out.string() + "' already holds " +
-                                std::to_string(records.size()) + " results: add --resume to run what is missing");
-  }
   if (!std::filesystem::exists(spec_copy)) std::ofstream(spec_copy, std::ios::binary) << spec_text;
+  if (std::filesystem::exists(results_file) && std::filesystem::file_size(results_file) > complete_bytes) {
+    spdlog::warn("{}: dropping an incomplete last record ({} bytes); its episode runs again", results_file.string(),
+                 std::filesystem::file_size(results_file) - complete_bytes);
+    std::filesystem::resize_file(results_file, complete_bytes);
+  }
 
   SweepRun run;
   run.total = spec.EpisodeCount();

@@ -111,9 +111,9 @@ void Plot(const std::filesystem::path& dir, const std::string& axis,
   std::fprintf(gnuplot,
                "set terminal pngcairo size 800,500\nset output '%s'\nset title 'Correct-sort rate by %s (95%% CI)'\n"
                "set ylabel 'items in the correct bin (%%)'\nset xlabel '%s'\nset yrange [0:105]\nset grid ytics\n"
-               "set xrange [-0.5:%zu]\nset key off\n"
+               "set xrange [-0.5:%.1f]\nset key off\n"
                "plot '%s' using 1:3:4:5:xticlabels(2) with yerrorbars pt 7 ps 1.5 lw 2\n",
-               png.string().c_str(), axis.c_str(), axis.c_str(), rows.size() - 1 + 1, data.string().c_str());
+               png.string().c_str(), axis.c_str(), axis.c_str(), rows.size() - 0.5, data.string().c_str());
   if (pclose(gnuplot) != 0) spdlog::warn("gnuplot could not draw {} (is gnuplot installed?)", png.string());
   std::filesystem::remove(data);
 }

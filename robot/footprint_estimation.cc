@@ -48,7 +48,8 @@ FootprintEstimate EstimateFootprint(const std::vector<Eigen::Vector3d>& p_W, con
   for (const auto& p : p_W) mean += p.head<2>();
   mean /= static_cast<double>(p_W.size());
   const Eigen::Vector2d ray = mean - p_W_camera.head<2>();
-  if (ray.norm() < 1e-3) throw std::invalid_argument("footprint: the camera stands right above the object");
+  // Straight from above there is no hidden side to complete (nor a line of sight to pinch across).
+  if (ray.norm() < 0.05) throw std::invalid_argument("footprint: the camera stands right above the object");
   const Eigen::Vector2d v = ray.normalized();  // Horizontal line of sight.
   const Eigen::Vector2d u(-v.y(), v.x());      // Across it.
 

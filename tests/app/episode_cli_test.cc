@@ -1,0 +1,98 @@
+// Bad input to `sortcell episode` and `sortcell sweep`: a one-line error naming the problem, exit
+// code 2, and finished sweep results never touched.
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "run_sortcell.h"
+
+namespace {
+
+using sortcell_test::ExpectOneLineError;
+using sortcell_test::RunSortcell;
+
+const std::string kSource = SORTCELL_SOURCE_DIR;
+const std::string kScene = kSource + "/scenes/cell.xml";
+const std::string kSet = kSource + "/scenes/objects/paper.yaml";
+
+std::string Temp(const std::string& name) { return ::testing::TempDir() + "/episode_cli_" + name; }
+
+std::string Read(const std::string& file) {
+  std::ifstream in(file);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+TEST(EpisodeCli, UnknownObjectSet) {
+  ExpectOneLineError(RunSortcell("episode --scene " + kScene + " --object-set /nonexistent/set.yaml --out " + Temp("a")),
+                     "object set '/nonexistent/set.yaml': file not found");
+}
+
+TEST(EpisodeCli, MissingModel) {
+  ExpectOneLineError(RunSortcell("episode --scene " + kScene + " --model /nonexistent/m.model.json --out " + Temp("b")),
+                     "/nonexistent/m.model.json");
+}
+
+TEST(EpisodeCli, NoCachedModelSaysHowToMakeOne) {
+  // An empty data directory: no cached model there.
+  const std::string data = Temp("data");
+  std::filesystem::create_directories(data);
+  setenv("SORTCELL_DATA_DIR", data.c_str(), 1);
+  const auto r = RunSortcell("episode --scene " + kScene + " --object-set " + kSet + " --out " + Temp("c"));
+  unsetenv("SORTCELL_DATA_DIR");
+  ExpectOneLineError(r, "no trained model at " + data);
+  EXPECT_NE(r.err.find("--train-if-missing"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("sortcell train"), std::string::npos) << r.err;
+}
+
+TEST(EpisodeCli, BadSceneCountAndPlacement) {
+  ExpectOneLineError(RunSortcell("episode --scene /nonexistent.xml --model x --out " + Temp("d")),
+                     "scene '/nonexistent.xml': file not found");
+  ExpectOneLineError(RunSortcell("episode --scene " + kScene + " --place bottle1=0.5 --model x --out " + Temp("e")),
+                     "--place: expected NAME=x,y[,yaw]");
+  ExpectOneLineError(RunSortcell("episode --scene " + kScene + " --seed -1 --out " + Temp("f")), "--seed");
+}
+
+class SweepBadInput : public ::testing::Test {
+ protected:
+  std::string Spec(const std::string& name, const std::string& body) {
+    const std::string file = Temp(name + ".yaml");
+    std::ofstream(file) << "scene: " << kScene << "\nobject_set: " << kSet << "\n" << body;
+    return file;
+  }
+};
+
+TEST_F(SweepBadInput, MalformedSpecs) {
+  ExpectOneLineError(RunSortcell("sweep " + Spec("unknown", "episodes: 2\nlighting: 3\n") + " --out " + Temp("s1")),
+                     "unknown key 'lighting'");
+  ExpectOneLineError(RunSortcell("sweep " + Spec("type", "episodes: [2]\n") + " --out " + Temp("s2")),
+                     "key 'episodes': expected a non-negative integer");
+  ExpectOneLineError(RunSortcell("sweep /nonexistent/spec.yaml --out " + Temp("s3")), "file not found");
+  ExpectOneLineError(RunSortcell("sweep " + Spec("ok", "episodes: 2\n") + " --shard 3/2 --out " + Temp("s4")), "--shard");
+  ExpectOneLineError(RunSortcell("sweep " + Spec("ok2", "episodes: 2\n") + " -j 0 --out " + Temp("s5")), "-j");
+}
+
+TEST_F(SweepBadInput, FinishedResultsAreNeverLost) {
+  // A sweep folder with finished results (and a last line cut short by an interruption).
+  const std::string out = Temp("kept");
+  std::filesystem::create_directories(out);
+  const std::string spec = Spec("kept", "episodes: 2\n");
+  std::filesystem::copy_file(spec, out + "/spec.yaml", std::filesystem::copy_options::overwrite_existing);
+  const std::string results = "{\"episode\":0,\"status\":\"ok\"}\n{\"episode\":1,\"sta";
+  std::ofstream(out + "/results.jsonl") << results;
+  // Without --resume: refused, untouched.
+  ExpectOneLineError(RunSortcell("sweep " + spec + " --out " + out), "add --resume");
+  EXPECT_EQ(Read(out + "/results.jsonl"), results);
+  // Another spec into the same folder: refused, untouched.
+  ExpectOneLineError(RunSortcell("sweep " + Spec("other", "episodes: 3\n") + " --resume --out " + out), "another spec");
+  EXPECT_EQ(Read(out + "/results.jsonl"), results);
+  // A malformed spec: refused before anything is touched.
+  ExpectOneLineError(RunSortcell("sweep " + Spec("bad", "episodes: -2\n") + " --resume --out " + out), "episodes");
+  EXPECT_EQ(Read(out + "/results.jsonl"), results);
+}
+
+}  // namespace

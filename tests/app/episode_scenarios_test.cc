@@ -1,0 +1,161 @@
+// Sorting-episode scenarios: the whole loop (render, segment, describe, classify, grasp, sort) on
+// the default cell, scored from the simulator's ground truth. The model comes from the CTest fixture
+// episode_model (60 random scenes of the paper set, Color-CVFH normalization).
+#include <gtest/gtest.h>
+#include <signal.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <set>
+#include <sstream>
+#include <thread>
+
+#include <nlohmann/json.hpp>
+
+#include "run_sortcell.h"
+
+namespace {
+
+using sortcell_test::RunSortcell;
+
+const std::string kSource = SORTCELL_SOURCE_DIR;
+const std::string kScene = kSource + "/scenes/cell.xml";
+const std::string kSet = kSource + "/scenes/objects/paper.yaml";
+
+std::string Temp(const std::string& name) { return ::testing::TempDir() + "/episode_scenario_" + name; }
+
+nlohmann::json Episode(const std::string& name, const std::string& args) {
+  if (!std::filesystem::exists(SORTCELL_TEST_MODEL)) {
+    ADD_FAILURE() << "no test model at " << SORTCELL_TEST_MODEL << ": run through ctest (fixture episode_model)";
+    return {};
+  }
+  const std::string out = Temp(name);
+  std::filesystem::remove_all(out);
+  const auto r = RunSortcell("episode --scene " + kScene + " --object-set " + kSet + " --model " + SORTCELL_TEST_MODEL +
+                             " --out " + out + " " + args);
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  std::ifstream in(out + "/metrics.json");
+  if (!in) return {};
+  return nlohmann::json::parse(in);
+}
+
+std::map<std::string, nlohmann::json> ByName(const nlohmann::json& metrics) {
+  std::map<std::string, nlohmann::json> items;
+  for (const auto& item : metrics["items"]) items[item["name"]] = item;
+  return items;
+}
+
+TEST(EpisodeScenario, OneObjectOfEachCategorySortedIntoItsBin) {
+  const auto m = Episode("categories", "--seed 1 --objects 4 --place bottle1=0.40,-0.15,0.3 --place cup=0.42,0.14,1.0 "
+                                       "--place ball=0.60,-0.12 --place box=0.62,0.15,0.5");
+  ASSERT_EQ(m["items"].size(), 4u);
+  for (const auto& item : m["items"]) {
+    EXPECT_EQ(item["outcome"], "sorted") << item.dump();
+    EXPECT_EQ(item["predicted_category"], item["true_category"]) << item.dump();
+  }
+  EXPECT_EQ(m["summary"]["correct_sort_rate"], 1.0);
+  EXPECT_EQ(m["summary"]["status"], "completed");
+}
+
+TEST(EpisodeScenario, SixPaperObjectsAllSorted) {
+  const auto m = Episode("six", "--seed 3");
+  ASSERT_EQ(m["items"].size(), 6u);
+  for (const auto& item : m["items"]) EXPECT_EQ(item["outcome"], "sorted") << item.dump();
+  EXPECT_EQ(m["summary"]["outcomes"]["sorted"], 6);
+  EXPECT_EQ(m["summary"]["mujoco_warnings"], 0);
+  EXPECT_GT(m["summary"]["mean_cycle_time_s"].get<double>(), 5.0);
+  EXPECT_LT(m["summary"]["mean_cycle_time_s"].get<double>(), 30.0);
+}
+
+TEST(EpisodeScenario, SameShapeDifferentColourGoToTheirOwnBins) {
+  const auto m = Episode("bottles", "--seed 2 --objects 2 --place bottle1=0.45,-0.10 --place bottle2=0.55,0.12");
+  auto items = ByName(m);
+  ASSERT_EQ(items.size(), 2u);
+  EXPECT_EQ(items["bottle1"]["predicted_category"], "bottle");
+  EXPECT_EQ(items["bottle1"]["outcome"], "sorted");
+  EXPECT_EQ(items["bottle2"]["predicted_category"], "others");
+  EXPECT_EQ(items["bottle2"]["outcome"], "sorted");
+}
+
+TEST(EpisodeScenario, OutOfReachObjectIsReportedAndTheRestSorted) {
+  // x = 0.85 m: on the table and in the camera's view, beyond the arm's reach for a top-down grasp.
+  const auto m = Episode("reach", "--seed 4 --objects 3 --place box=0.85,0.0 --place ball=0.45,-0.1 --place cup=0.5,0.12");
+  auto items = ByName(m);
+  ASSERT_EQ(items.size(), 3u);
+  EXPECT_EQ(items["box"]["outcome"], "unreachable") << items["box"].dump();
+  EXPECT_EQ(items["box"]["attempts"], 0);
+  EXPECT_EQ(items["ball"]["outcome"], "sorted");
+  EXPECT_EQ(items["cup"]["outcome"], "sorted");
+  EXPECT_EQ(m["summary"]["outcomes"]["unreachable"], 1);
+}
+
+// metrics.json without its wall-clock figures.
+nlohmann::json WithoutWallClock(nlohmann::json m) {
+  for (const char* key : {"wall_time_s", "real_time_factor", "perception_ms_per_frame", "render_ms_per_frame",
+                          "video_render_wall_s"}) {
+    m["summary"].erase(key);
+  }
+  return m;
+}
+
+TEST(EpisodeScenario, SameSeedSameMetrics) {
+  const auto a = Episode("det_a", "--seed 5 --objects 3");
+  const auto b = Episode("det_b", "--seed 5 --objects 3");
+  ASSERT_FALSE(a.is_null());
+  EXPECT_EQ(WithoutWallClock(a), WithoutWallClock(b));
+  const auto c = Episode("det_c", "--seed 6 --objects 3");
+  EXPECT_NE(WithoutWallClock(a)["items"], WithoutWallClock(c)["items"]);
+}
+
+std::vector<nlohmann::json> Lines(const std::string& file) {
+  std::vector<nlohmann::json> lines;
+  std::ifstream in(file);
+  std::string line;
+  while (std::getline(in, line)) {
+    if (!line.empty()) lines.push_back(nlohmann::json::parse(line));
+  }
+  return lines;
+}
+
+TEST(EpisodeScenario, SweepKilledAndResumedRunsEveryEpisodeOnce) {
+  const std::string out = Temp("sweep");
+  std::filesystem::remove_all(out);
+  const std::string spec = Temp("sweep.yaml");
+  std::ofstream(spec) << "scene: " << kScene << "\nobject_set: " << kSet << "\nmodel: " << SORTCELL_TEST_MODEL
+                      << "\nseed: 10\nepisodes: 5\naxes:\n  objects: [1, 2]\n";
+  const std::string pid_file = Temp("sweep.pid");
+  std::system((std::string(SORTCELL_BINARY) + " sweep " + spec + " -j 2 --out " + out + " > /dev/null 2>&1 & echo $! > " +
+               pid_file).c_str());
+  int pid = 0;
+  std::ifstream(pid_file) >> pid;
+  ASSERT_GT(pid, 0);
+  // Kill it (SIGKILL: no clean-up) once the first episode is in.
+  const auto start = std::chrono::steady_clock::now();
+  while (Lines(out + "/results.jsonl").empty() && std::chrono::steady_clock::now() - start < std::chrono::seconds(300)) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  }
+  kill(pid, SIGKILL);
+  std::this_thread::sleep_for(std::chrono::milliseconds(500));
+  const size_t before = Lines(out + "/results.jsonl").size();
+  ASSERT_GE(before, 1u);
+  ASSERT_LT(before, 5u) << "the sweep finished before it could be killed";
+
+  const auto r = RunSortcell("sweep " + spec + " -j 2 --resume --out " + out);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto lines = Lines(out + "/results.jsonl");
+  std::multiset<int> episodes;
+  for (const auto& l : lines) episodes.insert(l["episode"].get<int>());
+  EXPECT_EQ(episodes, (std::multiset<int>{0, 1, 2, 3, 4}));
+  for (const auto& l : lines) EXPECT_EQ(l["status"], "ok") << l.dump();
+  std::ifstream in(out + "/summary.json");
+  const auto summary = nlohmann::json::parse(in);
+  EXPECT_EQ(summary["episodes"], 5);
+  for (const char* key : {"items", "correct_sort_rate", "outcomes"}) EXPECT_TRUE(summary.contains(key)) << key;
+  EXPECT_TRUE(std::filesystem::exists(out + "/summary.csv"));
+  EXPECT_TRUE(std::filesystem::exists(out + "/summary.md"));
+  EXPECT_TRUE(std::filesystem::exists(out + "/plot_objects.png"));
+}
+
+}  // namespace

@@ -1,0 +1,106 @@
+// Grasp footprints from synthetic "visible" point sets: what a camera at 45 degrees sees of a
+// cylinder (front half of the side, a small cap) and of a box (top face and two sides).
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "error_of.h"
+#include "robot/footprint_estimation.h"
+
+namespace sortcell::robot {
+namespace {
+
+const Eigen::Vector3d kCamera(1.25, 0, 0.75);
+
+// The camera-facing half of a cylinder's side (radius r, height h) at centre c, plus a cap of radius
+// r_cap on top.
+std::vector<Eigen::Vector3d> VisibleCylinder(const Eigen::Vector2d& c, double r, double h, double r_cap) {
+  std::vector<Eigen::Vector3d> p;
+  const Eigen::Vector2d to_camera = (kCamera.head<2>() - c).normalized();
+  for (int i = 0; i < 180; ++i) {
+    const double a = 2 * M_PI * i / 180;
+    const Eigen::Vector2d n(std::cos(a), std::sin(a));
+    if (n.dot(to_camera) <= 0) continue;
+    for (double z = 0.01; z < h; z += 0.01) p.emplace_back(c.x() + r * n.x(), c.y() + r * n.y(), z);
+  }
+  for (double x = -r_cap; x <= r_cap; x += 0.003) {
+    for (double y = -r_cap; y <= r_cap; y += 0.003) {
+      if (x * x + y * y <= r_cap * r_cap) p.emplace_back(c.x() + x, c.y() + y, h + 0.02);
+    }
+  }
+  return p;
+}
+
+// Top face and the two camera-facing sides of a box (half sizes a along x_B, b along y_B, height h)
+// turned by `yaw`.
+std::vector<Eigen::Vector3d> VisibleBox(const Eigen::Vector2d& c, double a, double b, double h, double yaw) {
+  std::vector<Eigen::Vector3d> p;
+  const Eigen::Rotation2Dd R(yaw);
+  for (double x = -a; x <= a + 1e-9; x += 0.004) {
+    for (double y = -b; y <= b + 1e-9; y += 0.004) {
+      const Eigen::Vector2d q = c + R * Eigen::Vector2d(x, y);
+      p.emplace_back(q.x(), q.y(), h);
+    }
+  }
+  return p;
+}
+
+TEST(FootprintEstimation, CylinderIsPinchedAcrossTheLineOfSightAtItsTrueCentre) {
+  const Eigen::Vector2d centre(0.5, 0.1);
+  const FootprintEstimate e = EstimateFootprint(VisibleCylinder(centre, 0.033, 0.16, 0.015), kCamera, 0.0);
+  EXPECT_TRUE(e.across_view);
+  EXPECT_FALSE(e.prism);
+  EXPECT_LT((e.footprint.centre_xy - centre).norm(), 0.003);
+  EXPECT_NEAR(e.footprint.width, 0.066, 0.003);
+  // Across the line of sight from the camera to the object.
+  const Eigen::Vector2d view = (centre - kCamera.head<2>()).normalized();
+  const Eigen::Vector2d pinch(std::cos(e.footprint.pinch_yaw), std::sin(e.footprint.pinch_yaw));
+  EXPECT_LT(std::abs(pinch.dot(view)), 0.01);
+  EXPECT_NEAR(e.footprint.top_z, 0.18, 1e-6);
+  EXPECT_EQ(e.footprint.base_z, 0.0);
+}
+
+TEST(FootprintEstimation, CentroidWouldBeBiasedTowardsTheCamera) {
+  // Why the estimate is not the centroid (the paper's grasp point): it lies on the visible half.
+  const Eigen::Vector2d centre(0.5, 0.0);
+  const auto points = VisibleCylinder(centre, 0.033, 0.16, 0.015);
+  Eigen::Vector2d mean = Eigen::Vector2d::Zero();
+  for (const auto& p : points) mean += p.head<2>();
+  mean /= static_cast<double>(points.size());
+  EXPECT_GT((mean - centre).norm(), 0.015);
+  EXPECT_LT((EstimateFootprint(points, kCamera, 0.0).footprint.centre_xy - centre).norm(), 0.003);
+}
+
+TEST(FootprintEstimation, BoxAcrossTheLineOfSightIsPinchedAcrossItsNarrowSide) {
+  // 60 x 90 mm box with its long side across the line of sight (the camera looks along -x).
+  const Eigen::Vector2d centre(0.45, 0.05);
+  const FootprintEstimate e = EstimateFootprint(VisibleBox(centre, 0.030, 0.045, 0.12, 0.0), kCamera, 0.0);
+  EXPECT_TRUE(e.prism);
+  EXPECT_FALSE(e.across_view);
+  EXPECT_NEAR(e.footprint.width, 0.060, 0.004);
+  EXPECT_LT(std::abs(std::sin(e.footprint.pinch_yaw)), 0.1);  // Along x: the 60 mm side.
+  EXPECT_LT((e.footprint.centre_xy - centre).norm(), 0.004);
+}
+
+TEST(FootprintEstimation, TurnedBoxIsPinchedAcrossItsNarrowSide) {
+  const Eigen::Vector2d centre(0.5, -0.1);
+  const double yaw = 0.7;
+  const FootprintEstimate e = EstimateFootprint(VisibleBox(centre, 0.030, 0.045, 0.12, yaw), kCamera, 0.0);
+  EXPECT_NEAR(e.footprint.width, 0.060, 0.004);
+  // The narrow side (x_B) direction, modulo pi.
+  EXPECT_NEAR(std::abs(std::cos(e.footprint.pinch_yaw - yaw)), 1.0, 0.01);
+  EXPECT_LT((e.footprint.centre_xy - centre).norm(), 0.004);
+}
+
+TEST(FootprintEstimation, RejectsTooFewPointsAndACameraAbove) {
+  EXPECT_NE(sortcell_test::ErrorOf([] { EstimateFootprint({Eigen::Vector3d(0.5, 0, 0.1)}, kCamera, 0.0); })
+                .find("at least 10 object points"),
+            std::string::npos);
+  const auto points = VisibleCylinder(Eigen::Vector2d(0.5, 0), 0.03, 0.1, 0.01);
+  EXPECT_NE(sortcell_test::ErrorOf([&] { EstimateFootprint(points, Eigen::Vector3d(0.5, 0, 1.0), 0.0); })
+                .find("right above the object"),
+            std::string::npos);
+}
+
+}  // namespace
+}  // namespace sortcell::robot

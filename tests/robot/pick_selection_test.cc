@@ -1,0 +1,53 @@
+#include <gtest/gtest.h>
+
+#include "error_of.h"
+#include "robot/pick_selection.h"
+
+namespace sortcell::robot {
+namespace {
+
+ObjectFootprint At(double x, double y, double width = 0.06) {
+  ObjectFootprint f;
+  f.centre_xy = Eigen::Vector2d(x, y);
+  f.width = width;
+  f.top_z = 0.1;
+  return f;
+}
+
+TEST(PickSelection, ChoosesTheObjectWithTheMostRoom) {
+  // Two close together, one apart: the lone one first.
+  const std::vector<ObjectFootprint> c{At(0.4, 0.0), At(0.48, 0.0), At(0.6, 0.2)};
+  EXPECT_EQ(ChooseNextPick(c, PickMemory()), 2);
+  EXPECT_EQ(ChooseNextPick({At(0.5, 0.1)}, PickMemory()), 0);
+  EXPECT_EQ(ChooseNextPick({}, PickMemory()), -1);
+}
+
+TEST(PickSelection, SkippedPositionsAreNotChosenAgainEvenWhenNudged) {
+  const std::vector<ObjectFootprint> c{At(0.4, 0.0), At(0.6, 0.2)};
+  PickMemory memory;
+  memory.Skip(Eigen::Vector2d(0.6, 0.2), SkipReason::kUnreachable);
+  EXPECT_EQ(ChooseNextPick(c, memory), 0);
+  EXPECT_EQ(memory.Skipped(Eigen::Vector2d(0.61, 0.21)), SkipReason::kUnreachable);
+  memory.Skip(Eigen::Vector2d(0.405, 0.0), SkipReason::kUnreachable);
+  EXPECT_EQ(ChooseNextPick(c, memory), -1);
+}
+
+TEST(PickSelection, GivesUpAPositionAfterMaxAttempts) {
+  PickMemory memory(0.04, 3);
+  const Eigen::Vector2d p(0.5, 0.0);
+  EXPECT_EQ(memory.RecordAttempt(p), 1);
+  EXPECT_EQ(memory.RecordAttempt(p + Eigen::Vector2d(0.01, 0)), 2);  // Nudged by the missed grasp.
+  EXPECT_EQ(memory.Skipped(p), SkipReason::kNone);
+  EXPECT_EQ(memory.RecordAttempt(p + Eigen::Vector2d(0.02, 0)), 3);
+  EXPECT_EQ(memory.Skipped(p + Eigen::Vector2d(0.02, 0)), SkipReason::kGraspFailed);
+  // Another object elsewhere is untouched.
+  EXPECT_EQ(memory.Attempts(Eigen::Vector2d(0.3, 0.2)), 0);
+}
+
+TEST(PickSelection, RejectsBadMemoryParameters) {
+  EXPECT_NE(sortcell_test::ErrorOf([] { PickMemory(0.0, 3); }).find("radius > 0"), std::string::npos);
+  EXPECT_NE(sortcell_test::ErrorOf([] { PickMemory(0.04, 0); }).find("max_attempts >= 1"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace sortcell::robot
