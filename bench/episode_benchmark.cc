@@ -1,0 +1,72 @@
+// Episode and sweep throughput, printed as figures (not a timed test):
+//   real-time factor of a headless episode and of one with video (same seed, so the same motions);
+//   episodes per hour of a sweep with 1 and with 2 worker processes.
+// Usage: episode_benchmark [MODEL] [SWEEP_EPISODES]   (default: the cached default model, 6 episodes)
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "app/default_model.h"
+#include "app/episode.h"
+#include "app/object_set.h"
+
+namespace {
+
+using namespace sortcell;
+
+double SweepEpisodesPerHour(const std::string& model, int episodes, int jobs) {
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / ("sortcell_bench_sweep_j" + std::to_string(jobs));
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  const std::filesystem::path spec = dir / "spec.yaml";
+  std::ofstream(spec) << "scene: " << SORTCELL_SOURCE_DIR << "/scenes/cell.xml\nobject_set: " << SORTCELL_SOURCE_DIR
+                      << "/scenes/objects/paper.yaml\nmodel: " << model << "\nseed: 0\nepisodes: " << episodes
+                      << "\naxes:\n  objects: {min: 4, max: 6}\n";
+  const auto start = std::chrono::steady_clock::now();
+  const std::string command = std::string(SORTCELL_BINARY) + " sweep " + spec.string() + " -j " + std::to_string(jobs) +
+                              " --out " + (dir / "out").string() + " > /dev/null 2>&1";
+  if (std::system(command.c_str()) != 0) {
+    std::fprintf(stderr, "sweep failed: %s\n", command.c_str());
+    return 0;
+  }
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return episodes * 3600.0 / wall;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const app::ObjectSet set = app::LoadObjectSet(std::string(SORTCELL_SOURCE_DIR) + "/scenes/objects/paper.yaml");
+  const std::string model = std::filesystem::absolute(argc > 1 ? std::filesystem::path(argv[1]) : app::EnsureDefaultModel(set)).string();
+  const int episodes = argc > 2 ? std::atoi(argv[2]) : 6;
+  const std::filesystem::path out = std::filesystem::temp_directory_path() / "sortcell_bench_episode";
+
+  app::EpisodeOptions options;
+  options.scene = std::string(SORTCELL_SOURCE_DIR) + "/scenes/cell.xml";
+  options.object_set = set.source;
+  options.model = model;
+  options.seed = 3;
+  options.out = out / "headless";
+  const auto headless = app::RunEpisode(options, {"episode_benchmark"})["summary"];
+  options.out = out / "video";
+  options.video = out / "video" / "episode.mp4";
+  const auto video = app::RunEpisode(options, {"episode_benchmark"})["summary"];
+
+  std::printf("episode (seed 3, 6 paper objects), one process:\n");
+  std::printf("  %-9s %8s %8s %8s %14s %14s\n", "", "sim s", "wall s", "RTF", "perception ms", "video ms/frame");
+  std::printf("  %-9s %8.1f %8.1f %8.1f %14.1f %14s\n", "headless", headless["sim_time_s"].get<double>(),
+              headless["wall_time_s"].get<double>(), headless["real_time_factor"].get<double>(),
+              headless["perception_ms_per_frame"].get<double>(), "-");
+  std::printf("  %-9s %8.1f %8.1f %8.2f %14.1f %14.1f\n", "video", video["sim_time_s"].get<double>(),
+              video["wall_time_s"].get<double>(), video["real_time_factor"].get<double>(),
+              video["perception_ms_per_frame"].get<double>(),
+              1000 * video["video_render_wall_s"].get<double>() / std::max(1, video["video_frames"].get<int>()));
+  std::printf("sweep of %d episodes (4-6 paper objects):\n", episodes);
+  const double one = SweepEpisodesPerHour(model, episodes, 1);
+  const double two = SweepEpisodesPerHour(model, episodes, 2);
+  std::printf("  1 worker:  %6.0f episodes/hour\n  2 workers: %6.0f episodes/hour (x%.2f)\n", one, two, one > 0 ? two / one : 0.0);
+  return 0;
+}
