@@ -24,7 +24,7 @@ std::string DefaultModelHint(const ObjectSet& set) {
 std::filesystem::path EnsureDefaultModel(const ObjectSet& set) {
   const std::filesystem::path path = DefaultModelPath(set);
   if (std::filesystem::exists(path)) return path;
-  spdlog::info("no trained model at {}: training one on 150 random scenes of '{}' (about a minute)", path.string(),
+  spdlog::info("no trained model at {}: training one on 150 random scenes of '{}' (about 20 s)", path.string(),
                set.name);
   const std::filesystem::path data = path.parent_path() / (set.name + "_scenes");
   SceneOptions scenes;

@@ -16,8 +16,8 @@ std::filesystem::path DefaultModelPath(const ObjectSet& set);
 /// The command that makes the default model, for error messages.
 std::string DefaultModelHint(const ObjectSet& set);
 
-/// Trains the default model of `set` if it is not there yet (150 random scenes, seed 0; about a
-/// minute) and returns its path. Written to a temporary file and renamed, so concurrent runs never
+/// Trains the default model of `set` if it is not there yet (150 random scenes, seed 0; about 20 s)
+/// and returns its path. Written to a temporary file and renamed, so concurrent runs never
 /// read a half-written model.
 std::filesystem::path EnsureDefaultModel(const ObjectSet& set);
 

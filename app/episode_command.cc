@@ -67,7 +67,7 @@ void AddEpisodeCommand(CLI::App& app, std::function<int()>& run, const std::vect
   cmd->add_option("--model", o.model,
                   "Recognition model from sortcell train (default: out/models/<set>-color-cvfh-norm.model.json)");
   cmd->add_flag("--train-if-missing", cli->train_if_missing,
-                "Without --model: train and cache the default model first if it is not there (about a minute)");
+                "Without --model: train and cache the default model first if it is not there (about 20 s)");
   cmd->add_option("--video", o.video, "Also write an H.264 MP4 from the review camera (30 fps, with overlay)");
   cmd->add_option("--out", o.out, "Output folder (created if missing)")->required();
   cmd->add_option("--place", cli->placements, "Put an object at NAME=x,y[,yaw] (world, m, rad) instead of at random");
