@@ -3,11 +3,9 @@
 #include <opencv2/imgproc.hpp>
 
 #include <algorithm>
-#include <chrono>
 #include <cstdio>
 #include <map>
 #include <memory>
-#include <numeric>
 #include <optional>
 #include <random>
 #include <set>
@@ -19,6 +17,7 @@
 #include "app/output_dir.h"
 #include "app/pick_command.h"
 #include "app/seeding.h"
+#include "app/wall_clock.h"
 #include "perception/descriptor.h"
 #include "perception/recognition_model.h"
 #include "perception/segment_overlay.h"
@@ -37,8 +36,6 @@
 namespace sortcell::app {
 namespace {
 
-using Clock = std::chrono::steady_clock;
-
 constexpr double kSettleTime = 1.0;      // s, after placing the objects and before scoring
 constexpr double kApproachSpeed = 0.10;  // m/s, the last straight descent onto the object
 constexpr int kDefaultMaxObjects = 6;
@@ -49,8 +46,6 @@ constexpr double kGap = 0.03;
 // Finger clearance per side for a perceived width (Kinect noise ~2 mm at 1 m), reduced down to the
 // scripted pick's 4.5 mm when the object is that close to the stroke.
 constexpr double kPerceivedClearance = 0.008, kMinClearance = 0.0045;
-
-double Since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
 std::string Fixed(double v, int digits) {
   char text[32];
@@ -216,21 +211,21 @@ void EpisodeRun::SetUpScene() {
 
 std::vector<Detection> EpisodeRun::Observe() {
   run_->exec().SetPhase("observe");
-  auto start = Clock::now();
+  auto start = WallClock::now();
   const sim::KinectFrame frame = kinect_->Capture(*data_, &noise_, &rng_);
   const perception::Cloud::Ptr cloud = sim::ToOrganizedCloud(frame);
-  render_wall_s_ += Since(start);
+  render_wall_s_ += SecondsSince(start);
   ++frames_;
 
   // From here on the loop sees the cloud and its calibration only (frame.labels goes to the scorer).
-  start = Clock::now();
+  start = WallClock::now();
   std::vector<Detection> detections;
   perception::SegmentationResult segmented;
   try {
     segmented = perception::SegmentObjects(*cloud, calibration_.X_WC, calibration_.background.get(), segmentation_);
   } catch (const std::invalid_argument&) {
     // No usable table in view (e.g. a badly displaced camera): nothing to pick from this capture.
-    perception_wall_s_ += Since(start);
+    perception_wall_s_ += SecondsSince(start);
     scorer_->Observe(frame.labels, {});
     return detections;
   }
@@ -256,7 +251,7 @@ std::vector<Detection> EpisodeRun::Observe() {
     d.segment = std::move(segment);
     detections.push_back(std::move(d));
   }
-  perception_wall_s_ += Since(start);
+  perception_wall_s_ += SecondsSince(start);
 
   std::vector<DetectionRecord> records;
   for (const auto& d : detections) records.push_back({&d.segment.indices, d.category, d.confidence});
@@ -352,7 +347,7 @@ std::string EpisodeRun::PickAndSort(const Detection& d, const robot::GraspPlan& 
 }
 
 nlohmann::json EpisodeRun::Run(const std::vector<std::string>& command_line) {
-  const auto wall_start = Clock::now();
+  const auto wall_start = WallClock::now();
   SetUpScene();
   MotionRunner& run = *run_;
   ArmExecutor& exec = run.exec();
@@ -379,29 +374,30 @@ nlohmann::json EpisodeRun::Run(const std::vector<std::string>& command_line) {
     // Candidates: every described cluster; the undescribed ones still count as neighbours.
     std::vector<robot::ObjectFootprint> footprints;
     for (const auto& d : detections) footprints.push_back(d.footprint);
-    std::vector<robot::GraspPlan> plans(detections.size());
+    robot::PickMemory view = memory;  // This capture's view: undescribed clusters are never picked.
+    for (const auto& d : detections) {
+      if (!d.category) view.Skip(d.footprint.centre_xy, robot::SkipReason::kUnreachable);
+    }
+    robot::GraspPlan plan;
     int chosen = -1;
     while (true) {
-      robot::PickMemory view = memory;  // Undescribed clusters are never picked.
-      for (size_t i = 0; i < detections.size(); ++i) {
-        if (!detections[i].category) view.Skip(detections[i].footprint.centre_xy, robot::SkipReason::kUnreachable);
-      }
       const int i = robot::ChooseNextPick(footprints, view);
       if (i < 0) break;
       robot::GraspOptions grasp_options;
       grasp_options.finger_clearance =
           std::max(kMinClearance, std::min(kPerceivedClearance, 0.5 * (robot::kMaxGap - footprints[i].width)));
-      plans[i] = robot::PlanTopDownGrasp(footprints[i], exec.ReferenceJoints(), grasp_options);
-      if (plans[i].status == robot::GraspStatus::kOk) {
+      plan = robot::PlanTopDownGrasp(footprints[i], exec.ReferenceJoints(), grasp_options);
+      if (plan.status == robot::GraspStatus::kOk) {
         chosen = i;
         break;
       }
       memory.Skip(footprints[i].centre_xy, robot::SkipReason::kUnreachable);
+      view.Skip(footprints[i].centre_xy, robot::SkipReason::kUnreachable);
       scorer_->Unreachable(i);
       ++skipped_;
       attempts_log_.push_back({{"time_s", exec.time()}, {"category", *detections[i].category},
                                {"xy", {footprints[i].centre_xy.x(), footprints[i].centre_xy.y()}},
-                               {"result", std::string("skipped: ") + robot::ToString(plans[i].status)}});
+                               {"result", std::string("skipped: ") + robot::ToString(plan.status)}});
     }
     if (chosen < 0) break;  // Nothing left that can be picked.
 
@@ -417,7 +413,7 @@ nlohmann::json EpisodeRun::Run(const std::vector<std::string>& command_line) {
     record.start_s = exec.time();
     const auto [centre_error, width_error] =
         scorer_->GraspErrors(chosen, d.footprint.centre_xy, d.footprint.width, model_, *data_);
-    const std::string result = PickAndSort(d, plans[chosen], record);
+    const std::string result = PickAndSort(d, plan, record);
     record.end_s = exec.time();
     scorer_->Attempt(record);
     if (result == "released") ++released_;
@@ -447,7 +443,7 @@ nlohmann::json EpisodeRun::Run(const std::vector<std::string>& command_line) {
   std::vector<std::pair<std::string, int>> bins;
   for (const auto& bin : sim::BinNames(model_)) bins.emplace_back(bin.substr(4), model_.Id(mjOBJ_BODY, bin));
   const nlohmann::json items = scorer_->Items(*data_, bins);
-  const double wall = Since(wall_start);
+  const double wall = SecondsSince(wall_start);
   int warnings = 0;
   for (int i = 0; i < mjNWARNING; ++i) warnings += (*data_)->warning[i].number;
   const nlohmann::json run_figures = {

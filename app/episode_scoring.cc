@@ -96,31 +96,44 @@ nlohmann::json EpisodeScorer::Items(const sim::Data& data, const std::vector<std
   return items;
 }
 
-nlohmann::json SummarizeEpisode(const nlohmann::json& items, int attempts, int grasps, const nlohmann::json& run) {
-  nlohmann::json counts = nlohmann::json::object();
-  for (const auto& o : kOutcomes) counts[o] = 0;
-  int classified = 0, recognised = 0, completed = 0;
-  double cycle = 0;
-  for (const auto& item : items) {
-    counts[item["outcome"].get<std::string>()] = counts[item["outcome"].get<std::string>()].get<int>() + 1;
-    if (!item["predicted_category"].is_null()) {
-      ++classified;
-      if (item["predicted_category"] == item["true_category"]) ++recognised;
-    }
-    if (item["outcome"] == "sorted" || item["outcome"] == "wrong_bin") {
-      ++completed;
-      cycle += item["cycle_time_s"].get<double>();
-    }
+void ItemTally::Add(const nlohmann::json& item) {
+  ++items;
+  const std::string outcome = item["outcome"];
+  ++outcomes[outcome];
+  if (!item["predicted_category"].is_null()) {
+    ++classified;
+    if (item["predicted_category"] == item["true_category"]) ++recognised;
   }
-  const auto ratio = [](int a, int b) { return b > 0 ? nlohmann::json(static_cast<double>(a) / b) : nlohmann::json(nullptr); };
-  nlohmann::json summary = {{"items", items.size()},
-                            {"outcomes", counts},
-                            {"correct_sort_rate", ratio(counts["sorted"].get<int>(), static_cast<int>(items.size()))},
-                            {"recognition_accuracy", ratio(recognised, classified)},
-                            {"items_classified", classified},
+  if ((outcome == "sorted" || outcome == "wrong_bin") && !item["cycle_time_s"].is_null()) {
+    ++completed;
+    cycle_s += item["cycle_time_s"].get<double>();
+  }
+}
+
+int ItemTally::Count(const std::string& outcome) const {
+  const auto it = outcomes.find(outcome);
+  return it == outcomes.end() ? 0 : it->second;
+}
+
+nlohmann::json ItemTally::OutcomeCounts() const {
+  nlohmann::json counts = nlohmann::json::object();
+  for (const auto& o : kOutcomes) counts[o] = Count(o);
+  return counts;
+}
+
+nlohmann::json SummarizeEpisode(const nlohmann::json& items, int attempts, int grasps, const nlohmann::json& run) {
+  ItemTally tally;
+  for (const auto& item : items) tally.Add(item);
+  const auto ratio = [](double a, int b) { return b > 0 ? nlohmann::json(a / b) : nlohmann::json(nullptr); };
+  nlohmann::json summary = {{"items", tally.items},
+                            {"outcomes", tally.OutcomeCounts()},
+                            {"correct_sort_rate", ratio(tally.Count("sorted"), tally.items)},
+                            {"recognition_accuracy", ratio(tally.recognised, tally.classified)},
+                            {"items_classified", tally.classified},
                             {"grasp_attempts", attempts},
+                            {"grasps", grasps},
                             {"grasp_success_rate", ratio(grasps, attempts)},
-                            {"mean_cycle_time_s", completed > 0 ? nlohmann::json(cycle / completed) : nlohmann::json(nullptr)}};
+                            {"mean_cycle_time_s", ratio(tally.cycle_s, tally.completed)}};
   summary.update(run);
   return summary;
 }

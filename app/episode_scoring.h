@@ -7,6 +7,7 @@
 #include <opencv2/core/mat.hpp>
 #include <nlohmann/json.hpp>
 
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -86,9 +87,22 @@ class EpisodeScorer {
   int attempts_ = 0, grasps_ = 0;
 };
 
+/// Counts over the items of metrics.json: one episode's, or many episodes' pooled (sweeps).
+struct ItemTally {
+  int items = 0, classified = 0, recognised = 0;
+  int completed = 0;  ///< Items that reached a bin (sorted or wrong_bin).
+  double cycle_s = 0;  ///< Their cycle times, summed.
+  std::map<std::string, int> outcomes;
+
+  void Add(const nlohmann::json& item);
+  int Count(const std::string& outcome) const;
+  /// {outcome: count} with every outcome of kOutcomes.
+  nlohmann::json OutcomeCounts() const;
+};
+
 /// The episode summary: item and outcome counts, correct-sort rate, recognition accuracy (of the
-/// items classified), grasp success rate, mean cycle time of the items that reached a bin, plus the
-/// given run figures.
+/// items classified), grasps that held and the grasp success rate, mean cycle time of the items that
+/// reached a bin, plus the given run figures.
 nlohmann::json SummarizeEpisode(const nlohmann::json& items, int attempts, int grasps, const nlohmann::json& run);
 
 }  // namespace sortcell::app

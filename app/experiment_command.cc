@@ -3,7 +3,6 @@
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
-#include <chrono>
 #include <iostream>
 #include <map>
 #include <random>
@@ -17,15 +16,12 @@
 #include "app/progress.h"
 #include "app/recognition.h"
 #include "app/seeding.h"
+#include "app/wall_clock.h"
 
 namespace sortcell::app {
 namespace {
 
 using perception::DescriptorKind;
-
-double Since(std::chrono::steady_clock::time_point t) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
-}
 
 ObjectSet Set(const std::string& name) {
   return LoadObjectSet(std::filesystem::path(DataDir()) / "scenes" / "objects" / (name + ".yaml"));
@@ -130,7 +126,7 @@ nlohmann::json RunExperiment(const ExperimentOptions& options, const std::vector
   if (options.number != 1 && options.split != "paper") {
     throw std::invalid_argument("--split: experiment " + std::to_string(options.number) + " has only the paper split");
   }
-  const auto start = std::chrono::steady_clock::now();
+  const auto start = WallClock::now();
   PrepareOutputDir(options.out);
   const std::filesystem::path data = options.data.empty() ? options.out / "data" : options.data;
   const nlohmann::json turntable_settings = {{"kind", "turntable"}, {"views", options.views}};
@@ -176,9 +172,9 @@ nlohmann::json RunExperiment(const ExperimentOptions& options, const std::vector
   for (DescriptorKind kind : {DescriptorKind::kCvfh, DescriptorKind::kColorCvfh, DescriptorKind::kColorCvfhNorm}) {
     TrainRequest request = split.request;
     request.descriptor = kind;
-    const auto train_start = std::chrono::steady_clock::now();
+    const auto train_start = WallClock::now();
     const perception::RecognitionModel model = TrainModel(train_data, split.train, request);
-    const double train_s = Since(train_start);
+    const double train_s = SecondsSince(train_start);
     perception::SaveModel(options.out / "models" / (perception::DescriptorName(kind) + ".model.json"), model);
     evaluations.push_back(EvaluateModel(model, test_data, split.test, "experiment data"));
     descriptors[perception::DescriptorName(kind)] = EvaluationJson(evaluations.back());
@@ -196,7 +192,7 @@ nlohmann::json RunExperiment(const ExperimentOptions& options, const std::vector
                             {"descriptors", descriptors}};
   WriteJson(options.out / "results.json", results);
   WriteJson(options.out / "run.json", RunRecord(command_line, options.seed, {{"command", "experiment"},
-                                                                          {"experiment_wall_s", Since(start)}}));
+                                                                          {"experiment_wall_s", SecondsSince(start)}}));
   return results;
 }
 

@@ -1,6 +1,5 @@
 #include "app/recognition_commands.h"
 
-#include <chrono>
 #include <iostream>
 #include <memory>
 
@@ -9,13 +8,10 @@
 #include "app/object_set.h"
 #include "app/output_dir.h"
 #include "app/recognition.h"
+#include "app/wall_clock.h"
 
 namespace sortcell::app {
 namespace {
-
-double Since(std::chrono::steady_clock::time_point t) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
-}
 
 struct DatasetOptions {
   std::filesystem::path objects, out;
@@ -55,7 +51,7 @@ void AddDatasetCommand(CLI::App& app, std::function<int()>& run, const std::vect
   cmd->callback([&run, o, command_line] {
     run = [o, command_line] {
       const ObjectSet set = LoadObjectSet(o->objects);
-      const auto start = std::chrono::steady_clock::now();
+      const auto start = WallClock::now();
       Dataset d;
       if (o->scenes > 0) {
         SceneOptions options;
@@ -71,7 +67,7 @@ void AddDatasetCommand(CLI::App& app, std::function<int()>& run, const std::vect
         d = CaptureTurntable(set, options, o->out);
       }
       SaveDataset(o->out, d);
-      const double wall = Since(start);
+      const double wall = SecondsSince(start);
       WriteJson(o->out / "run.json", RunRecord(command_line, o->seed, {{"command", "dataset"},
                                                                       {"objects", o->objects.string()},
                                                                       {"capture", d.capture},
@@ -108,13 +104,13 @@ void AddTrainCommand(CLI::App& app, std::function<int()>& run, const std::vector
       }
       const Dataset d = LoadDataset(o->dataset);
       if (o->out.has_parent_path()) PrepareOutputDir(o->out.parent_path());
-      const auto start = std::chrono::steady_clock::now();
+      const auto start = WallClock::now();
       const perception::RecognitionModel model = TrainModel(d, {}, request);
       perception::SaveModel(o->out, model);
       std::cout << "Trained " << perception::DescriptorTitle(model.descriptor) << " on " << d.samples.size()
                 << " samples, " << model.classes.size() << " " << model.label_kind << " classes: C " << model.classifier.C()
                 << ", gamma " << model.classifier.gamma() << ", grouped-CV accuracy " << model.cv_accuracy << ", "
-                << model.classifier.support_vectors() << " support vectors, " << std::lround(Since(start))
+                << model.classifier.support_vectors() << " support vectors, " << std::lround(SecondsSince(start))
                 << " s. Model " << o->out.string() << "\n";
       return 0;
     };

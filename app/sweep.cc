@@ -23,13 +23,12 @@
 #include "app/progress.h"
 #include "app/sweep_report.h"
 #include "app/sweep_spec.h"
+#include "app/wall_clock.h"
 #include "perception/recognition_model.h"
 #include "sim/model.h"
 
 namespace sortcell::app {
 namespace {
-
-using Clock = std::chrono::steady_clock;
 
 std::string ReadText(const std::filesystem::path& file) {
   std::ifstream in(file, std::ios::binary);
@@ -72,7 +71,7 @@ struct Worker {
   uint64_t seed = 0;
   nlohmann::json axes;
   std::filesystem::path dir;
-  Clock::time_point started;
+  WallClock::time_point started;
 };
 
 // Starts `sortcell episode` for one episode; its output goes to dir/log.txt.
@@ -110,7 +109,7 @@ std::string LastLine(const std::filesystem::path& file) {
 }  // namespace
 
 SweepRun RunSweep(const SweepOptions& options, const std::vector<std::string>& command_line) {
-  const auto wall_start = Clock::now();
+  const auto wall_start = WallClock::now();
   if (options.jobs < 1 || options.jobs > 256) throw std::invalid_argument("-j: expected 1..256 worker processes");
   if (options.shards < 1 || options.shard < 1 || options.shard > options.shards) {
     throw std::invalid_argument("--shard: expected i/N with 1 <= i <= N");
@@ -179,7 +178,7 @@ SweepRun RunSweep(const SweepOptions& options, const std::vector<std::string>& c
   size_t next = 0;
   const auto finish = [&](const Worker& w, int status, bool timed_out) {
     nlohmann::json record = {{"episode", w.episode}, {"seed", w.seed}, {"axes", w.axes},
-                             {"wall_time_s", std::chrono::duration<double>(Clock::now() - w.started).count()}};
+                             {"wall_time_s", SecondsSince(w.started)}};
     const std::filesystem::path metrics_file = w.dir / "metrics.json";
     const bool ok = !timed_out && WIFEXITED(status) && WEXITSTATUS(status) == 0 && std::filesystem::exists(metrics_file);
     nlohmann::json metrics;
@@ -230,7 +229,7 @@ SweepRun RunSweep(const SweepOptions& options, const std::vector<std::string>& c
         if (axis == "camera_shift_m") args.insert(args.end(), {"--camera-shift", Number(value)});
         if (axis == "camera_turn_rad") args.insert(args.end(), {"--camera-turn", Number(value)});
       }
-      w.started = Clock::now();
+      w.started = WallClock::now();
       running[Spawn(args, w.dir / "log.txt")] = w;
     }
     int status = 0;
@@ -241,7 +240,7 @@ SweepRun RunSweep(const SweepOptions& options, const std::vector<std::string>& c
       continue;
     }
     for (auto it = running.begin(); it != running.end();) {
-      if (std::chrono::duration<double>(Clock::now() - it->second.started).count() > spec.episode_timeout_s) {
+      if (SecondsSince(it->second.started) > spec.episode_timeout_s) {
         kill(it->first, SIGKILL);
         waitpid(it->first, &status, 0);
         finish(it->second, status, true);
@@ -254,7 +253,7 @@ SweepRun RunSweep(const SweepOptions& options, const std::vector<std::string>& c
   }
   results.close();
   progress.Finish();
-  run.wall_time_s = std::chrono::duration<double>(Clock::now() - wall_start).count();
+  run.wall_time_s = SecondsSince(wall_start);
   run.summary = WriteSweepReport(options.out, spec, records);
   return run;
 }

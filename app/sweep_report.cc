@@ -15,10 +15,9 @@ namespace {
 
 // Totals over a group of episodes.
 struct Tally {
-  int episodes = 0, failed_episodes = 0, items = 0, classified = 0, recognised = 0, attempts = 0, grasps = 0,
-      completed = 0;
-  double cycle_s = 0, sim_s = 0, wall_s = 0;
-  std::map<std::string, int> outcomes;
+  int episodes = 0, failed_episodes = 0, attempts = 0, grasps = 0;
+  double sim_s = 0, wall_s = 0;
+  ItemTally items;
 
   void Add(const nlohmann::json& record) {
     ++episodes;
@@ -28,42 +27,26 @@ struct Tally {
     }
     const nlohmann::json& s = record["summary"];
     attempts += s.value("grasp_attempts", 0);
-    if (!s["grasp_success_rate"].is_null()) {
-      grasps += static_cast<int>(std::lround(s["grasp_success_rate"].get<double>() * s.value("grasp_attempts", 0)));
-    }
+    grasps += s.value("grasps", 0);
     sim_s += s.value("sim_time_s", 0.0);
     wall_s += s.value("wall_time_s", 0.0);
-    for (const auto& item : record["items"]) {
-      ++items;
-      const std::string outcome = item["outcome"];
-      ++outcomes[outcome];
-      if (!item["predicted_category"].is_null()) {
-        ++classified;
-        if (item["predicted_category"] == item["true_category"]) ++recognised;
-      }
-      if ((outcome == "sorted" || outcome == "wrong_bin") && !item["cycle_time_s"].is_null()) {
-        ++completed;
-        cycle_s += item["cycle_time_s"].get<double>();
-      }
-    }
+    for (const auto& item : record["items"]) items.Add(item);
   }
 
   nlohmann::json Json() const {
     const auto ratio = [](double a, double b) { return b > 0 ? nlohmann::json(a / b) : nlohmann::json(nullptr); };
-    const int sorted = outcomes.count("sorted") ? outcomes.at("sorted") : 0;
-    const auto [low, high] = WilsonInterval(sorted, items);
-    nlohmann::json counts = nlohmann::json::object();
-    for (const auto& o : kOutcomes) counts[o] = outcomes.count(o) ? outcomes.at(o) : 0;
+    const int sorted = items.Count("sorted");
+    const auto [low, high] = WilsonInterval(sorted, items.items);
     return {{"episodes", episodes},
             {"episodes_failed", failed_episodes},
-            {"items", items},
-            {"correct_sort_rate", ratio(sorted, items)},
+            {"items", items.items},
+            {"correct_sort_rate", ratio(sorted, items.items)},
             {"correct_sort_rate_ci95", {low, high}},
-            {"outcomes", counts},
-            {"recognition_accuracy", ratio(recognised, classified)},
+            {"outcomes", items.OutcomeCounts()},
+            {"recognition_accuracy", ratio(items.recognised, items.classified)},
             {"grasp_success_rate", ratio(grasps, attempts)},
             {"grasp_attempts", attempts},
-            {"mean_cycle_time_s", ratio(cycle_s, completed)},
+            {"mean_cycle_time_s", ratio(items.cycle_s, items.completed)},
             {"sim_time_s", sim_s},
             {"episode_wall_time_s", wall_s},
             {"real_time_factor", ratio(sim_s, wall_s)}};
@@ -156,11 +139,11 @@ nlohmann::json WriteSweepReport(const std::filesystem::path& dir, const SweepSpe
 
   std::string md = "# Sweep " + spec.source.filename().string() + "\n\n";
   md += std::to_string(all.episodes) + " episodes (" + std::to_string(all.failed_episodes) + " failed to run) of " +
-        std::to_string(spec.EpisodeCount()) + " in the spec, " + std::to_string(all.items) + " items.\n\n";
+        std::to_string(spec.EpisodeCount()) + " in the spec, " + std::to_string(all.items.items) + " items.\n\n";
   md += "| items | correct-sort rate (95 % CI) | recognition accuracy | grasp success | mean cycle per item |\n|---|---|---|---|---|\n";
   char line[512], cycle[32] = "n/a";
   if (!summary["mean_cycle_time_s"].is_null()) std::snprintf(cycle, sizeof cycle, "%.1f s", summary["mean_cycle_time_s"].get<double>());
-  std::snprintf(line, sizeof line, "| %d | %s (%.1f-%.1f %%) | %s | %s | %s |\n\n", all.items,
+  std::snprintf(line, sizeof line, "| %d | %s (%.1f-%.1f %%) | %s | %s | %s |\n\n", all.items.items,
                 Percent(summary["correct_sort_rate"]).c_str(), 100 * summary["correct_sort_rate_ci95"][0].get<double>(),
                 100 * summary["correct_sort_rate_ci95"][1].get<double>(), Percent(summary["recognition_accuracy"]).c_str(),
                 Percent(summary["grasp_success_rate"]).c_str(), cycle);
