@@ -9,18 +9,17 @@
 #include <fstream>
 #include <string>
 
-#include "app/default_model.h"
-#include "app/episode.h"
-#include "app/object_set.h"
+#include "app/recognition/default_model.h"
+#include "bench_temp_dir.h"
+#include "app/episode/episode.h"
+#include "app/common/object_set.h"
 
 namespace {
 
 using namespace sortcell;
 
 double SweepEpisodesPerHour(const std::string& model, int episodes, int jobs) {
-  const std::filesystem::path dir = std::filesystem::temp_directory_path() / ("sortcell_bench_sweep_j" + std::to_string(jobs));
-  std::filesystem::remove_all(dir);
-  std::filesystem::create_directories(dir);
+  const std::filesystem::path dir = BenchTempDir("sortcell_bench_sweep_j" + std::to_string(jobs));
   const std::filesystem::path spec = dir / "spec.yaml";
   std::ofstream(spec) << "scene: " << SORTCELL_SOURCE_DIR << "/scenes/cell.xml\nobject_set: " << SORTCELL_SOURCE_DIR
                       << "/scenes/objects/paper.yaml\nmodel: " << model << "\nseed: 0\nepisodes: " << episodes
@@ -42,7 +41,7 @@ int main(int argc, char** argv) {
   const app::ObjectSet set = app::LoadObjectSet(std::string(SORTCELL_SOURCE_DIR) + "/scenes/objects/paper.yaml");
   const std::string model = std::filesystem::absolute(argc > 1 ? std::filesystem::path(argv[1]) : app::EnsureDefaultModel(set)).string();
   const int episodes = argc > 2 ? std::atoi(argv[2]) : 6;
-  const std::filesystem::path out = std::filesystem::temp_directory_path() / "sortcell_bench_episode";
+  const std::filesystem::path out = BenchTempDir("sortcell_bench_episode");
 
   app::EpisodeOptions options;
   options.scene = std::string(SORTCELL_SOURCE_DIR) + "/scenes/cell.xml";
@@ -50,10 +49,10 @@ int main(int argc, char** argv) {
   options.model = model;
   options.seed = 3;
   options.out = out / "headless";
-  const auto headless = app::RunEpisode(options, {"episode_benchmark"})["summary"];
+  const auto headless = nlohmann::json(app::RunEpisode(options, {"episode_benchmark"}))["summary"];
   options.out = out / "video";
   options.video = out / "video" / "episode.mp4";
-  const auto video = app::RunEpisode(options, {"episode_benchmark"})["summary"];
+  const auto video = nlohmann::json(app::RunEpisode(options, {"episode_benchmark"}))["summary"];
 
   std::printf("episode (seed 3, 6 paper objects), one process:\n");
   std::printf("  %-9s %8s %8s %8s %14s %14s\n", "", "sim s", "wall s", "RTF", "perception ms", "video ms/frame");

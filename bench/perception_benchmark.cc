@@ -57,7 +57,8 @@ int main(int argc, char** argv) {
   sim::KinectCamera kinect(model);
   std::mt19937_64 rng(0);
   const sim::KinectNoiseParams noise;
-  const sim::KinectFrame frame = kinect.Capture(data, &noise, &rng);
+  sim::FrameTruth truth;
+  const sim::KinectFrame frame = kinect.Capture(data, &noise, &rng, &truth);
   const auto cloud = sim::ToOrganizedCloud(frame);
 
   std::vector<double> crop, plane, voxel, cluster, normals, cvfh, hsv, svm, total;
@@ -70,14 +71,19 @@ int main(int argc, char** argv) {
   }
   for (int rep = 0; rep < repetitions + 1; ++rep) {
     const auto start = Clock::now();
-    const auto r = perception::SegmentObjects(*cloud, frame.X_WC, nullptr);
+    const auto r = perception::SegmentObjects(*cloud, truth.X_WC, nullptr);
+    if (r.status != perception::SegmentationStatus::kOk) {
+      std::fprintf(stderr, "perception_benchmark: the cell's frame does not segment: %s\n", r.detail.c_str());
+      return 1;
+    }
     std::vector<perception::DescriptorParts> parts;
     double n = 0, c = 0, h = 0, s = 0;
     for (const auto& segment : r.segments) {
-      parts.push_back(perception::ComputeDescriptorParts(*segment.cloud_C));
-      n += parts.back().normals_s;
-      c += parts.back().cvfh_s;
-      h += parts.back().hsv_s;
+      perception::DescriptorParts p = perception::ComputeDescriptorParts(*segment.cloud_C);
+      n += p.normals_s;
+      c += p.cvfh_s;
+      h += p.hsv_s;
+      if (p.status == perception::DescriptorStatus::kOk) parts.push_back(std::move(p));  // Fragments: timed only.
     }
     if (!have_model) {
       recogniser = ModelFromSegments(parts);

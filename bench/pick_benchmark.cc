@@ -5,12 +5,13 @@
 #include <filesystem>
 #include <string>
 
-#include "app/pick_command.h"
+#include "app/episode/scripted_pick.h"
+#include "bench_temp_dir.h"
 
 int main() {
   namespace fs = std::filesystem;
   const fs::path root = SORTCELL_SOURCE_DIR;
-  const fs::path out = fs::temp_directory_path() / "sortcell_pick_benchmark";
+  const fs::path out = BenchTempDir("sortcell_pick_benchmark");
   struct Case {
     const char* object;
     const char* bin;

@@ -16,7 +16,23 @@ namespace {
 using Clock = std::chrono::steady_clock;
 double Since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
+// `result` marked as an object that cannot be described (its histogram stays empty).
+const CvfhResult& Unusable(CvfhResult& result, DescriptorStatus status, std::string detail) {
+  result.status = status;
+  result.detail = std::move(detail);
+  return result;
+}
+
 }  // namespace
+
+const char* ToString(DescriptorStatus status) {
+  switch (status) {
+    case DescriptorStatus::kOk: return "ok";
+    case DescriptorStatus::kTooFewPoints: return "too_few_points";
+    case DescriptorStatus::kNoHistogram: return "no_histogram";
+  }
+  return "unknown";
+}
 
 CvfhResult ComputeCvfh(const Cloud& object_C, const CvfhParams& params) {
   auto valid = std::make_shared<Cloud>();
@@ -35,9 +51,10 @@ CvfhResult ComputeCvfh(const Cloud& object_C, const CvfhParams& params) {
   CvfhResult result;
   result.points = static_cast<int>(points->size());
   if (result.points < params.min_points) {
-    throw std::invalid_argument("CVFH: the object has " + std::to_string(result.points) + " valid points after " +
-                                std::to_string(params.voxel_leaf_m * 1000) + " mm downsampling, need at least " +
-                                std::to_string(params.min_points));
+    return Unusable(result, DescriptorStatus::kTooFewPoints,
+                    "CVFH: the object has " + std::to_string(result.points) + " valid points after " +
+                        std::to_string(params.voxel_leaf_m * 1000) + " mm downsampling, need at least " +
+                        std::to_string(params.min_points));
   }
 
   auto t = Clock::now();
@@ -62,8 +79,9 @@ CvfhResult ComputeCvfh(const Cloud& object_C, const CvfhParams& params) {
   }
   result.normals_s = Since(t);
   if (static_cast<int>(with_normal->size()) < params.min_points) {
-    throw std::invalid_argument("CVFH: only " + std::to_string(with_normal->size()) + " points have a normal, need " +
-                                std::to_string(params.min_points));
+    return Unusable(result, DescriptorStatus::kTooFewPoints,
+                    "CVFH: only " + std::to_string(with_normal->size()) + " points have a normal, need " +
+                        std::to_string(params.min_points));
   }
 
   t = Clock::now();
@@ -80,14 +98,19 @@ CvfhResult ComputeCvfh(const Cloud& object_C, const CvfhParams& params) {
   cvfh.compute(regions);
   result.cvfh_s = Since(t);
   result.regions = static_cast<int>(regions.size());
-  if (regions.empty()) throw std::invalid_argument("CVFH: PCL returned no histogram");
+  if (regions.empty()) {
+    return Unusable(result, DescriptorStatus::kNoHistogram,
+                    "CVFH: PCL returned no histogram (" + std::to_string(with_normal->size()) +
+                        " points with a normal, a smooth region needs " + std::to_string(params.min_region_points) +
+                        ")");
+  }
 
   result.histogram = Eigen::VectorXf::Zero(kCvfhBins);
   for (const auto& region : regions) {
     result.histogram += Eigen::Map<const Eigen::VectorXf>(region.histogram, kCvfhBins);
   }
   result.histogram /= static_cast<float>(regions.size());
-  if (!result.histogram.allFinite()) throw std::invalid_argument("CVFH: PCL returned a non-finite histogram");
+  if (!result.histogram.allFinite()) throw std::runtime_error("CVFH: PCL returned a non-finite histogram");
   return result;
 }
 

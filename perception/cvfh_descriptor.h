@@ -11,6 +11,7 @@
 #include <Eigen/Core>
 
 #include <array>
+#include <string>
 
 #include "perception/cloud.h"
 
@@ -28,19 +29,33 @@ struct CvfhParams {
   double curvature_threshold = 0.025;  ///< Region growing: seeds flatter than this (of the 1/3 maximum).
   double cluster_tolerance_m = 0.015;  ///< Region growing: neighbour distance.
   int min_region_points = 50;          ///< Smallest smooth region that gets its own histogram.
-  int min_points = 30;                 ///< Fewer points after downsampling: an error.
+  int min_points = 30;                 ///< Fewer points after downsampling: DescriptorStatus::kTooFewPoints.
 };
 
+/// Expected ways an object cannot be described (a status, not an error: e.g. a small fragment).
+enum class DescriptorStatus {
+  kOk,
+  kTooFewPoints,  ///< Fewer than `min_points` valid points after downsampling, or with a normal.
+  kNoHistogram,   ///< PCL found no smooth region to make a histogram of.
+};
+
+/// "ok", "too_few_points", "no_histogram".
+const char* ToString(DescriptorStatus status);
+
 struct CvfhResult {
-  Eigen::VectorXf histogram;  ///< 308 bins, raw counts, mean over the regions.
+  DescriptorStatus status = DescriptorStatus::kOk;
+  std::string detail;         ///< Why, for a person, when not ok (numbers included); empty when ok.
+  Eigen::VectorXf histogram;  ///< 308 bins, raw counts, mean over the regions; empty when not ok.
   int regions = 0;            ///< K, the number of region histograms PCL returned.
   int points = 0;             ///< Points after NaN removal and downsampling.
   double normals_s = 0, cvfh_s = 0;  ///< Wall time of the two steps.
 };
 
 /// CVFH of one object's cloud, which must be in the camera frame (PCL's viewpoint is the origin).
-/// A fresh PCL estimator is made on every call (a reused one accumulates state).
-/// @throws std::invalid_argument if fewer than `min_points` valid points remain, or PCL gives no histogram.
+/// A fresh PCL estimator is made on every call (a reused one accumulates state). An object that
+/// cannot be described is an expected outcome: status kTooFewPoints (fewer than `min_points` valid
+/// points, or points with a normal, remain) or kNoHistogram (PCL gives none), with `detail`.
+/// @throws std::runtime_error if PCL returns a non-finite histogram (a fault in PCL, not in the input).
 CvfhResult ComputeCvfh(const Cloud& object_C, const CvfhParams& params = {});
 
 }  // namespace sortcell::perception

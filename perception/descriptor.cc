@@ -2,6 +2,9 @@
 
 #include <chrono>
 #include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
 
 namespace sortcell::perception {
 namespace {
@@ -46,13 +49,23 @@ DescriptorKind ParseDescriptorKind(const std::string& name) {
 
 int DescriptorSize(DescriptorKind kind) { return kind == DescriptorKind::kCvfh ? kCvfhBins : kHsvBins + kCvfhBins; }
 
+bool SameDescriptorParams(const DescriptorParams& a, const DescriptorParams& b) {
+  std::vector<double> values_a, values_b;
+  VisitDescriptorParams(a, [&](const char*, auto value) { values_a.push_back(value); });
+  VisitDescriptorParams(b, [&](const char*, auto value) { values_b.push_back(value); });
+  return values_a == values_b;
+}
+
 DescriptorParts ComputeDescriptorParts(const Cloud& object_C, const DescriptorParams& params) {
   DescriptorParts parts;
-  const CvfhResult cvfh = ComputeCvfh(object_C, params.cvfh);
-  parts.cvfh = cvfh.histogram;
+  CvfhResult cvfh = ComputeCvfh(object_C, params.cvfh);
+  parts.status = cvfh.status;
+  parts.detail = std::move(cvfh.detail);
+  parts.cvfh = std::move(cvfh.histogram);
   parts.cvfh_regions = cvfh.regions;
   parts.normals_s = cvfh.normals_s;
   parts.cvfh_s = cvfh.cvfh_s;
+  if (parts.status != DescriptorStatus::kOk) return parts;
   const auto t = std::chrono::steady_clock::now();
   parts.hsv = HsvHistogram(object_C, params.hsv);
   parts.hsv_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
@@ -60,6 +73,10 @@ DescriptorParts ComputeDescriptorParts(const Cloud& object_C, const DescriptorPa
 }
 
 Eigen::VectorXf AssembleDescriptor(const DescriptorParts& parts, DescriptorKind kind) {
+  if (parts.status != DescriptorStatus::kOk) {
+    throw std::invalid_argument("descriptor parts: " + parts.detail + " (status " + ToString(parts.status) +
+                                "): no descriptor to assemble");
+  }
   if (parts.hsv.size() != kHsvBins || parts.cvfh.size() != kCvfhBins) {
     throw std::invalid_argument("descriptor parts have " + std::to_string(parts.hsv.size()) + " HSV and " +
                                 std::to_string(parts.cvfh.size()) + " CVFH bins, expected 192 and 308");

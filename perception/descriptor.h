@@ -13,6 +13,7 @@
 #include <Eigen/Core>
 
 #include <string>
+#include <type_traits>
 
 #include "perception/cloud.h"
 #include "perception/cvfh_descriptor.h"
@@ -36,19 +37,46 @@ struct DescriptorParams {
   CvfhParams cvfh;
 };
 
+/// Calls `visit(key, field)` for every field of `params` (a DescriptorParams, const or not) with the
+/// key it has in files ("hsv_min_saturation", "cvfh_voxel_leaf_m", ...), in a fixed order. The one list
+/// of the parameters: the model file, the dataset manifest and SameDescriptorParams all go through
+/// it, so a new field is added here and nowhere else.
+template <typename Params, typename Visit>
+void VisitDescriptorParams(Params& params, Visit&& visit) {
+  static_assert(std::is_same_v<std::remove_const_t<Params>, DescriptorParams>);
+  visit("hsv_min_saturation", params.hsv.min_saturation);
+  visit("hsv_min_value", params.hsv.min_value);
+  visit("cvfh_voxel_leaf_m", params.cvfh.voxel_leaf_m);
+  visit("cvfh_normal_radius_m", params.cvfh.normal_radius_m);
+  visit("cvfh_eps_angle_rad", params.cvfh.eps_angle_rad);
+  visit("cvfh_curvature_threshold", params.cvfh.curvature_threshold);
+  visit("cvfh_cluster_tolerance_m", params.cvfh.cluster_tolerance_m);
+  visit("cvfh_min_region_points", params.cvfh.min_region_points);
+  visit("cvfh_min_points", params.cvfh.min_points);
+}
+
+/// Whether two descriptor parameter sets give the same descriptors (every field equal).
+bool SameDescriptorParams(const DescriptorParams& a, const DescriptorParams& b);
+
 /// The two raw parts of an object's descriptor.
 struct DescriptorParts {
-  Eigen::VectorXf hsv;   ///< 192 raw counts.
-  Eigen::VectorXf cvfh;  ///< 308, mean of the CVFH region histograms, raw counts.
+  DescriptorStatus status = DescriptorStatus::kOk;  ///< CVFH's: whether the object could be described.
+  std::string detail;    ///< Why not, for a person (CVFH's detail); empty when ok.
+  Eigen::VectorXf hsv;   ///< 192 raw counts; empty when not ok.
+  Eigen::VectorXf cvfh;  ///< 308, mean of the CVFH region histograms, raw counts; empty when not ok.
   int cvfh_regions = 0;
   double hsv_s = 0, normals_s = 0, cvfh_s = 0;  ///< Wall time of each step.
 };
 
-/// @throws std::invalid_argument as ComputeCvfh (too few points).
+/// Both parts of the object's descriptor. CVFH comes first: when it cannot describe the object (too
+/// few points, no histogram), the parts carry its status and detail, both vectors stay empty and the
+/// HSV histogram is not computed.
+/// @throws std::runtime_error as ComputeCvfh (a non-finite histogram from PCL).
 DescriptorParts ComputeDescriptorParts(const Cloud& object_C, const DescriptorParams& params = {});
 
 /// The descriptor of `kind` from the raw parts (see the file comment for each kind's blocks).
-/// @throws std::invalid_argument if the parts do not have 192 and 308 bins.
+/// @throws std::invalid_argument "descriptor parts: <detail>" for parts whose status is not ok, or if
+///         the parts do not have 192 and 308 bins.
 Eigen::VectorXf AssembleDescriptor(const DescriptorParts& parts, DescriptorKind kind);
 
 }  // namespace sortcell::perception

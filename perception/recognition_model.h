@@ -15,33 +15,40 @@ namespace sortcell::perception {
 
 inline constexpr int kModelFormatVersion = 1;
 
+/// What a model's classes are: object categories ("bottle") or instances ("bottle1").
+enum class LabelKind { kCategory, kInstance };
+
+/// "category" or "instance": the spelling in model files, dataset reports and on the CLI.
+const char* ToString(LabelKind kind);
+/// @throws std::invalid_argument "unknown label kind '<name>' (expected category or instance)".
+LabelKind ParseLabelKind(const std::string& name);
+
 struct RecognitionModel {
   DescriptorKind descriptor = DescriptorKind::kColorCvfhNorm;
   DescriptorParams params;
-  std::string label_kind = "category";  ///< What the classes are: "category" or "instance".
+  LabelKind label_kind = LabelKind::kCategory;  ///< What the classes are.
   std::vector<std::string> classes;
   SvmClassifier classifier;
   int train_samples = 0;     ///< Rows it was trained on.
   double cv_accuracy = 0;    ///< Grouped cross-validation accuracy of the chosen (C, gamma).
 
-  /// Class name and confidence of one object's descriptor parts.
   struct Result {
     std::string name;
     double confidence = 0;
     int label = -1;
   };
+  /// Class name and confidence of one object's descriptor parts.
+  /// @throws std::invalid_argument as AssembleDescriptor for parts whose status is not ok.
   Result Classify(const DescriptorParts& parts) const;
 };
 
-/// @throws std::runtime_error naming the file if it cannot be written.
+/// @throws std::runtime_error naming the file if it cannot be written (e.g. a full disk).
 void SaveModel(const std::filesystem::path& file, const RecognitionModel& model);
 
 /// Loads and checks a model. With `expected`, a model for another descriptor is an error.
 /// @throws std::invalid_argument "model '<file>': <what>" for a missing, damaged or foreign file, an
-///         unsupported format version, inconsistent arrays, or another descriptor than `expected`.
+///         unsupported format version, an unknown label kind, inconsistent arrays, or another
+///         descriptor than `expected`.
 RecognitionModel LoadModel(const std::filesystem::path& file, std::optional<DescriptorKind> expected = std::nullopt);
-
-/// Whether two descriptor parameter sets give the same descriptors (every field equal).
-bool SameDescriptorParams(const DescriptorParams& a, const DescriptorParams& b);
 
 }  // namespace sortcell::perception

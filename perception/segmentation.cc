@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 
@@ -33,9 +34,6 @@ void CheckInput(const Cloud& cloud, const Cloud* background) {
   if (!cloud.isOrganized() || cloud.size() != static_cast<size_t>(cloud.width) * cloud.height) {
     throw std::invalid_argument("segmentation: the cloud is not organized (height " + std::to_string(cloud.height) +
                                 "): expected one point per pixel, e.g. 640x480 from a Kinect");
-  }
-  if (std::none_of(cloud.begin(), cloud.end(), Finite)) {
-    throw std::invalid_argument("segmentation: the cloud has no valid point (all NaN)");
   }
   if (background != nullptr && (background->width != cloud.width || background->height != cloud.height)) {
     throw std::invalid_argument("segmentation: the background cloud is " + std::to_string(background->width) + "x" +
@@ -64,6 +62,16 @@ std::vector<int> RegionOfInterest(const Cloud& cloud, const std::optional<Eigen:
   return roi;
 }
 
+// Why the region of interest is empty: no depth at all, or nothing inside the workspace box.
+std::string NoValidPointDetail(const Cloud& cloud, const SegmentationParams& params) {
+  if (std::none_of(cloud.begin(), cloud.end(), Finite)) return "segmentation: the cloud has no valid point (all NaN)";
+  const Eigen::IOFormat row(4, Eigen::DontAlignCols, ", ", ", ", "", "", "(", ")");
+  std::ostringstream detail;
+  detail << "segmentation: no valid point inside the workspace box " << params.workspace_min_W.transpose().format(row)
+         << " to " << params.workspace_max_W.transpose().format(row) << " m (world frame)";
+  return detail.str();
+}
+
 // Drops pixels whose depth matches the empty cell's (the paper's foreground/background subtraction).
 std::vector<int> SubtractBackground(const Cloud& cloud, const Cloud& background, const std::vector<int>& pixels,
                                     double tolerance) {
@@ -84,9 +92,11 @@ struct PlaneFit {
 };
 
 // RANSAC on every stride-th pixel of the region of interest. With a pose, the plane must be near
-// horizontal in the world (the table), so a large object face can never be taken for it.
-PlaneFit FitSupportingPlane(const Cloud& cloud, const std::vector<int>& roi,
-                            const std::optional<Eigen::Isometry3d>& X_WC, const SegmentationParams& params) {
+// horizontal in the world (the table), so a large object face can never be taken for it. No plane:
+// nullopt, with the reason in `detail`.
+std::optional<PlaneFit> FitSupportingPlane(const Cloud& cloud, const std::vector<int>& roi,
+                                           const std::optional<Eigen::Isometry3d>& X_WC,
+                                           const SegmentationParams& params, std::string& detail) {
   auto sample = std::make_shared<Cloud>();
   const int stride = std::max(1, params.plane_stride);
   for (int i : roi) {
@@ -113,10 +123,10 @@ PlaneFit FitSupportingPlane(const Cloud& cloud, const std::vector<int>& roi,
     sac.segment(*fit.inliers, coefficients);
   }
   if (static_cast<int>(fit.inliers->indices.size()) < params.min_plane_points || coefficients.values.size() != 4) {
-    throw std::invalid_argument("segmentation: no supporting plane found (" +
-                                std::to_string(fit.inliers->indices.size()) + " sampled inliers of " +
-                                std::to_string(sample->size()) + ", need " + std::to_string(params.min_plane_points) +
-                                "): expected objects standing on a table or floor");
+    detail = "segmentation: no supporting plane found (" + std::to_string(fit.inliers->indices.size()) +
+             " sampled inliers of " + std::to_string(sample->size()) + ", need " +
+             std::to_string(params.min_plane_points) + "): expected objects standing on a table or floor";
+    return std::nullopt;
   }
   Eigen::Vector4d plane(coefficients.values[0], coefficients.values[1], coefficients.values[2],
                         coefficients.values[3]);
@@ -159,38 +169,61 @@ std::vector<int> OnPlaneArea(const Cloud& cloud, const std::vector<int>& pixels,
   return inside.indices;
 }
 
-}  // namespace
-
-SegmentationResult SegmentObjects(const Cloud& cloud, const std::optional<Eigen::Isometry3d>& X_WC,
-                                  const Cloud* background, const SegmentationParams& params) {
-  CheckInput(cloud, background);
-  SegmentationResult result;
-  result.world_frame = X_WC.has_value();
-
-  auto t = Clock::now();
-  const std::vector<int> roi = RegionOfInterest(cloud, X_WC, params);
-  std::vector<int> candidates =
-      background != nullptr ? SubtractBackground(cloud, *background, roi, params.background_tolerance_m) : roi;
-  result.timings.crop_s = Since(t);
-
-  t = Clock::now();
-  const PlaneFit fit = FitSupportingPlane(cloud, roi, X_WC, params);
-  result.plane_C = fit.plane_C;
+// With a pose: the candidates farther than `above_plane_m` above the plane, on the camera's side.
+std::vector<int> AbovePlane(const Cloud& cloud, const std::vector<int>& candidates, const Eigen::Vector4d& plane_C,
+                            const SegmentationParams& params) {
   std::vector<int> above;
-  if (X_WC) {
-    above.reserve(candidates.size());
-    const Eigen::Vector3f n = fit.plane_C.head<3>().cast<float>();
-    const float d = static_cast<float>(fit.plane_C[3]);
-    for (int i : candidates) {
-      if (n.dot(cloud[i].getVector3fMap()) + d > params.above_plane_m) above.push_back(i);
-    }
-  } else {
-    above = OnPlaneArea(cloud, candidates, fit, params);
+  above.reserve(candidates.size());
+  const Eigen::Vector3f n = plane_C.head<3>().cast<float>();
+  const float d = static_cast<float>(plane_C[3]);
+  for (int i : candidates) {
+    if (n.dot(cloud[i].getVector3fMap()) + d > params.above_plane_m) above.push_back(i);
   }
-  result.timings.plane_s = Since(t);
-  if (above.empty()) return result;
+  return above;
+}
 
-  t = Clock::now();
+// Euclidean clusters of `voxels`, largest first.
+std::vector<pcl::PointIndices> EuclideanClusters(const Cloud::Ptr& voxels, const SegmentationParams& params) {
+  auto tree = std::make_shared<pcl::search::KdTree<PointT>>();
+  tree->setInputCloud(voxels);
+  std::vector<pcl::PointIndices> clusters;
+  pcl::EuclideanClusterExtraction<PointT> extract;
+  extract.setClusterTolerance(params.cluster_tolerance_m);
+  extract.setMinClusterSize(params.min_cluster_voxels);
+  extract.setMaxClusterSize(params.max_cluster_voxels);
+  extract.setSearchMethod(tree);
+  extract.setInputCloud(voxels);
+  extract.extract(clusters);
+  std::sort(clusters.begin(), clusters.end(),
+            [](const pcl::PointIndices& a, const pcl::PointIndices& b) { return a.indices.size() > b.indices.size(); });
+  return clusters;
+}
+
+// Fills a segment whose pixels are set: its cloud, and centroid, box and principal axes of its voxels
+// `cluster` in the output frame O.
+void DescribeSegment(const Cloud& cloud, const Cloud& voxels, const pcl::PointIndices& cluster,
+                     const Eigen::Isometry3d& X_OC, Segment& segment) {
+  segment.voxels = static_cast<int>(cluster.indices.size());
+  segment.cloud_C = std::make_shared<Cloud>();
+  segment.cloud_C->reserve(segment.indices.size());
+  for (int i : segment.indices) segment.cloud_C->push_back(cloud[i]);
+  Eigen::Matrix3Xd p_O(3, segment.voxels);
+  for (int k = 0; k < segment.voxels; ++k) {
+    p_O.col(k) = X_OC * voxels[cluster.indices[k]].getVector3fMap().cast<double>();
+  }
+  segment.centroid = p_O.rowwise().mean();
+  segment.bbox_min = p_O.rowwise().minCoeff();
+  segment.bbox_max = p_O.rowwise().maxCoeff();
+  const Eigen::Matrix3Xd centred = p_O.colwise() - segment.centroid;
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> pca(centred * centred.transpose());
+  segment.principal_axes = pca.eigenvectors().rowwise().reverse();  // Largest variance first.
+}
+
+// Voxelises the object pixels `above`, clusters the voxels and gives each cluster its pixels back
+// (full resolution) as one segment of `result`.
+void ClusterObjects(const Cloud& cloud, const std::vector<int>& above, const std::optional<Eigen::Isometry3d>& X_WC,
+                    const SegmentationParams& params, SegmentationResult& result) {
+  auto t = Clock::now();
   auto kept = std::make_shared<Cloud>();
   kept->reserve(above.size());
   for (int i : above) kept->push_back(cloud[i]);
@@ -204,19 +237,7 @@ SegmentationResult SegmentObjects(const Cloud& cloud, const std::optional<Eigen:
   result.timings.voxel_s = Since(t);
 
   t = Clock::now();
-  auto tree = std::make_shared<pcl::search::KdTree<PointT>>();
-  tree->setInputCloud(voxels);
-  std::vector<pcl::PointIndices> clusters;
-  pcl::EuclideanClusterExtraction<PointT> extract;
-  extract.setClusterTolerance(params.cluster_tolerance_m);
-  extract.setMinClusterSize(params.min_cluster_voxels);
-  extract.setMaxClusterSize(params.max_cluster_voxels);
-  extract.setSearchMethod(tree);
-  extract.setInputCloud(voxels);
-  extract.extract(clusters);
-  std::sort(clusters.begin(), clusters.end(),
-            [](const pcl::PointIndices& a, const pcl::PointIndices& b) { return a.indices.size() > b.indices.size(); });
-
+  const std::vector<pcl::PointIndices> clusters = EuclideanClusters(voxels, params);
   std::vector<int> cluster_of_voxel(voxels->size(), -1);
   for (size_t c = 0; c < clusters.size(); ++c) {
     for (int v : clusters[c].indices) cluster_of_voxel[v] = static_cast<int>(c);
@@ -228,24 +249,49 @@ SegmentationResult SegmentObjects(const Cloud& cloud, const std::optional<Eigen:
     result.segments[cluster_of_voxel[v]].indices.push_back(above[k]);
   }
   const Eigen::Isometry3d X_OC = X_WC.value_or(Eigen::Isometry3d::Identity());  // Output frame O.
-  for (size_t c = 0; c < clusters.size(); ++c) {
-    Segment& segment = result.segments[c];
-    segment.voxels = static_cast<int>(clusters[c].indices.size());
-    segment.cloud_C = std::make_shared<Cloud>();
-    segment.cloud_C->reserve(segment.indices.size());
-    for (int i : segment.indices) segment.cloud_C->push_back(cloud[i]);
-    Eigen::Matrix3Xd p_O(3, segment.voxels);
-    for (int k = 0; k < segment.voxels; ++k) {
-      p_O.col(k) = X_OC * (*voxels)[clusters[c].indices[k]].getVector3fMap().cast<double>();
-    }
-    segment.centroid = p_O.rowwise().mean();
-    segment.bbox_min = p_O.rowwise().minCoeff();
-    segment.bbox_max = p_O.rowwise().maxCoeff();
-    const Eigen::Matrix3Xd centred = p_O.colwise() - segment.centroid;
-    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> pca(centred * centred.transpose());
-    segment.principal_axes = pca.eigenvectors().rowwise().reverse();  // Largest variance first.
-  }
+  for (size_t c = 0; c < clusters.size(); ++c) DescribeSegment(cloud, *voxels, clusters[c], X_OC, result.segments[c]);
   result.timings.cluster_s = Since(t);
+}
+
+}  // namespace
+
+const char* ToString(SegmentationStatus status) {
+  switch (status) {
+    case SegmentationStatus::kOk: return "ok";
+    case SegmentationStatus::kNoValidPoints: return "no_valid_points";
+    case SegmentationStatus::kNoPlane: return "no_plane";
+  }
+  return "unknown";
+}
+
+SegmentationResult SegmentObjects(const Cloud& cloud, const std::optional<Eigen::Isometry3d>& X_WC,
+                                  const Cloud* background, const SegmentationParams& params) {
+  CheckInput(cloud, background);
+  SegmentationResult result;
+  result.world_frame = X_WC.has_value();
+
+  auto t = Clock::now();
+  const std::vector<int> roi = RegionOfInterest(cloud, X_WC, params);
+  if (roi.empty()) {
+    result.status = SegmentationStatus::kNoValidPoints;
+    result.detail = NoValidPointDetail(cloud, params);
+    return result;
+  }
+  const std::vector<int> candidates =
+      background != nullptr ? SubtractBackground(cloud, *background, roi, params.background_tolerance_m) : roi;
+  result.timings.crop_s = Since(t);
+
+  t = Clock::now();
+  const std::optional<PlaneFit> fit = FitSupportingPlane(cloud, roi, X_WC, params, result.detail);
+  if (!fit) {
+    result.status = SegmentationStatus::kNoPlane;
+    return result;
+  }
+  result.plane_C = fit->plane_C;
+  const std::vector<int> above =
+      X_WC ? AbovePlane(cloud, candidates, fit->plane_C, params) : OnPlaneArea(cloud, candidates, *fit, params);
+  result.timings.plane_s = Since(t);
+  if (!above.empty()) ClusterObjects(cloud, above, X_WC, params, result);
   return result;
 }
 

@@ -7,6 +7,7 @@
 #include <Eigen/Geometry>
 
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "perception/cloud.h"
@@ -27,7 +28,7 @@ struct SegmentationParams {
   int plane_iterations = 200;
   int plane_stride = 3;
   double plane_max_tilt_rad = 0.26;
-  int min_plane_points = 200;  ///< Fewer sampled inliers: no supporting plane, an error.
+  int min_plane_points = 200;  ///< Fewer sampled inliers: no supporting plane (SegmentationStatus::kNoPlane).
   /// Points closer to the plane than this (or below it) belong to it.
   double above_plane_m = 0.010;
   /// Without a camera pose: objects are what stands on the plane's inlier area up to this height.
@@ -56,18 +57,32 @@ struct SegmentationTimings {
   double crop_s = 0, plane_s = 0, voxel_s = 0, cluster_s = 0;
 };
 
+/// Expected ways a capture cannot be segmented (a status, not an error: e.g. the camera sees no table).
+enum class SegmentationStatus {
+  kOk,
+  kNoValidPoints,  ///< No point with depth inside the region of interest (all NaN, or all outside the box).
+  kNoPlane,        ///< No supporting plane (table or floor) found.
+};
+
+/// "ok", "no_valid_points", "no_plane".
+const char* ToString(SegmentationStatus status);
+
 struct SegmentationResult {
+  SegmentationStatus status = SegmentationStatus::kOk;
+  std::string detail;  ///< Why, for a person, when not ok (numbers included); empty when ok.
   bool world_frame = false;  ///< Whether centroids and boxes are in the world (camera pose given).
   Eigen::Vector4d plane_C = Eigen::Vector4d::Zero();  ///< Supporting plane n.p + d = 0, camera frame, n towards the camera.
-  std::vector<Segment> segments;  ///< Largest first.
+  std::vector<Segment> segments;  ///< Largest first; empty when not ok.
   SegmentationTimings timings;
 };
 
-/// Segments `cloud` (organized, camera optical frame, NaN where no depth).
+/// Segments `cloud` (organized, camera optical frame, NaN where no depth). A capture without a valid
+/// point in the region of interest or without a supporting plane is an expected outcome: the result's
+/// status says which (kNoValidPoints, kNoPlane), `detail` says why, and `segments` is empty.
 /// @param X_WC      Camera pose in the world: enables the workspace box and world-frame outputs.
 /// @param background The empty cell seen from the same camera (organized, same size), or null.
-/// @throws std::invalid_argument naming the problem for a cloud that is not organized, empty or all
-///         NaN, a background of another size, or a scene without a supporting plane.
+/// @throws std::invalid_argument naming the problem for misuse: an empty cloud, a cloud that is not
+///         organized, or a background of another size.
 SegmentationResult SegmentObjects(const Cloud& cloud, const std::optional<Eigen::Isometry3d>& X_WC,
                                   const Cloud* background, const SegmentationParams& params = {});
 

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <string_view>
 
 namespace sortcell::sim {
 namespace {
@@ -90,13 +91,27 @@ Eigen::Isometry3d SitePose(const Data& data, int site) {
   return X;
 }
 
-std::vector<std::string> BinNames(const Model& model) {
-  std::vector<std::string> names;
+namespace {
+constexpr std::string_view kBinPrefix = "bin_";
+}  // namespace
+
+std::string BinName(const std::string& category) { return std::string(kBinPrefix) + category; }
+
+std::vector<BinRef> Bins(const Model& model) {
+  std::vector<BinRef> bins;
   for (int b = 0; b < model.get()->nbody; ++b) {
     const char* name = mj_id2name(model.get(), mjOBJ_BODY, b);
-    if (name && std::string(name).rfind("bin_", 0) == 0) names.emplace_back(name);
+    if (!name || std::string_view(name).substr(0, kBinPrefix.size()) != kBinPrefix) continue;
+    BinRef bin;
+    bin.category = std::string(name).substr(kBinPrefix.size());
+    bin.body = b;
+    bin.site = mj_name2id(model.get(), mjOBJ_SITE, name);
+    if (bin.site < 0) {
+      throw std::invalid_argument("scene '" + model.source() + "': bin '" + name + "' has no floor site '" + name + "'");
+    }
+    bins.push_back(bin);
   }
-  return names;
+  return bins;
 }
 
 bool InBin(const Data& data, int object_body, int bin_body) {

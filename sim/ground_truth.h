@@ -28,8 +28,17 @@ Eigen::Isometry3d BodyPose(const Data& data, int body);
 /// Pose of a site in the world frame.
 Eigen::Isometry3d SitePose(const Data& data, int site);
 
-/// Names of the bins: the bodies named "bin_<category>".
-std::vector<std::string> BinNames(const Model& model);
+/// A category's bin: a body named "bin_<category>" with a site of the same name at its floor centre.
+struct BinRef {
+  std::string category;
+  int body = -1;
+  int site = -1;
+};
+/// "bin_<category>": the one place that spells a bin's name.
+std::string BinName(const std::string& category);
+/// The scene's bins, in body order.
+/// @throws std::invalid_argument naming the scene and bin if a bin body has no floor site.
+std::vector<BinRef> Bins(const Model& model);
 
 /// True when the body's centre of mass lies inside the bin: within the inner 0.20 x 0.20 m square
 /// (models/cell/cell.inc.xml) and less than 0.15 m above its floor, which an object standing upright

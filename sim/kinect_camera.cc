@@ -24,23 +24,25 @@ KinectCamera::KinectCamera(const Model& model, const std::string& camera_name, i
   }
 }
 
-KinectFrame KinectCamera::Capture(const Data& data, const KinectNoiseParams* noise, std::mt19937_64* rng) {
+KinectFrame KinectCamera::Capture(const Data& data, const KinectNoiseParams* noise, std::mt19937_64* rng,
+                                  FrameTruth* truth) {
   if (noise != nullptr && rng == nullptr) throw std::invalid_argument("KinectCamera::Capture: noise needs an rng");
   const RenderView view{camera_id_, intrinsics_.width, intrinsics_.height};
   KinectFrame frame;
   frame.intrinsics = intrinsics_;
-  frame.X_WC = CameraPoseInWorld(model_, data, camera_id_);
   cv::Mat depth_buffer;
   renderer_.Render(data, view, frame.rgb, depth_buffer);
   const cv::Mat clean = LinearizeDepth(depth_buffer, DepthRangeOf(model_));
   frame.depth = noise != nullptr ? ApplyKinectNoise(clean, intrinsics_, *noise, *rng) : clean;
+  if (truth == nullptr) return frame;
 
+  truth->X_WC = CameraPoseInWorld(model_, data, camera_id_);
   cv::Mat geom_ids;
   renderer_.RenderGeomIds(data, view, geom_ids);
-  frame.labels.create(geom_ids.size(), CV_16UC1);
+  truth->labels.create(geom_ids.size(), CV_16UC1);
   for (int r = 0; r < geom_ids.rows; ++r) {
     const int* g = geom_ids.ptr<int>(r);
-    uint16_t* l = frame.labels.ptr<uint16_t>(r);
+    uint16_t* l = truth->labels.ptr<uint16_t>(r);
     for (int c = 0; c < geom_ids.cols; ++c) l[c] = g[c] >= 0 ? geom_label_[g[c]] : 0;
   }
   return frame;

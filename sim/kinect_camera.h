@@ -1,7 +1,7 @@
 #pragma once
 /// @file
 /// The synthetic Kinect v1: one fixed camera of the scene rendered off-screen to registered colour
-/// and depth, with the Kinect noise model, plus a ground-truth object label image for scoring.
+/// and depth, with the Kinect noise model; a ground-truth label image and pose, for scoring, on request.
 
 #include <Eigen/Geometry>
 #include <opencv2/core/mat.hpp>
@@ -17,13 +17,18 @@
 
 namespace sortcell::sim {
 
-/// One capture. Colour and depth are registered (same pinhole, same pixel grid).
+/// One capture, as the sensor gives it: colour and depth registered (same pinhole, same pixel grid).
 struct KinectFrame {
   cv::Mat rgb;     ///< CV_8UC3, RGB order, top row first.
   cv::Mat depth;   ///< CV_32FC1, planar depth in metres, NaN where the sensor gives none.
-  cv::Mat labels;  ///< CV_16UC1 ground truth: 0 = no object, i = object_names[i - 1]. Scoring only.
   CameraIntrinsics intrinsics;
-  Eigen::Isometry3d X_WC = Eigen::Isometry3d::Identity();  ///< Optical frame C in the world.
+};
+
+/// What the simulator knows of the same capture and the sensor does not give: for scoring, training
+/// labels and tests only, handed out through its own channel (KinectCamera::Capture's `truth`).
+struct FrameTruth {
+  cv::Mat labels;  ///< CV_16UC1: 0 = no object, i = object_names()[i - 1].
+  Eigen::Isometry3d X_WC = Eigen::Isometry3d::Identity();  ///< Where the optical frame C truly is.
 };
 
 class KinectCamera {
@@ -33,9 +38,11 @@ class KinectCamera {
   KinectCamera(const Model& model, const std::string& camera_name = "kinect", int width = 640, int height = 480);
 
   /// Renders the current state. With `noise` null the depth is ideal (NaN only where nothing was
-  /// drawn); otherwise the Kinect noise model is applied, driven by `rng`.
+  /// drawn); otherwise the Kinect noise model is applied, driven by `rng`. With `truth`, the label
+  /// image is rendered too and the camera's true pose given there.
   /// @throws std::invalid_argument if `noise` is given without `rng`.
-  KinectFrame Capture(const Data& data, const KinectNoiseParams* noise, std::mt19937_64* rng);
+  KinectFrame Capture(const Data& data, const KinectNoiseParams* noise, std::mt19937_64* rng,
+                      FrameTruth* truth = nullptr);
 
   /// Lighting of the following captures (default: the scene's own).
   void SetLighting(const Lighting& lighting) { renderer_.SetLighting(lighting); }

@@ -107,4 +107,9 @@ std::optional<std::vector<TablePose>> SampleTablePoses(const std::vector<double>
   return std::nullopt;
 }
 
+std::optional<std::vector<TablePose>> SampleTablePoses(const std::vector<double>& radii, const PlacementArea& area,
+                                                       std::mt19937_64& rng, int max_tries) {
+  return SampleTablePoses(radii, area.min, area.max, area.gap_m, rng, max_tries);
+}
+
 }  // namespace sortcell::sim

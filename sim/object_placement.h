@@ -34,11 +34,23 @@ struct TablePose {
   double x = 0, y = 0, yaw = 0;
 };
 
+/// Where random scenes put objects, for episodes and training scenes alike (one distribution by
+/// construction): the reachable middle of the workspace, with 3 cm of free table between footprints
+/// so the open fingers fit between neighbours and objects segment apart.
+struct PlacementArea {
+  Eigen::Vector2d min{0.32, -0.22};  ///< World x, y (m).
+  Eigen::Vector2d max{0.68, 0.22};
+  double gap_m = 0.03;  ///< Free table between footprints (m).
+};
+
 /// Random non-overlapping poses for objects of footprint `radii` inside the rectangle [min, max]
 /// (x, y): centres at least r_i + r_j + gap apart, yaw uniform. Rejection sampling, at most
 /// `max_tries` draws per object and up to 50 fresh arrangements; nullopt when the objects do not fit.
 std::optional<std::vector<TablePose>> SampleTablePoses(const std::vector<double>& radii, const Eigen::Vector2d& min,
                                                        const Eigen::Vector2d& max, double gap, std::mt19937_64& rng,
                                                        int max_tries = 500);
+/// The same inside `area`.
+std::optional<std::vector<TablePose>> SampleTablePoses(const std::vector<double>& radii, const PlacementArea& area,
+                                                       std::mt19937_64& rng, int max_tries = 500);
 
 }  // namespace sortcell::sim

@@ -1,10 +1,12 @@
 // The simulated arm under the robot layer's control: tracking within torque limits, and the gripper's
 // hold detection closing on nothing (on an object: pick_command_test) (sim).
-#include "app/arm_executor.h"
+#include "app/episode/arm_executor.h"
 
 #include <gtest/gtest.h>
 
-#include "app/pick_command.h"
+#include "app/episode/sim_cell.h"
+#include "cell/cell_layout.h"
+#include "cell/motion_sequencer.h"
 #include "robot/joint_trajectory.h"
 #include "sim/arm_io.h"
 
@@ -17,7 +19,7 @@ class ArmExecutorTest : public ::testing::Test {
  protected:
   void SetUp() override {
     ASSERT_TRUE(sim::ResetToObserve(model_, data_));
-    exec_.Reset(HomeJoints(), 0.055);
+    exec_.Reset(cell::CellLayout().q_observe, 0.055);
   }
   const sim::Model model_ = sim::Model::FromFile(kCell);
   sim::Data data_{model_};
@@ -27,15 +29,15 @@ class ArmExecutorTest : public ::testing::Test {
 TEST_F(ArmExecutorTest, ObserveKeyframeIsTheHomePose) {
   ASSERT_TRUE(sim::ResetToObserve(model_, data_));
   mj_forward(model_.get(), data_.get());
-  EXPECT_LT((exec_.JointPositions() - HomeJoints()).cwiseAbs().maxCoeff(), 1e-6);
+  EXPECT_LT((exec_.JointPositions() - cell::CellLayout().q_observe).cwiseAbs().maxCoeff(), 1e-6);
   EXPECT_NEAR(exec_.Gripper().gap(), robot::kMaxGap, 1e-9);  // open
 }
 
 TEST_F(ArmExecutorTest, TracksAJointMoveWithinTheTorqueLimits) {
-  robot::Joints goal = HomeJoints();
+  robot::Joints goal = cell::CellLayout().q_observe;
   goal[0] -= 1.0;  // swing towards the bins, above everything
   goal[1] += 0.3;
-  ASSERT_EQ(exec_.Follow(robot::PlanJointMove(HomeJoints(), goal)).code, sim::StepStatus::kOk);
+  ASSERT_EQ(exec_.Follow(robot::PlanJointMove(cell::CellLayout().q_observe, goal)).code, sim::StepStatus::kOk);
   ASSERT_EQ(exec_.Wait(0.5).code, sim::StepStatus::kOk);
   EXPECT_LT((exec_.JointPositions() - goal).cwiseAbs().maxCoeff(), 2e-3);
   EXPECT_LT(exec_.tracking().max_error, 0.01);
@@ -44,12 +46,20 @@ TEST_F(ArmExecutorTest, TracksAJointMoveWithinTheTorqueLimits) {
   for (int i = 0; i < 6; ++i) EXPECT_LE(std::abs(data_->ctrl[i]), robot::Ur5TorqueLimits()[i] + 1e-9);
 }
 
-TEST_F(ArmExecutorTest, ClosingOnNothingIsEmpty) {
-  robot::HoldState hold = robot::HoldState::kMoving;
-  ASSERT_EQ(exec_.Grasp(robot::kDefaultGripForce, 1.5, hold).code, sim::StepStatus::kOk);
-  EXPECT_EQ(hold, robot::HoldState::kEmpty);
-  EXPECT_LT(exec_.Gripper().gap(), 0.004);
-  EXPECT_EQ(exec_.Gripper().left_pad_force, 0.0);
+TEST(SimCell, ClosingOnNothingIsEmpty) {
+  const sim::Model model = sim::Model::FromFile(kCell);
+  sim::Data data(model);
+  ASSERT_TRUE(sim::ResetToObserve(model, data));
+  SimCell cell(model, data, nullptr, nullptr, nullptr, nullptr, 0.002);
+  cell.Reset(cell::CellLayout().q_observe, 0.055);
+  cell::MotionSequencer motions(cell);
+  ASSERT_TRUE(motions.Grasp("grasp")) << motions.failure();
+  EXPECT_EQ(motions.Hold(), robot::HoldState::kEmpty);
+  EXPECT_LT(cell.ReadGripper().gap(), 0.004);
+  EXPECT_EQ(cell.ReadGripper().left_pad_force, 0.0);
+  ASSERT_EQ(motions.phases().size(), 1u);
+  EXPECT_EQ(motions.phases()[0].phase, "grasp");
+  EXPECT_GT(motions.phases()[0].end_s, motions.phases()[0].start_s);
 }
 
 TEST(ArmExecutor, ControlPeriodMustBeWholeTimesteps) {

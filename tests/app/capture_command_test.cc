@@ -19,8 +19,7 @@ namespace {
 const std::string kCell = SORTCELL_SOURCE_DIR "/scenes/cell.xml";
 
 TEST(CliCapture, WritesEveryFile) {
-  const fs::path out = fs::path(::testing::TempDir()) / "cli_capture";
-  fs::remove_all(out);
+  const fs::path out = fs::path(TestTempDir()) / "cli_capture";
   const Result r = RunSortcell("capture --scene " + kCell + " --seed 5 --out " + out.string());
   ASSERT_EQ(r.exit_code, 0) << r.err;
   for (const char* f : {"rgb.png", "depth.png", "cloud.pcd", "labels.png", "labels.json", "camera.json", "run.json"}) {

@@ -19,24 +19,24 @@ TEST(Cli, HelpExitsZeroAndNamesCapture) {
 TEST(Cli, BadArgumentsExitTwoWithOneLine) {
   ExpectOneLineError(RunSortcell(""), "subcommand");
   ExpectOneLineError(RunSortcell("teleport"), "teleport");
-  ExpectOneLineError(RunSortcell("capture --out /tmp/x"), "--scene");
-  ExpectOneLineError(RunSortcell("capture --scene " + kCell + " --seed -3 --out /tmp/x"), "--seed");
-  ExpectOneLineError(RunSortcell("capture --scene " + kCell + " --seed abc --out /tmp/x"), "--seed");
+  ExpectOneLineError(RunSortcell("capture --out " + TestTempDir() + "x"), "--scene");
+  ExpectOneLineError(RunSortcell("capture --scene " + kCell + " --seed -3 --out " + TestTempDir() + "x"), "--seed");
+  ExpectOneLineError(RunSortcell("capture --scene " + kCell + " --seed abc --out " + TestTempDir() + "x"), "--seed");
 }
 
 TEST(Cli, BadScenesExitTwoNamingTheFile) {
-  const std::string out = ::testing::TempDir() + "/cli_bad_scene";
+  const std::string out = TestTempDir() + "cli_bad_scene";
   ExpectOneLineError(RunSortcell("capture --scene /nonexistent/cell.xml --out " + out), "/nonexistent/cell.xml");
-  const std::string malformed = ::testing::TempDir() + "/cli_malformed.xml";
+  const std::string malformed = TestTempDir() + "cli_malformed.xml";
   std::ofstream(malformed) << "<mujoco><worldbody><body></worldbody>";
   ExpectOneLineError(RunSortcell("capture --scene " + malformed + " --out " + out), malformed);
-  const std::string no_camera = ::testing::TempDir() + "/cli_no_camera.xml";
+  const std::string no_camera = TestTempDir() + "cli_no_camera.xml";
   std::ofstream(no_camera) << "<mujoco><worldbody><geom type=\"plane\" size=\"1 1 1\"/></worldbody></mujoco>";
   ExpectOneLineError(RunSortcell("capture --scene " + no_camera + " --out " + out), "no camera named 'kinect'");
 }
 
 TEST(Cli, UnwritableOutputFolderExitsTwo) {
-  const std::string file = ::testing::TempDir() + "/cli_a_file";
+  const std::string file = TestTempDir() + "cli_a_file";
   std::ofstream(file) << "x";
   ExpectOneLineError(RunSortcell("capture --scene " + kCell + " --out " + file + "/sub"), "output folder");
   ExpectOneLineError(RunSortcell("capture --scene " + kCell + " --out " + file), "not a folder");

@@ -18,7 +18,7 @@ const std::string kSource = SORTCELL_SOURCE_DIR;
 const std::string kScene = kSource + "/scenes/cell.xml";
 const std::string kSet = kSource + "/scenes/objects/paper.yaml";
 
-std::string Temp(const std::string& name) { return ::testing::TempDir() + "/episode_cli_" + name; }
+std::string Temp(const std::string& name) { return sortcell_test::TestTempDir() + "episode_cli_" + name; }
 
 std::string Read(const std::string& file) {
   std::ifstream in(file);
@@ -38,13 +38,14 @@ TEST(EpisodeCli, MissingModel) {
 }
 
 TEST(EpisodeCli, NoCachedModelSaysHowToMakeOne) {
-  // An empty data directory: no cached model there.
-  const std::string data = Temp("data");
-  std::filesystem::create_directories(data);
-  setenv("SORTCELL_DATA_DIR", data.c_str(), 1);
+  // An empty model cache: no cached model there.
+  const std::string cache = Temp("models");
+  std::filesystem::create_directories(cache);
+  setenv("SORTCELL_MODEL_CACHE", cache.c_str(), 1);
   const auto r = RunSortcell("episode --scene " + kScene + " --object-set " + kSet + " --out " + Temp("c"));
-  unsetenv("SORTCELL_DATA_DIR");
-  ExpectOneLineError(r, "no trained model at " + data);
+  unsetenv("SORTCELL_MODEL_CACHE");
+  ExpectOneLineError(r, "no trained model at " + cache + "/paper-color-cvfh-norm.model.json");
+  EXPECT_NE(r.err.find("--out " + cache + "/paper_scenes"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("--train-if-missing"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("sortcell train"), std::string::npos) << r.err;
 }

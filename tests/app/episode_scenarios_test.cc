@@ -24,7 +24,7 @@ const std::string kSource = SORTCELL_SOURCE_DIR;
 const std::string kScene = kSource + "/scenes/cell.xml";
 const std::string kSet = kSource + "/scenes/objects/paper.yaml";
 
-std::string Temp(const std::string& name) { return ::testing::TempDir() + "/episode_scenario_" + name; }
+std::string Temp(const std::string& name) { return sortcell_test::TestTempDir() + "episode_scenario_" + name; }
 
 nlohmann::json Episode(const std::string& name, const std::string& args) {
   if (!std::filesystem::exists(SORTCELL_TEST_MODEL)) {

@@ -14,7 +14,7 @@
 namespace {
 
 nlohmann::json RunEpisode(const std::string& name, const std::string& extra) {
-  const std::string out = ::testing::TempDir() + "/episode_video_" + name;
+  const std::string out = sortcell_test::TestTempDir() + "episode_video_" + name;
   std::filesystem::remove_all(out);
   const auto r = sortcell_test::RunSortcell(
       std::string("episode --scene ") + SORTCELL_SOURCE_DIR + "/scenes/cell.xml --model " + SORTCELL_TEST_MODEL +
@@ -25,7 +25,7 @@ nlohmann::json RunEpisode(const std::string& name, const std::string& extra) {
 }
 
 TEST(EpisodeVideo, PlayableAndDoesNotChangeTheOutcome) {
-  const std::string video = ::testing::TempDir() + "/episode_video.mp4";
+  const std::string video = sortcell_test::TestTempDir() + "episode_video.mp4";
   std::filesystem::remove(video);
   nlohmann::json with = RunEpisode("with", "--video " + video);
   nlohmann::json without = RunEpisode("without", "");

@@ -1,4 +1,4 @@
-#include "app/kinematics_commands.h"
+#include "app/cli/kinematics_commands.h"
 
 #include <gtest/gtest.h>
 
@@ -76,7 +76,7 @@ TEST(KinematicsCommands, BadValuesThrowNamingTheOption) {
 }
 
 TEST(KinematicsCommands, NegativeNumbersAreValuesOnTheCommandLine) {
-  const std::string out = ::testing::TempDir() + "/ik_negative.json";
+  const std::string out = sortcell_test::TestTempDir() + "ik_negative.json";
   const std::string command =
       std::string(SORTCELL_BINARY) + " ik --pose 0.4 -0.2 0.1 3.14 0 -1.57 --q-near 2.4 -1.3 2.2 -2.5 -1.57 -0.7 > " + out;
   ASSERT_EQ(std::system(command.c_str()), 0);

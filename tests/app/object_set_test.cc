@@ -1,17 +1,19 @@
 // Object set YAML files: parsed into plain structs, every mistake named.
-#include "app/object_set.h"
-#include "app/output_dir.h"
+#include "app/common/object_set.h"
+#include "app/common/output_dir.h"
 
 #include <gtest/gtest.h>
 
 #include <fstream>
+
+#include "temp_dir.h"
 
 namespace {
 
 using sortcell::app::LoadObjectSet;
 
 std::string Write(const std::string& name, const std::string& text) {
-  const std::string path = ::testing::TempDir() + "/" + name;
+  const std::string path = sortcell_test::TestTempDir() + name;
   std::ofstream(path) << text;
   return path;
 }

@@ -1,5 +1,5 @@
 // Physical pick-and-place (sim): friction grasps only, every paper object into its category's bin.
-#include "app/pick_command.h"
+#include "app/episode/scripted_pick.h"
 
 #include <gtest/gtest.h>
 
@@ -26,7 +26,7 @@ PickResult Pick(const std::string& scene, const std::string& object, const std::
   options.object = object;
   options.bin = bin;
   options.video = video;
-  options.out = fs::path(::testing::TempDir()) / ("pick_" + object + "_" + bin);
+  options.out = fs::path(sortcell_test::TestTempDir()) / ("pick_" + object + "_" + bin);
   return RunPick(options, {"sortcell", "pick"});
 }
 
@@ -82,7 +82,7 @@ TEST(Pick, SameSceneSameResult) {
 
 TEST(Pick, ResultJsonHasTheDocumentedFields) {
   Pick("scenes/cell.xml", "ball", "ball");
-  std::ifstream in(fs::path(::testing::TempDir()) / "pick_ball_ball" / "result.json");
+  std::ifstream in(fs::path(sortcell_test::TestTempDir()) / "pick_ball_ball" / "result.json");
   const nlohmann::json j = nlohmann::json::parse(in);
   for (const char* key : {"in_bin", "slip_mm", "cycle_time_s", "wall_time_s", "scripted", "phases", "tracking"}) {
     EXPECT_TRUE(j.contains(key)) << key;
@@ -94,7 +94,7 @@ TEST(Pick, ResultJsonHasTheDocumentedFields) {
 
 TEST(PickCli, UnknownObjectOrBinIsOneLineExitTwo) {
   const std::string scene = (kRoot / "scenes/cell.xml").string();
-  const std::string out = " --out " + ::testing::TempDir() + "/pick_cli";
+  const std::string out = " --out " + sortcell_test::TestTempDir() + "pick_cli";
   ExpectOneLineError(RunSortcell("pick --scene " + scene + " --object teapot --bin cup" + out), "no object named 'teapot'");
   ExpectOneLineError(RunSortcell("pick --scene " + scene + " --object cup --bin trash" + out), "no bin named 'trash'");
   ExpectOneLineError(RunSortcell("pick --scene " + scene + " --object table --bin cup" + out), "no object named 'table'");

@@ -6,7 +6,8 @@
 
 #include <filesystem>
 
-#include "app/pick_command.h"
+#include "app/episode/scripted_pick.h"
+#include "temp_dir.h"
 
 namespace sortcell::app {
 namespace {
@@ -14,7 +15,7 @@ namespace {
 namespace fs = std::filesystem;
 
 TEST(PickVideo, H264At30FpsAndSameOutcome) {
-  const fs::path dir = fs::path(::testing::TempDir()) / "pick_video";
+  const fs::path dir = fs::path(sortcell_test::TestTempDir()) / "pick_video";
   PickOptions options;
   options.scene = fs::path(SORTCELL_SOURCE_DIR) / "scenes/cell.xml";
   options.object = "ball";

@@ -1,4 +1,5 @@
-// Bad input to segment, dataset, train, eval and experiment: one line naming the culprit, exit 2.
+// Bad input to segment (including a cloud without a table or without depth), dataset, train, eval
+// and experiment: one line naming the culprit, exit 2.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -12,7 +13,7 @@ using sortcell_test::ExpectOneLineError;
 using sortcell_test::RunSortcell;
 
 std::string Dir() {
-  const std::string d = ::testing::TempDir() + "/recognition_cli_" + std::to_string(::getpid());
+  const std::string d = sortcell_test::TestTempDir() + "recognition_cli";
   std::filesystem::create_directories(d);
   return d;
 }
@@ -27,6 +28,17 @@ TEST(RecognitionCli, SegmentRejectsMissingAndNonPcdFiles) {
   std::ofstream(Dir() + "/flat.pcd") << "VERSION .7\nFIELDS x y z rgb\nSIZE 4 4 4 4\nTYPE F F F U\nCOUNT 1 1 1 1\n"
                                         "WIDTH 1\nHEIGHT 1\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS 1\nDATA ascii\n0 0 1 0\n";
   ExpectOneLineError(RunSortcell("segment --pcd " + Dir() + "/flat.pcd --out " + Dir() + "/s"), "not organized (1x1)");
+}
+
+TEST(RecognitionCli, SegmentSaysWhenACloudHasNoTableOrNoDepth) {
+  const std::string header = "VERSION .7\nFIELDS x y z rgb\nSIZE 4 4 4 4\nTYPE F F F U\nCOUNT 1 1 1 1\n"
+                             "WIDTH 2\nHEIGHT 2\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS 4\nDATA ascii\n";
+  std::ofstream(Dir() + "/four.pcd") << header << "0 0 1 0\n0.01 0 1 0\n0 0.01 1 0\n0.01 0.01 1 0\n";
+  ExpectOneLineError(RunSortcell("segment --pcd " + Dir() + "/four.pcd --out " + Dir() + "/s"),
+                     "PCD '" + Dir() + "/four.pcd': segmentation: no supporting plane found (0 sampled inliers of 1, need 200)");
+  std::ofstream(Dir() + "/nan.pcd") << header << "nan nan nan 0\nnan nan nan 0\nnan nan nan 0\nnan nan nan 0\n";
+  ExpectOneLineError(RunSortcell("segment --pcd " + Dir() + "/nan.pcd --out " + Dir() + "/s"),
+                     "PCD '" + Dir() + "/nan.pcd': segmentation: the cloud has no valid point (all NaN)");
 }
 
 TEST(RecognitionCli, TrainAndEvalRejectUnknownDescriptorMissingDatasetAndBadModel) {

@@ -19,7 +19,7 @@ nlohmann::json ReadJson(const std::filesystem::path& file) {
 }
 
 std::string Dir(const std::string& name) {
-  return ::testing::TempDir() + "/recognition_e2e_" + std::to_string(::getpid()) + "_" + name;
+  return sortcell_test::TestTempDir() + "recognition_e2e_" + name;
 }
 
 TEST(RecognitionE2e, SmallExperiment3ColourBeatsShapeAlone) {

@@ -7,6 +7,8 @@
 #include <fstream>
 #include <string>
 
+#include "temp_dir.h"
+
 namespace sortcell_test {
 
 struct Result {
@@ -16,9 +18,9 @@ struct Result {
 
 // Runs the binary with `args`, capturing stderr (stdout is discarded).
 inline Result RunSortcell(const std::string& args) {
-  // One file per test and call: ctest -j runs the tests of this executable in parallel processes.
+  // One file per test and call, in this process's own folder.
   static int call = 0;
-  const std::string err_file = ::testing::TempDir() + "/sortcell_stderr_" +
+  const std::string err_file = TestTempDir() + "sortcell_stderr_" +
                                ::testing::UnitTest::GetInstance()->current_test_info()->name() + "_" +
                                std::to_string(++call) + ".txt";
   const std::string command = std::string(SORTCELL_BINARY) + " " + args + " > /dev/null 2> " + err_file;

@@ -2,15 +2,16 @@
 
 #include <fstream>
 
-#include "app/sweep_report.h"
-#include "app/sweep_spec.h"
+#include "app/sweep/sweep_report.h"
+#include "app/sweep/sweep_spec.h"
 #include "error_of.h"
+#include "temp_dir.h"
 
 namespace sortcell::app {
 namespace {
 
 std::filesystem::path WriteSpec(const std::string& name, const std::string& body) {
-  const std::filesystem::path file = std::filesystem::path(::testing::TempDir()) / (name + ".yaml");
+  const std::filesystem::path file = std::filesystem::path(sortcell_test::TestTempDir()) / (name + ".yaml");
   std::ofstream(file) << "scene: " << SORTCELL_SOURCE_DIR << "/scenes/cell.xml\nobject_set: " << SORTCELL_SOURCE_DIR
                       << "/scenes/objects/paper.yaml\n" << body;
   return file;

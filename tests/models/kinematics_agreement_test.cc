@@ -14,6 +14,7 @@
 #include "robot/urdf_chain.h"
 #include "sim/ground_truth.h"
 #include "sim/model.h"
+#include "temp_dir.h"
 
 namespace {
 
@@ -88,8 +89,7 @@ TEST(KinematicsAgreement, TcpOfTheGripperModelMatchesTheRobotLayer) {
 }
 
 TEST(UrdfChain, BadFilesAreOneClearError) {
-  const fs::path dir = fs::temp_directory_path() / "sortcell_urdf_chain_test";
-  fs::create_directories(dir);
+  const sortcell_test::TempDir dir("urdf_chain");
   const std::string urdf = (kRoot / "models/ur5/ur5.urdf").string();
   const auto expect_error = [](const std::function<void()>& f, const std::string& part) {
     try {

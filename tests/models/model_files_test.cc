@@ -9,7 +9,7 @@
 #include <set>
 #include <sstream>
 
-#include "app/object_set.h"
+#include "app/common/object_set.h"
 #include "robot/ur5_dh.h"
 #include "sim/model.h"
 #include "sim/scene_composer.h"

@@ -1,8 +1,11 @@
 // Descriptor invariants: sizes, block sums, achromatic pixels, determinism, no state carried between
-// objects, NaN handling, bad input.
+// objects, NaN handling, objects too small to describe (a status), bad input, the parameters' field list.
 #include "perception/descriptor.h"
 
 #include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
 
 #include "test_clouds.h"
 
@@ -31,7 +34,10 @@ TEST(HsvHistogram, BlocksCountEveryPointAndHueOnlyChromaticOnes) {
 }
 
 TEST(HsvHistogram, GreenLandsInHueBin30) {
-  const Eigen::VectorXf h = HsvHistogram(CylinderFront(0.03, 0.05, 1.0, 0, 255, 0));
+  const Cloud green = CylinderFront(0.03, 0.05, 1.0, 0, 255, 0);
+  const Eigen::VectorXf h = HsvHistogram(green);
+  // Every point is saturated and bright: all are chromatic (else the check below would pass as 0 == 0).
+  ASSERT_EQ(h.head(kHueBins).sum(), static_cast<float>(green.size()));
   EXPECT_EQ(h[30], h.head(kHueBins).sum()) << "OpenCV hue of green is 60 of 180: bin 60 / 2";
 }
 
@@ -65,20 +71,77 @@ TEST(Cvfh, IgnoresNaNPoints) {
   EXPECT_TRUE(clean.histogram.isApprox(with_nan.histogram, 0.0f));
 }
 
-TEST(Cvfh, RejectsEmptyAllNanAndTinyClouds) {
+TEST(Cvfh, EmptyAllNanAndTinyCloudsHaveTooFewPoints) {
   Cloud empty;
-  try {
-    ComputeCvfh(empty);
-    FAIL() << "no exception";
-  } catch (const std::invalid_argument& e) {
-    EXPECT_NE(std::string(e.what()).find("0 valid points"), std::string::npos) << e.what();
-  }
+  const CvfhResult none = ComputeCvfh(empty);
+  EXPECT_EQ(none.status, DescriptorStatus::kTooFewPoints);
+  EXPECT_NE(none.detail.find("0 valid points"), std::string::npos) << none.detail;
+  EXPECT_EQ(none.histogram.size(), 0);
   Cloud nan;
   sortcell_test::AddNan(nan, 100);
-  EXPECT_THROW(ComputeCvfh(nan), std::invalid_argument);
+  EXPECT_EQ(ComputeCvfh(nan).status, DescriptorStatus::kTooFewPoints);
   Cloud tiny;
   for (int i = 0; i < 5; ++i) tiny.push_back(sortcell_test::Point(0.01 * i, 0, 1, 1, 1, 1));
-  EXPECT_THROW(ComputeCvfh(tiny), std::invalid_argument);
+  const CvfhResult small = ComputeCvfh(tiny);
+  EXPECT_EQ(small.status, DescriptorStatus::kTooFewPoints);
+  EXPECT_EQ(small.points, 5);
+  EXPECT_NE(small.detail.find("5 valid points"), std::string::npos) << small.detail;
+  EXPECT_NE(small.detail.find("need at least 30"), std::string::npos) << small.detail;
+  EXPECT_TRUE(ComputeCvfh(CylinderFront(0.033, 0.2, 1.0, 0, 128, 0)).detail.empty()) << "ok: no detail";
+}
+
+TEST(Cvfh, StatusSpellings) {
+  EXPECT_STREQ(ToString(DescriptorStatus::kOk), "ok");
+  EXPECT_STREQ(ToString(DescriptorStatus::kTooFewPoints), "too_few_points");
+  EXPECT_STREQ(ToString(DescriptorStatus::kNoHistogram), "no_histogram");
+}
+
+TEST(Descriptor, AFragmentHasTheCvfhStatusNoPartsAndCannotBeAssembled) {
+  Cloud fragment;
+  for (int i = 0; i < 5; ++i) fragment.push_back(sortcell_test::Point(0.01 * i, 0, 1, 200, 20, 20));
+  const DescriptorParts parts = ComputeDescriptorParts(fragment);
+  EXPECT_EQ(parts.status, DescriptorStatus::kTooFewPoints);
+  EXPECT_EQ(parts.detail, ComputeCvfh(fragment).detail);
+  EXPECT_EQ(parts.hsv.size(), 0) << "HSV is not computed for an object that cannot be described";
+  EXPECT_EQ(parts.cvfh.size(), 0);
+  try {
+    AssembleDescriptor(parts, DescriptorKind::kColorCvfhNorm);
+    FAIL() << "no exception";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_EQ(std::string(e.what()), "descriptor parts: " + parts.detail +
+                                         " (status too_few_points): no descriptor to assemble");
+  }
+}
+
+TEST(Descriptor, AssembleRejectsPartsOfTheWrongSize) {
+  DescriptorParts parts;
+  parts.hsv = Eigen::VectorXf::Zero(10);
+  parts.cvfh = Eigen::VectorXf::Zero(kCvfhBins);
+  try {
+    AssembleDescriptor(parts, DescriptorKind::kCvfh);
+    FAIL() << "no exception";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_STREQ(e.what(), "descriptor parts have 10 HSV and 308 CVFH bins, expected 192 and 308");
+  }
+}
+
+TEST(DescriptorParams, OneListOfFieldsComparesEveryField) {
+  std::vector<std::string> keys;
+  const DescriptorParams defaults;
+  VisitDescriptorParams(defaults, [&](const char* key, auto) { keys.push_back(key); });
+  EXPECT_EQ(keys.size(), 9u);
+  EXPECT_EQ(keys.front(), "hsv_min_saturation");
+  EXPECT_EQ(keys.back(), "cvfh_min_points");
+  EXPECT_TRUE(SameDescriptorParams(defaults, DescriptorParams{}));
+  // Changing any one field makes the sets differ.
+  for (size_t k = 0; k < keys.size(); ++k) {
+    DescriptorParams changed;
+    size_t i = 0;
+    VisitDescriptorParams(changed, [&](const char*, auto& value) {
+      if (i++ == k) value += 1;
+    });
+    EXPECT_FALSE(SameDescriptorParams(defaults, changed)) << keys[k];
+  }
 }
 
 TEST(Descriptor, KindsHaveTheirSizesAndDocumentedBlockSums) {

@@ -4,12 +4,12 @@
 #include <gtest/gtest.h>
 
 #include "error_of.h"
+#include "temp_dir.h"
 
 #include <filesystem>
 #include <fstream>
 #include <numeric>
 #include <random>
-#include <unistd.h>
 
 namespace sortcell::perception {
 namespace {
@@ -41,10 +41,6 @@ SvmGrid SmallGrid() {
   g.C = {1, 16};
   g.gamma = {1.0 / 512, 1.0 / 32};
   return g;
-}
-
-std::filesystem::path Temp(const std::string& name) {
-  return std::filesystem::path(::testing::TempDir()) / (std::to_string(::getpid()) + "_" + name);
 }
 
 RecognitionModel TrainedModel() {
@@ -93,12 +89,20 @@ TEST(SvmClassifier, RejectsTooFewGroupsAndOneClass) {
 }
 
 TEST(RecognitionModel, SaveLoadRoundTripPredictsIdentically) {
-  const RecognitionModel m = TrainedModel();
-  const auto file = Temp("model.json");
+  RecognitionModel m = TrainedModel();
+  m.label_kind = LabelKind::kInstance;
+  m.params.hsv.min_value = 40;
+  m.params.cvfh.eps_angle_rad = 0.2;
+  m.params.cvfh.min_points = 45;
+  const sortcell_test::TempDir dir("recognition_model");
+  const auto file = dir / "model.json";
   SaveModel(file, m);
   const RecognitionModel loaded = LoadModel(file, DescriptorKind::kCvfh);
   EXPECT_EQ(loaded.classes, m.classes);
   EXPECT_EQ(loaded.descriptor, DescriptorKind::kCvfh);
+  EXPECT_EQ(loaded.label_kind, LabelKind::kInstance);
+  EXPECT_TRUE(SameDescriptorParams(loaded.params, m.params));
+  EXPECT_FALSE(SameDescriptorParams(loaded.params, DescriptorParams{}));
   EXPECT_EQ(loaded.train_samples, 90);
   EXPECT_DOUBLE_EQ(loaded.classifier.C(), m.classifier.C());
   const Data test = Blobs(308, 5, 4);
@@ -111,23 +115,25 @@ TEST(RecognitionModel, SaveLoadRoundTripPredictsIdentically) {
 }
 
 TEST(RecognitionModel, RejectsAnotherDescriptor) {
-  const auto file = Temp("cvfh.json");
+  const sortcell_test::TempDir dir("recognition_model");
+  const auto file = dir / "cvfh.json";
   SaveModel(file, TrainedModel());
   EXPECT_EQ(ErrorOf([&] { LoadModel(file, DescriptorKind::kColorCvfhNorm); }),
             "model '" + file.string() + "': trained for descriptor 'cvfh', expected 'color-cvfh-norm'");
 }
 
 TEST(RecognitionModel, RejectsDamagedForeignAndMissingFiles) {
-  const auto file = Temp("damaged.json");
+  const sortcell_test::TempDir dir("recognition_model");
+  const auto file = dir / "damaged.json";
   SaveModel(file, TrainedModel());
   std::filesystem::resize_file(file, std::filesystem::file_size(file) / 2);  // Truncated.
   EXPECT_NE(ErrorOf([&] { LoadModel(file); }).find("model '" + file.string() + "'"), std::string::npos);
 
-  const auto foreign = Temp("foreign.json");
+  const auto foreign = dir / "foreign.json";
   std::ofstream(foreign) << "{\"name\": \"not a model\"}";
   EXPECT_NE(ErrorOf([&] { LoadModel(foreign); }).find("not a SortCell recognition model"), std::string::npos);
 
-  const auto garbage = Temp("garbage.json");
+  const auto garbage = dir / "garbage.json";
   std::ofstream(garbage) << "\x01\x02 this is not JSON at all";
   EXPECT_NE(ErrorOf([&] { LoadModel(garbage); }).find("model '" + garbage.string() + "'"), std::string::npos);
 
@@ -135,7 +141,8 @@ TEST(RecognitionModel, RejectsDamagedForeignAndMissingFiles) {
 }
 
 TEST(RecognitionModel, RejectsAnotherFormatVersionAndInconsistentArrays) {
-  const auto file = Temp("version.json");
+  const sortcell_test::TempDir dir("recognition_model");
+  const auto file = dir / "version.json";
   SaveModel(file, TrainedModel());
   std::ifstream in(file);
   std::string text((std::istreambuf_iterator<char>(in)), {});
@@ -151,6 +158,45 @@ TEST(RecognitionModel, RejectsAnotherFormatVersionAndInconsistentArrays) {
   std::ofstream(file) << wrong_kind;
   EXPECT_NE(ErrorOf([&] { LoadModel(file); }).find("scaling has 308 features, descriptor 'color-cvfh' has 500"),
             std::string::npos);
+}
+
+TEST(RecognitionModel, RejectsAnUnknownLabelKind) {
+  const sortcell_test::TempDir dir("recognition_model");
+  const auto file = dir / "label.json";
+  SaveModel(file, TrainedModel());
+  std::ifstream in(file);
+  std::string text((std::istreambuf_iterator<char>(in)), {});
+  const std::string label = "\"label_kind\": \"category\"";
+  ASSERT_NE(text.find(label), std::string::npos);
+  text.replace(text.find(label), label.size(), "\"label_kind\": \"colour\"");
+  std::ofstream(file) << text;
+  EXPECT_EQ(ErrorOf([&] { LoadModel(file); }),
+            "model '" + file.string() + "': unknown label kind 'colour' (expected category or instance)");
+}
+
+TEST(RecognitionModel, AFailedWriteIsAnErrorNamingTheFile) {
+  const RecognitionModel m = TrainedModel();
+  try {
+    SaveModel("/dev/full", m);  // Every write fails with ENOSPC, as on a full disk.
+    FAIL() << "no exception";
+  } catch (const std::runtime_error& e) {
+    EXPECT_STREQ(e.what(), "cannot write model '/dev/full': No space left on device");
+  }
+  const sortcell_test::TempDir dir("recognition_model");
+  const auto nowhere = dir / "gone" / "model.json";
+  try {
+    SaveModel(nowhere, m);
+    FAIL() << "no exception";
+  } catch (const std::runtime_error& e) {
+    EXPECT_EQ(std::string(e.what()), "cannot write model '" + nowhere.string() + "': No such file or directory");
+  }
+}
+
+TEST(LabelKind, SpellingsRoundTripAndAnUnknownOneIsAClearError) {
+  for (LabelKind kind : {LabelKind::kCategory, LabelKind::kInstance}) EXPECT_EQ(ParseLabelKind(ToString(kind)), kind);
+  EXPECT_STREQ(ToString(LabelKind::kInstance), "instance");
+  EXPECT_EQ(ErrorOf([] { ParseLabelKind("Category"); }),
+            "unknown label kind 'Category' (expected category or instance)");
 }
 
 TEST(SvmClassifier, LinksDebiansLibsvmNotPclsCopy) {

@@ -6,8 +6,8 @@
 #include <filesystem>
 #include <map>
 
-#include "app/object_set.h"
-#include "app/pick_command.h"
+#include "app/common/object_set.h"
+#include "cell/cell_layout.h"
 #include "perception/segmentation.h"
 #include "sim/arm_io.h"
 #include "sim/kinect_camera.h"
@@ -46,7 +46,18 @@ std::map<int, bool> SeparatedInImage(const cv::Mat& labels, const std::map<int, 
 }
 
 // Matches segments to the label image and checks the rules above.
-Check Evaluate(const perception::SegmentationResult& r, const sim::KinectFrame& frame,
+// A capture with the simulator's truth beside it, for checks against ground truth.
+struct Shot : sim::KinectFrame {
+  cv::Mat labels;
+  Eigen::Isometry3d X_WC;
+};
+Shot Shoot(sim::KinectCamera& kinect, const sim::Data& data, const sim::KinectNoiseParams* noise, std::mt19937_64* rng) {
+  sim::FrameTruth truth;
+  Shot shot{kinect.Capture(data, noise, rng, &truth), truth.labels, truth.X_WC};
+  return shot;
+}
+
+Check Evaluate(const perception::SegmentationResult& r, const Shot& frame,
                const std::vector<std::string>& names) {
   Check c;
   std::map<int, int> mask;
@@ -93,7 +104,7 @@ TEST(SegmentationScene, CellSceneEveryObjectFoundWithAndWithoutBackground) {
   const auto background = sim::ToOrganizedCloud(kinect.Capture(data, &noise, &rng));
   sim::ResetToObserve(model, data);
   mj_forward(model.get(), data.get());
-  const sim::KinectFrame frame = kinect.Capture(data, &noise, &rng);
+  const Shot frame = Shoot(kinect, data, &noise, &rng);
   const auto cloud = sim::ToOrganizedCloud(frame);
   for (const bool subtract : {false, true}) {
     const auto r = perception::SegmentObjects(*cloud, frame.X_WC, subtract ? background.get() : nullptr);
@@ -110,7 +121,7 @@ TEST(SegmentationScene, RandomArrangementsOfThePaperObjects) {
   for (const auto& o : set.objects) models.push_back(o.model);
   const sim::Model model = sim::LoadComposedCell(kRoot / "models", models, "paper set");
   sim::Data data(model);
-  sim::ArmIo(model).SetArmPosition(data, app::HomeJoints());
+  sim::ArmIo(model).SetArmPosition(data, cell::CellLayout().q_observe);
   sim::KinectCamera kinect(model);
   const sim::KinectNoiseParams noise;
   std::vector<int> bodies;
@@ -127,7 +138,7 @@ TEST(SegmentationScene, RandomArrangementsOfThePaperObjects) {
       sim::PlaceObject(model, data, bodies[i], (*poses)[i].x, (*poses)[i].y, (*poses)[i].yaw);
     }
     mj_forward(model.get(), data.get());
-    const sim::KinectFrame frame = kinect.Capture(data, &noise, &rng);
+    const Shot frame = Shoot(kinect, data, &noise, &rng);
     const auto r = perception::SegmentObjects(*sim::ToOrganizedCloud(frame), frame.X_WC, nullptr);
     const Check c = Evaluate(r, frame, kinect.object_names());
     EXPECT_GE(c.objects, 5) << "seed " << seed;

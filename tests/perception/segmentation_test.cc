@@ -13,7 +13,7 @@
 #include <limits>
 
 #include "perception/pcd_io.h"
-#include <unistd.h>
+#include "temp_dir.h"
 #include "test_clouds.h"
 
 namespace sortcell::perception {
@@ -94,26 +94,68 @@ TEST(Segmentation, WorkspaceBoxCropsOutsideObjects) {
   EXPECT_GT(r.segments[0].centroid.x(), 0.5);
 }
 
-TEST(Segmentation, RejectsEmptyAllNanUnorganizedAndPlaneless) {
+TEST(Segmentation, RejectsMisuseEmptyUnorganizedAndBackgroundOfAnotherSize) {
   Cloud empty;
   EXPECT_EQ(ErrorOf([&] { SegmentObjects(empty, std::nullopt, nullptr); }), "segmentation: the cloud is empty");
-  Cloud nan(40, 30);
-  for (auto& p : nan) p.x = p.y = p.z = std::numeric_limits<float>::quiet_NaN();
-  EXPECT_EQ(ErrorOf([&] { SegmentObjects(nan, std::nullopt, nullptr); }),
-            "segmentation: the cloud has no valid point (all NaN)");
   Cloud flat = TableWithBoxes({}, 0).cloud;
   flat.height = 1;
   flat.width = static_cast<uint32_t>(flat.size());
   EXPECT_NE(ErrorOf([&] { SegmentObjects(flat, std::nullopt, nullptr); }).find("not organized"), std::string::npos);
-  Cloud sparse(40, 30);  // Few valid points, no plane.
-  for (auto& p : sparse) p.x = p.y = p.z = std::numeric_limits<float>::quiet_NaN();
-  sparse.at(3, 3) = sortcell_test::Point(0, 0, 1, 1, 1, 1);
-  EXPECT_NE(ErrorOf([&] { SegmentObjects(sparse, std::nullopt, nullptr); }).find("no supporting plane"),
-            std::string::npos);
   const Scene s = TableWithBoxes({}, 0);
   Cloud small(10, 10);
   EXPECT_NE(ErrorOf([&] { SegmentObjects(s.cloud, s.X_WC, &small); }).find("background cloud is 10x10"),
             std::string::npos);
+}
+
+TEST(Segmentation, NoValidPointIsAStatusNotAnError) {
+  Cloud nan(40, 30);
+  for (auto& p : nan) p.x = p.y = p.z = std::numeric_limits<float>::quiet_NaN();
+  const SegmentationResult r = SegmentObjects(nan, std::nullopt, nullptr);
+  EXPECT_EQ(r.status, SegmentationStatus::kNoValidPoints);
+  EXPECT_EQ(r.detail, "segmentation: the cloud has no valid point (all NaN)");
+  EXPECT_TRUE(r.segments.empty());
+
+  // Valid points, all outside the workspace box: nothing left to segment.
+  const Scene s = TableWithBoxes({cv::Rect(20, 20, 25, 25)}, 0.08);
+  SegmentationParams p = OpenBox();
+  p.workspace_min_W.z() = 1.5;
+  p.workspace_max_W.z() = 2.0;
+  const SegmentationResult outside = SegmentObjects(s.cloud, s.X_WC, nullptr, p);
+  EXPECT_EQ(outside.status, SegmentationStatus::kNoValidPoints);
+  EXPECT_NE(outside.detail.find("no valid point inside the workspace box"), std::string::npos) << outside.detail;
+  EXPECT_TRUE(outside.segments.empty());
+}
+
+TEST(Segmentation, NoSupportingPlaneIsAStatusNotAnError) {
+  Cloud sparse(40, 30);  // Few valid points, no plane.
+  for (auto& p : sparse) p.x = p.y = p.z = std::numeric_limits<float>::quiet_NaN();
+  sparse.at(3, 3) = sortcell_test::Point(0, 0, 1, 1, 1, 1);
+  const SegmentationResult r = SegmentObjects(sparse, std::nullopt, nullptr);
+  EXPECT_EQ(r.status, SegmentationStatus::kNoPlane);
+  EXPECT_EQ(r.detail, "segmentation: no supporting plane found (0 sampled inliers of 1, need 200): expected "
+                      "objects standing on a table or floor");
+  EXPECT_TRUE(r.segments.empty());
+
+  // With a pose the plane must be horizontal in the world: a wall-like view has none.
+  const Scene s = TableWithBoxes({}, 0);
+  Eigen::Isometry3d X_WC_sideways = s.X_WC;
+  X_WC_sideways.linear() = Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitX()).toRotationMatrix();
+  SegmentationParams wide = OpenBox();
+  wide.workspace_min_W = Eigen::Vector3d(-5, -5, -5);
+  wide.workspace_max_W = Eigen::Vector3d(5, 5, 5);
+  const SegmentationResult tilted = SegmentObjects(s.cloud, X_WC_sideways, nullptr, wide);
+  EXPECT_EQ(tilted.status, SegmentationStatus::kNoPlane);
+  EXPECT_NE(tilted.detail.find("no supporting plane found"), std::string::npos) << tilted.detail;
+}
+
+TEST(Segmentation, OkHasNoDetailAndStatusesHaveTheirSpellings) {
+  const Scene s = TableWithBoxes({cv::Rect(20, 20, 25, 25)}, 0.08);
+  const SegmentationResult r = SegmentObjects(s.cloud, s.X_WC, nullptr, OpenBox());
+  EXPECT_EQ(r.status, SegmentationStatus::kOk);
+  EXPECT_TRUE(r.detail.empty());
+  EXPECT_STREQ(ToString(SegmentationStatus::kOk), "ok");
+  EXPECT_STREQ(ToString(SegmentationStatus::kNoValidPoints), "no_valid_points");
+  EXPECT_STREQ(ToString(SegmentationStatus::kNoPlane), "no_plane");
 }
 
 TEST(PcdIo, ReadsAnOpenNiStyleXyzrgbaCaptureAndRejectsBadFiles) {
@@ -126,8 +168,8 @@ TEST(PcdIo, ReadsAnOpenNiStyleXyzrgbaCaptureAndRejectsBadFiles) {
     grabber[i].b = 30;
     grabber[i].a = 255;
   }
-  const std::string dir = ::testing::TempDir() + "/" + std::to_string(::getpid());
-  std::filesystem::create_directories(dir);
+  const sortcell_test::TempDir temp("pcd_io");
+  const std::string dir = temp.str();
   pcl::io::savePCDFileBinaryCompressed(dir + "/grabber.pcd", grabber);
   const Cloud::Ptr loaded = LoadCloud(dir + "/grabber.pcd", true);
   ASSERT_EQ(loaded->width, 160u);

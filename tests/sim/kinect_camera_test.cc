@@ -30,17 +30,28 @@ constexpr char kWallScene[] = R"(
 
 Model WallModel() { return Model::FromVirtualFiles({{"wall.xml", kWallScene}}, "wall scene"); }
 
-KinectFrame CleanCapture(const Model& model, const std::string& keyframe = "") {
+// A capture with the simulator's truth beside it, for checks against ground truth.
+struct Shot : KinectFrame {
+  cv::Mat labels;
+  Eigen::Isometry3d X_WC;
+};
+Shot Shoot(KinectCamera& kinect, const Data& data, const KinectNoiseParams* noise, std::mt19937_64* rng) {
+  FrameTruth truth;
+  Shot shot{kinect.Capture(data, noise, rng, &truth), truth.labels, truth.X_WC};
+  return shot;
+}
+
+Shot CleanCapture(const Model& model, const std::string& keyframe = "") {
   Data data(model);
   if (!keyframe.empty()) mj_resetDataKeyframe(model.get(), data.get(), model.Id(mjOBJ_KEY, keyframe));
   mj_forward(model.get(), data.get());
   KinectCamera kinect(model);
-  return kinect.Capture(data, nullptr, nullptr);
+  return Shoot(kinect, data, nullptr, nullptr);
 }
 
 TEST(KinectCamera, DepthIsMetricOverTheWholeImage) {
   const Model model = WallModel();
-  const KinectFrame frame = CleanCapture(model);
+  const Shot frame = CleanCapture(model);
   const cv::Mat wall = frame.labels == 0;  // Pixels of the wall, not of the objects.
   double worst = 0;
   int n = 0;
@@ -59,7 +70,7 @@ TEST(KinectCamera, DepthIsMetricOverTheWholeImage) {
 
 TEST(KinectCamera, PointsReprojectToTheirPixelAndTheOpticalFrameIsRightDownForward) {
   const Model model = WallModel();
-  const KinectFrame frame = CleanCapture(model);
+  const Shot frame = CleanCapture(model);
   const auto cloud = ToOrganizedCloud(frame);
   ASSERT_EQ(cloud->width, 640u);
   ASSERT_EQ(cloud->height, 480u);
@@ -103,7 +114,7 @@ TEST(KinectCamera, TableTopLiesWhereTheCellSaysAndEveryObjectIsLabelled) {
   mj_resetDataKeyframe(cell.get(), data.get(), cell.Id(mjOBJ_KEY, "observe"));
   mj_forward(cell.get(), data.get());
   KinectCamera kinect(cell);
-  const KinectFrame frame = kinect.Capture(data, nullptr, nullptr);
+  const Shot frame = Shoot(kinect, data, nullptr, nullptr);
   const auto cloud = ToOrganizedCloud(frame);
 
   // Unlabelled points above the workspace area are table: z = 0 in the world.

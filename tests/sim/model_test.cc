@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "sim/mujoco_handlers.h"
+#include "temp_dir.h"
 
 namespace {
 
@@ -53,7 +54,7 @@ TEST(Model, BadFilesAreNamedInOneLine) {
   EXPECT_NE(missing.find("'/nonexistent/scene.xml': file not found"), std::string::npos) << missing;
   const std::string dir = message(SORTCELL_SOURCE_DIR "/scenes");
   EXPECT_NE(dir.find("is a directory"), std::string::npos) << dir;
-  const std::string bad = ::testing::TempDir() + "/malformed.xml";
+  const std::string bad = sortcell_test::TestTempDir() + "malformed.xml";
   FILE* f = std::fopen(bad.c_str(), "w");
   std::fputs("<mujoco><worldbody><geom type=\"sphere\"></worldbody>", f);
   std::fclose(f);

@@ -1,0 +1,167 @@
+#include "app/cli/episode_command.h"
+
+#include <algorithm>
+#include <iostream>
+#include <memory>
+#include <sstream>
+
+#include "app/cli/cli_validators.h"
+#include "app/common/data_dir.h"
+#include "app/recognition/default_model.h"
+#include "app/episode/episode.h"
+#include "app/common/object_set.h"
+
+namespace sortcell::app {
+namespace {
+
+// "NAME=x,y" or "NAME=x,y,yaw".
+ObjectPlacement ParsePlacement(const std::string& text) {
+  const auto fail = [&] {
+    return std::invalid_argument("--place: expected NAME=x,y[,yaw] (metres, radians), got '" + text + "'");
+  };
+  const size_t eq = text.find('=');
+  if (eq == std::string::npos || eq == 0) throw fail();
+  ObjectPlacement p;
+  p.name = text.substr(0, eq);
+  std::vector<double> values;
+  std::stringstream in(text.substr(eq + 1));
+  std::string item;
+  while (std::getline(in, item, ',')) {
+    try {
+      size_t used = 0;
+      values.push_back(std::stod(item, &used));
+      if (used != item.size()) throw fail();
+    } catch (const std::logic_error&) {
+      throw fail();
+    }
+  }
+  if (values.size() < 2 || values.size() > 3) throw fail();
+  p.x = values[0];
+  p.y = values[1];
+  p.yaw = values.size() == 3 ? values[2] : 0.0;
+  return p;
+}
+
+struct EpisodeCli {
+  EpisodeOptions options;
+  std::vector<std::string> placements;
+  bool train_if_missing = false;
+  std::vector<std::string> sets;  ///< Empty: ExpandEpisodeSets turned them into options before parsing.
+};
+
+// The keys --set accepts: every option's long names but set and help.
+std::vector<std::string> SetKeys(const CLI::App& episode) {
+  std::vector<std::string> keys;
+  for (const CLI::Option* option : episode.get_options()) {
+    for (const std::string& name : option->get_lnames()) {
+      if (name != "set" && name != "help") keys.push_back(name);
+    }
+  }
+  std::sort(keys.begin(), keys.end());
+  return keys;
+}
+
+// "KEY=VALUE" -> "--KEY=VALUE".
+std::string SetToOption(const std::string& text, const std::vector<std::string>& keys) {
+  const size_t eq = text.find('=');
+  if (eq == std::string::npos || eq == 0) throw std::invalid_argument("--set: expected KEY=VALUE, found '" + text + "'");
+  const std::string key = text.substr(0, eq);
+  if (std::find(keys.begin(), keys.end(), key) == keys.end()) {
+    std::string valid;
+    for (const auto& k : keys) valid += (valid.empty() ? "" : ", ") + k;
+    throw std::invalid_argument("--set: unknown key '" + key + "' (valid keys: " + valid + ")");
+  }
+  return "--" + text;
+}
+
+}  // namespace
+
+std::vector<std::string> ExpandEpisodeSets(const CLI::App& episode, const std::vector<std::string>& args) {
+  const std::vector<std::string> keys = SetKeys(episode);
+  std::vector<std::string> kept, sets;
+  bool options_ended = false;
+  for (size_t i = 0; i < args.size(); ++i) {
+    const std::string& arg = args[i];
+    if (arg == "--") options_ended = true;
+    if (!options_ended && arg == "--set" && i + 1 < args.size()) {
+      sets.push_back(SetToOption(args[++i], keys));
+    } else if (!options_ended && arg.rfind("--set=", 0) == 0) {
+      sets.push_back(SetToOption(arg.substr(6), keys));
+    } else {
+      kept.push_back(arg);
+    }
+  }
+  // Before a "--", so they are still options.
+  const auto end = std::find(kept.begin(), kept.end(), "--");
+  kept.insert(end, sets.begin(), sets.end());
+  return kept;
+}
+
+void AddEpisodeCommand(CLI::App& app, std::function<int()>& run, const std::vector<std::string>& command_line) {
+  auto cli = std::make_shared<EpisodeCli>();
+  EpisodeOptions& o = cli->options;
+  CLI::App* cmd = app.add_subcommand(
+      "episode",
+      "One sorting episode: K objects of the set placed at random on the table, then the cell looks, "
+      "recognises, grasps and sorts them into their category's bins until none is left. Decisions come from "
+      "the Kinect cloud and the joint encoders only; the simulator's ground truth scores the result. Writes "
+      "metrics.json (per item and per episode) and run.json; prints a one-paragraph summary.");
+  cmd->add_option("--scene", o.scene, "MJCF cell holding every object of the set, e.g. scenes/cell.xml")->required();
+  o.object_set = std::filesystem::path(DataDir()) / "scenes" / "objects" / "paper.yaml";
+  cmd->add_option("--object-set", o.object_set, "Object set YAML (names and categories)")->capture_default_str();
+  cmd->add_option("--objects", o.objects, "How many objects to place (0: all of the set, at most 6)")
+      ->check(CLI::Range(0, 100))->capture_default_str();
+  cmd->add_option("--seed", o.seed, "Seed (uint64): placement, noise, lighting")->check(kUnsignedInteger)->capture_default_str();
+  cmd->add_option("--model", o.model,
+                  "Recognition model from sortcell train (default: <set>-color-cvfh-norm.model.json in the model cache, build/models or $SORTCELL_MODEL_CACHE)");
+  cmd->add_flag("--train-if-missing", cli->train_if_missing,
+                "Without --model: train and cache the default model first if it is not there (about 20 s)");
+  cmd->add_option("--video", o.video, "Also write an H.264 MP4 from the review camera (30 fps, with overlay)");
+  cmd->add_option("--out", o.out, "Output folder (created if missing)")->required();
+  cmd->add_option("--place", cli->placements, "Put an object at NAME=x,y[,yaw] (world, m, rad) instead of at random");
+  cmd->add_option("--light-intensity", o.light_intensity, "Scale of the scene's lights")->capture_default_str();
+  cmd->add_option("--noise-scale", o.noise_scale, "Scale of the Kinect's depth noise")->capture_default_str();
+  cmd->add_option("--friction-scale", o.variation.friction_scale, "Scale of the objects' friction")->capture_default_str();
+  cmd->add_option("--mass-scale", o.variation.mass_scale, "Scale of the objects' masses")->capture_default_str();
+  cmd->add_option("--camera-shift", o.variation.camera_shift_m,
+                  "Move the Kinect this far (m) in a random direction; the robot keeps the nominal pose")
+      ->capture_default_str();
+  cmd->add_option("--camera-turn", o.variation.camera_turn_rad, "Turn the Kinect by this angle (rad) about a random axis")
+      ->capture_default_str();
+  cmd->add_option("--max-attempts", o.max_attempts_per_object, "Grasp attempts per object before giving it up")
+      ->capture_default_str();
+  cmd->add_option("--time-limit", o.time_limit_s, "Simulated seconds (0: 60 + 45 per object)")->capture_default_str();
+  cmd->add_option("--set", cli->sets,
+                  "Override an option (repeatable): KEY=VALUE is --KEY VALUE for any option above by its long name, "
+                  "e.g. --set noise-scale=1.5 --set seed=3 --set time-limit=100; applied after the other options, so "
+                  "it wins over the option given directly")
+      ->type_name("KEY=VALUE")
+      ->allow_extra_args(false);
+  // One value per option, the last one given wins (so --set overrides).
+  for (CLI::Option* option : cmd->get_options()) {
+    if (option->get_items_expected_max() == 1) option->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
+  }
+  cmd->callback([&run, cli, command_line] {
+    run = [cli, command_line] {
+      if (!cli->sets.empty()) throw std::logic_error("episode: --set reached the parser (ExpandEpisodeSets not applied)");
+      EpisodeOptions options = cli->options;
+      for (const auto& p : cli->placements) options.placements.push_back(ParsePlacement(p));
+      if (options.model.empty()) {
+        const ObjectSet set = LoadObjectSet(options.object_set);
+        options.model = DefaultModelPath(set);
+        if (cli->train_if_missing) {
+          EnsureDefaultModel(set);
+        } else if (!std::filesystem::exists(options.model)) {
+          throw std::invalid_argument("no trained model at " + options.model.string() + ": " + DefaultModelHint(set));
+        }
+      }
+      const EpisodeMetrics metrics = RunEpisode(options, command_line);
+      std::cout << EpisodeParagraph(metrics) << "\nMetrics: " << (options.out / "metrics.json").string();
+      if (!options.video.empty()) std::cout << "\nVideo: " << options.video.string();
+      std::cout << "\n";
+      return 0;
+    };
+  });
+}
+
+}  // namespace sortcell::app

@@ -1,0 +1,26 @@
+#pragma once
+/// @file
+/// `sortcell episode`: one perception-driven sorting episode with metrics and optional video.
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+namespace sortcell::app {
+
+void AddEpisodeCommand(CLI::App& app, std::function<int()>& run, const std::vector<std::string>& command_line);
+
+/// `--set KEY=VALUE` on `sortcell episode` (DESIGN §3), repeatable: KEY is any of the command's
+/// options by its long name without dashes (noise-scale, seed, time-limit, ...). Returns `args` (a
+/// whole command line, "sortcell episode ...") with every `--set KEY=VALUE` (or `--set=KEY=VALUE`)
+/// taken out and `--KEY=VALUE` appended after the other arguments, so that CLI11 parses it as that
+/// option (with its checks) and it overrides the option given directly (the last value wins).
+/// Arguments after "--" are left alone.
+/// @param episode the `episode` subcommand, as AddEpisodeCommand made it.
+/// @throws std::invalid_argument "--set: unknown key '<key>' (valid keys: ...)" or
+///         "--set: expected KEY=VALUE, found '<text>'".
+std::vector<std::string> ExpandEpisodeSets(const CLI::App& episode, const std::vector<std::string>& args);
+
+}  // namespace sortcell::app

@@ -1,0 +1,59 @@
+#include "app/cli/sweep_command.h"
+
+#include <cstdio>
+#include <iostream>
+#include <memory>
+
+#include "app/sweep/sweep.h"
+
+namespace sortcell::app {
+namespace {
+
+// "i/N" with 1 <= i <= N.
+void ParseShard(const std::string& text, SweepOptions& o) {
+  int used = 0;
+  if (std::sscanf(text.c_str(), "%d/%d%n", &o.shard, &o.shards, &used) != 2 || used != static_cast<int>(text.size()) ||
+      o.shards < 1 || o.shard < 1 || o.shard > o.shards) {
+    throw std::invalid_argument("--shard: expected i/N with 1 <= i <= N, got '" + text + "'");
+  }
+}
+
+}  // namespace
+
+void AddSweepCommand(CLI::App& app, std::function<int()>& run, const std::vector<std::string>& command_line) {
+  auto o = std::make_shared<SweepOptions>();
+  auto shard = std::make_shared<std::string>("1/1");
+  CLI::App* cmd = app.add_subcommand(
+      "sweep",
+      "Many sorting episodes from a spec (scenes/sweeps/*.yaml), in worker processes. Appends each finished "
+      "episode to results.jsonl; writes summary.json, summary.csv, summary.md and plot_<axis>.png.");
+  cmd->add_option("spec", o->spec, "Sweep spec YAML, e.g. scenes/sweeps/paper_objects_100.yaml")->required();
+  cmd->add_option("--out", o->out, "Output folder (created if missing)")->required();
+  cmd->add_option("-j,--jobs", o->jobs, "Worker processes")->check(CLI::Range(1, 256))->capture_default_str();
+  cmd->add_flag("--resume", o->resume, "Keep results.jsonl and run only the episodes missing from it");
+  cmd->add_option("--shard", *shard, "Run share i of N (episodes whose index is i-1 modulo N)")->capture_default_str();
+  cmd->add_option("--set", o->sets,
+                  "Override a key of the spec (repeatable): scene, object_set, model, seed, episodes, seeds, mode, "
+                  "episode_timeout_s, or axes.NAME (one value fixes the axis; a YAML list or {min: a, max: b} also "
+                  "work), e.g. --set seed=7 --set axes.noise_scale=2. Files are relative to the working folder. "
+                  "spec.yaml in the output folder lists the overrides; a --resume must repeat them")
+      ->type_name("KEY=VALUE")
+      ->allow_extra_args(false);
+  cmd->callback([&run, o, shard, command_line] {
+    run = [o, shard, command_line] {
+      ParseShard(*shard, *o);
+      const SweepRun r = RunSweep(*o, command_line);
+      const auto& s = r.summary;
+      std::printf("Sweep %s: %d of %d episodes in this shard run now (%d were already done, %d failed to run) in %.0f s. "
+                  "All %d episodes in %s: %d items, correct-sort rate %.1f %% (95 %% CI %.1f-%.1f %%).\nSummary: %s\n",
+                  o->spec.filename().string().c_str(), r.ran, r.in_shard, r.already, r.crashed, r.wall_time_s,
+                  s["episodes"].get<int>(), (o->out / "results.jsonl").string().c_str(), s["items"].get<int>(),
+                  s["correct_sort_rate"].is_null() ? 0.0 : 100 * s["correct_sort_rate"].get<double>(),
+                  100 * s["correct_sort_rate_ci95"][0].get<double>(), 100 * s["correct_sort_rate_ci95"][1].get<double>(),
+                  (o->out / "summary.md").string().c_str());
+      return 0;
+    };
+  });
+}
+
+}  // namespace sortcell::app

@@ -1,0 +1,12 @@
+#include "app/common/data_dir.h"
+
+#include <cstdlib>
+
+namespace sortcell::app {
+
+std::string DataDir() {
+  const char* env = std::getenv("SORTCELL_DATA_DIR");
+  return env != nullptr && *env != '\0' ? env : SORTCELL_DEFAULT_DATA_DIR;
+}
+
+}  // namespace sortcell::app

@@ -1,0 +1,60 @@
+#pragma once
+/// @file
+/// Strict reading of JSON records into structs: a missing key or a value of the wrong type is an
+/// error that names the key (with its path, e.g. "summary.grasp_attempts"), never a silent default.
+
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <type_traits>
+
+#include <nlohmann/json.hpp>
+
+namespace sortcell::app {
+
+/// Reads `json[key]` into `out`. `path` is the path of `json` in the record ("" at the top).
+/// @throws std::invalid_argument "<path.key>: missing" or "<path.key>: expected <type>, found <type>"
+///         (or the enum's own message naming the value).
+template <typename T>
+void ReadField(const nlohmann::json& json, const std::string& path, const char* key, T& out) {
+  const std::string name = path.empty() ? key : path + "." + key;
+  if (!json.is_object()) throw std::invalid_argument((path.empty() ? std::string("record") : path) + ": expected an object");
+  const auto it = json.find(key);
+  if (it == json.end()) throw std::invalid_argument(name + ": missing");
+  if constexpr (std::is_same_v<T, bool>) {
+    if (!it->is_boolean()) throw std::invalid_argument(name + ": expected true or false, found " + it->type_name());
+  } else if constexpr (std::is_arithmetic_v<T>) {
+    if (!it->is_number()) throw std::invalid_argument(name + ": expected a number, found " + it->type_name());
+  } else if constexpr (std::is_same_v<T, std::string>) {
+    if (!it->is_string()) throw std::invalid_argument(name + ": expected a string, found " + it->type_name());
+  }
+  try {
+    out = it->template get<T>();
+  } catch (const nlohmann::json::exception& e) {
+    throw std::invalid_argument(name + ": expected another type, found " + std::string(it->type_name()) + " (" + e.what() + ")");
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(name + ": " + e.what());
+  }
+}
+
+/// As ReadField, for a key that must be present but may be null.
+template <typename T>
+void ReadNullable(const nlohmann::json& json, const std::string& path, const char* key, std::optional<T>& out) {
+  const std::string name = path.empty() ? key : path + "." + key;
+  if (!json.is_object() || !json.contains(key)) throw std::invalid_argument(name + ": missing");
+  if (json[key].is_null()) {
+    out.reset();
+    return;
+  }
+  T value;
+  ReadField(json, path, key, value);
+  out = value;
+}
+
+/// A value or JSON null.
+template <typename T>
+nlohmann::json OrNull(const std::optional<T>& value) {
+  return value ? nlohmann::json(*value) : nlohmann::json(nullptr);
+}
+
+}  // namespace sortcell::app

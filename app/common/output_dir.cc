@@ -1,0 +1,86 @@
+#include "app/common/output_dir.h"
+
+#include <mujoco/mujoco.h>
+#include <pcl/pcl_config.h>
+#include <Eigen/Core>
+#include <opencv2/core/version.hpp>
+#include <spdlog/fmt/chrono.h>
+#include <spdlog/fmt/fmt.h>
+
+#include <cerrno>
+#include <chrono>
+#include <cstring>
+#include <ctime>
+#include <fstream>
+#include <stdexcept>
+#include <system_error>
+
+#include "sortcell/git_revision.h"
+
+namespace sortcell::app {
+
+void PrepareOutputDir(const std::filesystem::path& dir) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (fs::exists(dir, ec) && !fs::is_directory(dir, ec)) {
+    throw std::invalid_argument("output folder '" + dir.string() + "': exists and is not a folder");
+  }
+  fs::create_directories(dir, ec);
+  if (ec) throw std::invalid_argument("output folder '" + dir.string() + "': cannot create it: " + ec.message());
+  const fs::path probe = dir / ".sortcell_write_test";
+  {
+    std::ofstream out(probe);
+    if (!out.good()) throw std::invalid_argument("output folder '" + dir.string() + "': not writable");
+  }
+  fs::remove(probe, ec);
+}
+
+void CloseChecked(std::ofstream& out, const std::filesystem::path& path) {
+  if (out.is_open()) out.close();  // Flushes: a full disk shows here, not at the last <<.
+  if (!out) {
+    throw std::runtime_error("cannot write '" + path.string() + "'" +
+                             (errno != 0 ? std::string(": ") + std::strerror(errno) : std::string()));
+  }
+}
+
+void WriteTextFile(const std::filesystem::path& path, const std::string& text) {
+  errno = 0;
+  std::ofstream out(path, std::ios::binary | std::ios::trunc);
+  out << text;
+  CloseChecked(out, path);
+}
+
+void WriteJson(const std::filesystem::path& path, const nlohmann::json& json) {
+  WriteTextFile(path, json.dump(2) + '\n');
+}
+
+std::string CsvField(const std::string& value) {
+  if (value.find_first_of(",\"\r\n") == std::string::npos) return value;
+  std::string quoted = "\"";
+  for (char c : value) {
+    if (c == '"') quoted += '"';
+    quoted += c;
+  }
+  return quoted + '"';
+}
+
+nlohmann::json RunRecord(const std::vector<std::string>& command_line, uint64_t seed, const nlohmann::json& extra) {
+  const std::time_t now = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
+  const std::string started = fmt::format("{:%Y-%m-%dT%H:%M:%SZ}", fmt::gmtime(now));
+  nlohmann::json run = {
+      {"command_line", command_line},
+      {"seed", seed},
+      {"git_revision", SORTCELL_GIT_REVISION},
+      {"versions",
+       {{"mujoco", mj_versionString()},
+        {"pcl", PCL_VERSION_PRETTY},
+        {"opencv", CV_VERSION},
+        {"eigen", std::to_string(EIGEN_WORLD_VERSION) + "." + std::to_string(EIGEN_MAJOR_VERSION) + "." +
+                      std::to_string(EIGEN_MINOR_VERSION)}}},
+      {"started_utc", started},
+  };
+  for (const auto& [key, value] : extra.items()) run[key] = value;
+  return run;
+}
+
+}  // namespace sortcell::app

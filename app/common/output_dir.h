@@ -1,0 +1,40 @@
+#pragma once
+/// @file
+/// Output folders and the run.json every output folder gets.
+
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+namespace sortcell::app {
+
+/// Creates `dir` (and parents) and checks that a file can be written in it, before any work starts.
+/// @throws std::invalid_argument "output folder '<dir>': <reason>" otherwise.
+void PrepareOutputDir(const std::filesystem::path& dir);
+
+/// Writes `text` to `path` (replacing it) and checks the write after the file is closed, so a full
+/// disk or a lost folder is an error, not a short file.
+/// @throws std::runtime_error "cannot write '<path>'" (with the system's reason when it gives one).
+void WriteTextFile(const std::filesystem::path& path, const std::string& text);
+
+/// Writes `json` (pretty-printed) to `path`. @throws std::runtime_error naming the file on failure.
+void WriteJson(const std::filesystem::path& path, const nlohmann::json& json);
+
+/// Closes `out`, which writes `path`, and checks that everything reached the file (for files too
+/// large to build in memory first; set errno to 0 before opening `out` for a precise reason).
+/// @throws std::runtime_error "cannot write '<path>'" otherwise (e.g. a full disk).
+void CloseChecked(std::ofstream& out, const std::filesystem::path& path);
+
+/// One CSV field (RFC 4180): `value` as it is, or, when it holds a comma, a double quote, CR or LF,
+/// in double quotes with each of its double quotes doubled.
+std::string CsvField(const std::string& value);
+
+/// The run record: command line, seed, git revision, library versions, start time (UTC) and
+/// `extra` fields. Wall-clock fields are "started_utc" and anything ending in "_wall_s".
+nlohmann::json RunRecord(const std::vector<std::string>& command_line, uint64_t seed, const nlohmann::json& extra);
+
+}  // namespace sortcell::app

@@ -1,0 +1,64 @@
+#pragma once
+/// @file
+/// Runs the simulated arm and gripper under the robot layer's control: trajectories tracked by the
+/// joint controller at a fixed control rate, finger servo targets, holding still. It reads only
+/// the controller's sensors (sim::ArmIo); simulated time and an optional review video advance with
+/// every physics step.
+
+#include <functional>
+#include <string>
+
+#include "robot/gripper_control.h"
+#include "robot/joint_controller.h"
+#include "robot/joint_trajectory.h"
+#include "sim/arm_io.h"
+#include "sim/model.h"
+#include "sim/video_recorder.h"
+
+namespace sortcell::app {
+
+class ArmExecutor {
+ public:
+  /// The control period must be a whole number of physics timesteps.
+  /// @throws std::invalid_argument otherwise, or if the model lacks the arm or gripper.
+  ArmExecutor(const sim::Model& model, sim::Data& data, sim::VideoRecorder* video = nullptr,
+              double control_period = 0.002);
+
+  /// Puts the arm at q and the fingers at `half_gap`, at rest, and holds them there from now on.
+  void Reset(const robot::Joints& q, double half_gap);
+
+  /// Tracks the trajectory from its first sample (which should be where the arm is). Returns kOk, or
+  /// the simulator's divergence/warning status (then it stops early).
+  sim::StepStatus Follow(const robot::JointTrajectory& trajectory);
+  /// Holds the last reference for `seconds`.
+  sim::StepStatus Wait(double seconds);
+  /// Holds the last reference for up to `max_seconds`, ending early once `done()` is true (checked
+  /// after every control period).
+  sim::StepStatus HoldUntil(double max_seconds, const std::function<bool()>& done);
+  /// Sets the finger servos' position targets (half gaps, m).
+  void SetFingerTargets(double left_half_gap, double right_half_gap);
+
+  /// The encoders.
+  robot::Joints JointPositions() const;
+  /// Where the controller currently holds the arm (the last reference): motions are planned from
+  /// here, so the reference never jumps.
+  const robot::Joints& ReferenceJoints() const { return q_hold_; }
+  robot::GripperSensors Gripper() const;
+  const robot::TrackingStats& tracking() const { return controller_.stats(); }
+  double time() const { return data_->time; }
+  /// Caption for the video (the current phase).
+  void SetPhase(const std::string& phase);
+
+ private:
+  sim::StepStatus ControlStep(const robot::Joints& q_ref, const robot::Joints& qd_ref);
+
+  const sim::Model& model_;
+  sim::Data& data_;
+  sim::VideoRecorder* video_;
+  sim::ArmIo io_;
+  robot::JointController controller_;
+  int substeps_;
+  robot::Joints q_hold_ = robot::Joints::Zero();
+};
+
+}  // namespace sortcell::app

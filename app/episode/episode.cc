@@ -1,0 +1,205 @@
+#include "app/episode/episode.h"
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <random>
+#include <set>
+#include <stdexcept>
+
+#include "app/common/object_set.h"
+#include "app/common/output_dir.h"
+#include "app/common/seeding.h"
+#include "app/common/wall_clock.h"
+#include "app/episode/episode_recorder.h"
+#include "app/episode/episode_setup.h"
+#include "app/episode/episode_scoring.h"
+#include "app/episode/sim_cell.h"
+#include "app/episode/sim_layout.h"
+#include "cell/sorting_policy.h"
+#include "perception/descriptor.h"
+#include "perception/recognition_model.h"
+#include "sim/ground_truth.h"
+#include "sim/kinect_camera.h"
+#include "sim/object_placement.h"
+#include "sim/point_cloud.h"
+#include "sim/video_recorder.h"
+
+namespace sortcell::app {
+namespace {
+
+constexpr double kSettleTime = 1.0;  // s, after placing the objects and before scoring
+
+class EpisodeRun {
+ public:
+  EpisodeRun(const EpisodeOptions& options, const ObjectSet& set, const perception::RecognitionModel& recognizer)
+      : options_(options), set_(set), recognizer_(recognizer), rng_(EpisodeRng(options.seed, 0)),
+        model_(sim::Model::FromFile(options.scene.string())) {}
+
+  EpisodeMetrics Run(const std::vector<std::string>& command_line);
+
+ private:
+  void Calibrate();
+  void BuildCell();
+  void PlaceObjects();
+  cell::PolicyOptions Budget() const;
+  EpisodeMetrics Metrics(const cell::PolicyResult& result, double wall_s) const;
+
+  const EpisodeOptions& options_;
+  const ObjectSet& set_;
+  const perception::RecognitionModel& recognizer_;
+  std::mt19937_64 rng_;
+  sim::Model model_;
+  cell::CellLayout layout_;
+  cell::CameraCalibration calibration_;
+  std::unique_ptr<sim::Data> data_;
+  std::unique_ptr<sim::KinectCamera> kinect_;
+  sim::KinectNoiseParams noise_;
+  std::unique_ptr<sim::VideoRecorder> video_;
+  std::unique_ptr<SimCell> cell_;
+  std::unique_ptr<EpisodeScorer> scorer_;
+  std::unique_ptr<EpisodeRecorder> recorder_;
+};
+
+// The robot's knowledge of its cell, from the nominal scene: it keeps it when a sweep displaces the camera.
+void EpisodeRun::Calibrate() {
+  layout_ = ReadCellLayout(model_);
+  calibration_.X_WC = NominalCameraPose(model_, "kinect");
+  for (const auto& c : recognizer_.classes) {
+    if (!layout_.p_W_bin.count(c)) {
+      throw std::invalid_argument("model '" + options_.model.string() + "': class '" + c + "' has no bin '" +
+                                  sim::BinName(c) + "' in scene '" + options_.scene.string() + "'");
+    }
+  }
+}
+
+// The varied cell, every object stowed out of view, the arm at its observe pose; the empty cell
+// captured for background subtraction.
+void EpisodeRun::BuildCell() {
+  sim::ApplyVariation(model_, options_.variation, rng_);
+  data_ = std::make_unique<sim::Data>(model_);
+  kinect_ = std::make_unique<sim::KinectCamera>(model_, "kinect");
+  sim::Lighting lighting;
+  lighting.intensity = options_.light_intensity;
+  kinect_->SetLighting(lighting);
+  noise_.noise_scale = options_.noise_scale;
+  const std::vector<std::string> bodies = sim::FreeBodyNames(model_);
+  for (size_t i = 0; i < bodies.size(); ++i) sim::StowObject(model_, *data_, model_.Id(mjOBJ_BODY, bodies[i]), static_cast<int>(i));
+  if (!options_.video.empty()) {
+    if (options_.video.has_parent_path()) std::filesystem::create_directories(options_.video.parent_path());
+    video_ = std::make_unique<sim::VideoRecorder>(model_, options_.video);
+  }
+  cell_ = std::make_unique<SimCell>(model_, *data_, kinect_.get(), &noise_, &rng_, video_.get(), layout_.control_period);
+  cell_->Reset(layout_.q_observe, layout_.observe_half_gap);
+  calibration_.background = sim::ToOrganizedCloud(kinect_->Capture(*data_, &noise_, &rng_));
+}
+
+// The objects: chosen, then placed where asked or at random non-overlapping poses.
+void EpisodeRun::PlaceObjects() {
+  const std::vector<ObjectSpec> chosen = ChooseObjects(set_, options_, rng_);
+  std::vector<double> radii;
+  for (const auto& spec : chosen) radii.push_back(sim::FootprintRadius(model_, *data_, model_.Id(mjOBJ_BODY, spec.name)));
+  const std::vector<sim::TablePose> poses = DrawPoses(options_.placements, radii, sim::PlacementArea(), rng_);
+  const std::vector<std::string>& label_names = kinect_->object_names();
+  std::vector<PlacedObject> placed;
+  for (size_t i = 0; i < chosen.size(); ++i) {
+    const int body = model_.Id(mjOBJ_BODY, chosen[i].name);
+    sim::PlaceObject(model_, *data_, body, poses[i].x, poses[i].y, poses[i].yaw);
+    const int label = static_cast<int>(std::find(label_names.begin(), label_names.end(), chosen[i].name) -
+                                       label_names.begin()) + 1;
+    placed.push_back({chosen[i].name, chosen[i].category, body, label});
+  }
+  mj_forward(model_.get(), data_->get());
+  scorer_ = std::make_unique<EpisodeScorer>(std::move(placed), static_cast<int>(label_names.size()),
+                                            TableExtent{layout_.table_min_xy, layout_.table_max_xy});
+}
+
+// The policy's budget from the options (the number of objects asked for, not what the scene holds).
+cell::PolicyOptions EpisodeRun::Budget() const {
+  const int objects = static_cast<int>(scorer_->objects().size());
+  cell::PolicyOptions budget;
+  budget.max_attempts_per_position = options_.max_attempts_per_object;
+  budget.max_attempts = (options_.max_attempts_per_object + 1) * objects;
+  budget.time_limit_s = options_.time_limit_s > 0 ? options_.time_limit_s : 60.0 + 45.0 * objects;
+  return budget;
+}
+
+EpisodeMetrics EpisodeRun::Run(const std::vector<std::string>& command_line) {
+  const auto wall_start = WallClock::now();
+  Calibrate();
+  BuildCell();
+  PlaceObjects();
+  recorder_ = std::make_unique<EpisodeRecorder>(*scorer_, *cell_, model_, *data_, video_.get(), options_.seed,
+                                                options_.max_attempts_per_object);
+  recorder_->ShowStatus("settling");
+  cell_->Wait("settle", kSettleTime);
+
+  cell::SortingPolicy policy(*cell_, layout_, calibration_, recognizer_, Budget(), recorder_.get());
+  const cell::PolicyResult result = policy.Run();
+  recorder_->ShowStatus(std::string("episode over: ") + cell::ToString(result.status));
+  cell_->Wait("settle_result", kSettleTime);
+  if (video_) video_->Close();
+
+  const EpisodeMetrics metrics = Metrics(result, SecondsSince(wall_start));
+  WriteJson(options_.out / "metrics.json", metrics);
+  WriteJson(options_.out / "run.json", RunRecord(command_line, options_.seed,
+                                                 {{"command", "episode"}, {"scene", options_.scene.string()},
+                                                  {"wall_time_s", metrics.summary.run.wall_time_s}}));
+  return metrics;
+}
+
+EpisodeMetrics EpisodeRun::Metrics(const cell::PolicyResult& result, double wall_s) const {
+  RunFigures run;
+  run.status = result.status;
+  run.sim_time_s = cell_->Now();
+  run.wall_time_s = wall_s;
+  run.real_time_factor = cell_->Now() / wall_s;
+  run.frames = cell_->frames();
+  run.perception_ms_per_frame = run.frames > 0 ? 1000 * recorder_->perception_wall_s() / run.frames : 0.0;
+  run.render_ms_per_frame = run.frames > 0 ? 1000 * cell_->render_wall_s() / run.frames : 0.0;
+  run.video_frames = video_ ? video_->frames() : 0;
+  run.video_render_wall_s = video_ ? video_->render_wall_s() : 0.0;
+  for (int i = 0; i < mjNWARNING; ++i) run.mujoco_warnings += (*data_)->warning[i].number;
+
+  EpisodeMetrics m;
+  m.seed = options_.seed;
+  m.scene = options_.scene.string();
+  m.object_set = set_.source.string();
+  m.model = options_.model.string();
+  m.descriptor = perception::DescriptorName(recognizer_.descriptor);
+  m.variation = {options_.light_intensity,          options_.noise_scale,
+                 options_.variation.friction_scale, options_.variation.mass_scale,
+                 options_.variation.camera_shift_m, options_.variation.camera_turn_rad};
+  m.items = scorer_->Items(*data_, sim::Bins(model_));
+  m.summary = SummarizeEpisode(m.items, scorer_->attempts(), scorer_->grasps(), run);
+  m.attempts = recorder_->attempts_log();
+  if (!options_.video.empty()) m.video = options_.video.string();
+  return m;
+}
+
+}  // namespace
+
+EpisodeMetrics RunEpisode(const EpisodeOptions& options, const std::vector<std::string>& command_line) {
+  if (options.max_attempts_per_object < 1) throw std::invalid_argument("--max-attempts: expected at least 1");
+  if (!(options.light_intensity > 0)) throw std::invalid_argument("--light-intensity: expected > 0");
+  if (!(options.noise_scale >= 0)) throw std::invalid_argument("--noise-scale: expected >= 0");
+  if (!(options.time_limit_s >= 0)) throw std::invalid_argument("--time-limit: expected >= 0");
+  if (!std::filesystem::is_regular_file(options.scene)) {
+    throw std::invalid_argument("scene '" + options.scene.string() + "': file not found");
+  }
+  const ObjectSet set = LoadObjectSet(options.object_set);
+  const perception::RecognitionModel recognizer = perception::LoadModel(options.model);
+  std::set<std::string> categories;
+  for (const auto& spec : set.objects) categories.insert(spec.category);
+  for (const auto& c : categories) {
+    if (std::find(recognizer.classes.begin(), recognizer.classes.end(), c) == recognizer.classes.end()) {
+      throw std::invalid_argument("model '" + options.model.string() + "': does not know category '" + c +
+                                  "' of object set '" + options.object_set.string() + "'");
+    }
+  }
+  PrepareOutputDir(options.out);
+  EpisodeRun run(options, set, recognizer);
+  return run.Run(command_line);
+}
+
+}  // namespace sortcell::app

@@ -1,0 +1,48 @@
+#pragma once
+/// @file
+/// One sorting episode in the simulated cell: the harness around cell::SortingPolicy. It sets the
+/// scene up (objects chosen and placed, variations applied, the nominal calibration given to the
+/// robot), runs the policy over the simulated cell (sim_cell.h), and scores where every object ended
+/// up from the simulator's ground truth (episode_scoring.h). The policy never sees that truth.
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "app/episode/episode_metrics.h"
+#include "sim/scene_variation.h"
+
+namespace sortcell::app {
+
+/// An object put at a chosen table position instead of a random one (scenarios, e.g. out of reach).
+struct ObjectPlacement {
+  std::string name;
+  double x = 0, y = 0, yaw = 0;
+};
+
+struct EpisodeOptions {
+  std::filesystem::path scene;       ///< MJCF cell holding every object of the set.
+  std::filesystem::path object_set;  ///< Which objects exist and their categories.
+  std::filesystem::path model;       ///< Trained recognition model (sortcell train).
+  std::filesystem::path video;       ///< Empty: no video.
+  std::filesystem::path out;
+  uint64_t seed = 0;
+  int objects = 0;  ///< How many of the set's objects to place (0: all of them, at most 6).
+  std::vector<ObjectPlacement> placements;  ///< Placed first, as given; the rest at random.
+  // Variations (sweep axes).
+  double light_intensity = 1.0;  ///< Scales the scene's lights (1 = as modelled).
+  double noise_scale = 1.0;      ///< Scales the Kinect's depth noise (1 = the Kinect).
+  sim::SceneVariation variation;
+  // The policy's budget.
+  int max_attempts_per_object = 3;  ///< Grasp attempts at one position before it is given up.
+  double time_limit_s = 0;          ///< Simulated seconds of sorting (0: 60 + 45 per object placed).
+};
+
+/// Runs the episode and writes metrics.json and run.json (and the video) into options.out.
+/// @throws std::invalid_argument naming the file or option for a bad scene, object set, model
+///         (a category it does not know, a class without a bin), placement (an object placed twice,
+///         objects that do not fit), count or output folder.
+EpisodeMetrics RunEpisode(const EpisodeOptions& options, const std::vector<std::string>& command_line);
+
+}  // namespace sortcell::app

@@ -1,0 +1,181 @@
+#include "app/episode/episode_metrics.h"
+
+#include <spdlog/fmt/fmt.h>
+
+#include "app/common/json_fields.h"
+
+namespace sortcell::app {
+
+void ItemTally::Add(const ItemResult& item) {
+  ++items;
+  ++outcomes[item.outcome];
+  if (item.predicted_category) {
+    ++classified;
+    if (*item.predicted_category == item.true_category) ++recognised;
+  }
+  const bool in_a_bin = item.outcome == cell::ItemOutcome::kSorted || item.outcome == cell::ItemOutcome::kWrongBin;
+  if (in_a_bin && item.cycle_time_s) {
+    ++completed;
+    cycle_s += *item.cycle_time_s;
+  }
+}
+
+int ItemTally::Count(cell::ItemOutcome outcome) const {
+  const auto it = outcomes.find(outcome);
+  return it == outcomes.end() ? 0 : it->second;
+}
+
+std::optional<double> Ratio(double a, int b) { return b > 0 ? std::optional<double>(a / b) : std::nullopt; }
+
+EpisodeSummary SummarizeEpisode(const std::vector<ItemResult>& items, int attempts, int grasps, const RunFigures& run) {
+  ItemTally tally;
+  for (const auto& item : items) tally.Add(item);
+  EpisodeSummary s;
+  s.items = tally.items;
+  for (const auto outcome : cell::kItemOutcomes) s.outcomes[outcome] = tally.Count(outcome);
+  s.correct_sort_rate = Ratio(tally.Count(cell::ItemOutcome::kSorted), tally.items);
+  s.recognition_accuracy = Ratio(tally.recognised, tally.classified);
+  s.items_classified = tally.classified;
+  s.grasp_attempts = attempts;
+  s.grasps = grasps;
+  s.grasp_success_rate = Ratio(grasps, attempts);
+  s.mean_cycle_time_s = Ratio(tally.cycle_s, tally.completed);
+  s.run = run;
+  return s;
+}
+
+std::string EpisodeParagraph(const EpisodeMetrics& metrics) {
+  const EpisodeSummary& s = metrics.summary;
+  const auto rate = [](const std::optional<double>& v) { return v ? fmt::format("{:.0f} %", 100 * *v) : std::string("n/a"); };
+  std::string text = fmt::format("Episode (seed {}, {} objects): {} sorted into the right bin ({})", metrics.seed, s.items,
+                                 s.outcomes.at(cell::ItemOutcome::kSorted), rate(s.correct_sort_rate));
+  for (const auto outcome : cell::kItemOutcomes) {
+    const int n = s.outcomes.at(outcome);
+    if (outcome != cell::ItemOutcome::kSorted && n > 0) text += fmt::format(", {} {}", n, cell::ToString(outcome));
+  }
+  text += fmt::format(". Recognition accuracy {}, grasp success {} of {} attempts, {}. ", rate(s.recognition_accuracy),
+                      rate(s.grasp_success_rate), s.grasp_attempts,
+                      s.mean_cycle_time_s ? fmt::format("mean cycle {:.1f} s per item", *s.mean_cycle_time_s)
+                                          : std::string("no completed pick"));
+  text += fmt::format("{:.1f} s simulated in {:.1f} s (real-time factor {:.1f}), perception {:.0f} ms per frame over {} "
+                      "frames, status {}.",
+                      s.run.sim_time_s, s.run.wall_time_s, s.run.real_time_factor, s.run.perception_ms_per_frame,
+                      s.run.frames, cell::ToString(s.run.status));
+  return text;
+}
+
+nlohmann::json OutcomeCountsJson(const OutcomeCounts& counts) {
+  nlohmann::json j = nlohmann::json::object();
+  for (const auto outcome : cell::kItemOutcomes) {
+    const auto it = counts.find(outcome);
+    j[cell::ToString(outcome)] = it == counts.end() ? 0 : it->second;
+  }
+  return j;
+}
+
+void to_json(nlohmann::json& j, const ItemResult& v) {
+  j = {{"name", v.name},
+       {"true_category", v.true_category},
+       {"predicted_category", OrNull(v.predicted_category)},
+       {"confidence", v.confidence},
+       {"attempts", v.attempts},
+       {"outcome", v.outcome},
+       {"cycle_time_s", OrNull(v.cycle_time_s)},
+       {"final_xyz", v.final_xyz}};
+}
+
+void from_json(const nlohmann::json& j, ItemResult& v) {
+  ReadField(j, "", "name", v.name);
+  ReadField(j, "", "true_category", v.true_category);
+  ReadNullable(j, "", "predicted_category", v.predicted_category);
+  ReadField(j, "", "confidence", v.confidence);
+  ReadField(j, "", "attempts", v.attempts);
+  ReadField(j, "", "outcome", v.outcome);
+  ReadNullable(j, "", "cycle_time_s", v.cycle_time_s);
+  ReadField(j, "", "final_xyz", v.final_xyz);
+}
+
+void to_json(nlohmann::json& j, const EpisodeSummary& v) {
+  j = {{"items", v.items},
+       {"outcomes", OutcomeCountsJson(v.outcomes)},
+       {"correct_sort_rate", OrNull(v.correct_sort_rate)},
+       {"recognition_accuracy", OrNull(v.recognition_accuracy)},
+       {"items_classified", v.items_classified},
+       {"grasp_attempts", v.grasp_attempts},
+       {"grasps", v.grasps},
+       {"grasp_success_rate", OrNull(v.grasp_success_rate)},
+       {"mean_cycle_time_s", OrNull(v.mean_cycle_time_s)},
+       // The run's own figures, flat beside the counts.
+       {"status", v.run.status},
+       {"sim_time_s", v.run.sim_time_s},
+       {"wall_time_s", v.run.wall_time_s},
+       {"real_time_factor", v.run.real_time_factor},
+       {"frames", v.run.frames},
+       {"perception_ms_per_frame", v.run.perception_ms_per_frame},
+       {"render_ms_per_frame", v.run.render_ms_per_frame},
+       {"video_frames", v.run.video_frames},
+       {"video_render_wall_s", v.run.video_render_wall_s},
+       {"mujoco_warnings", v.run.mujoco_warnings}};
+}
+
+void from_json(const nlohmann::json& j, EpisodeSummary& v) {
+  const std::string path = "summary";
+  ReadField(j, path, "items", v.items);
+  nlohmann::json outcomes;
+  ReadField(j, path, "outcomes", outcomes);
+  v.outcomes.clear();
+  for (const auto outcome : cell::kItemOutcomes) ReadField(outcomes, path + ".outcomes", cell::ToString(outcome), v.outcomes[outcome]);
+  ReadNullable(j, path, "correct_sort_rate", v.correct_sort_rate);
+  ReadNullable(j, path, "recognition_accuracy", v.recognition_accuracy);
+  ReadField(j, path, "items_classified", v.items_classified);
+  ReadField(j, path, "grasp_attempts", v.grasp_attempts);
+  ReadField(j, path, "grasps", v.grasps);
+  ReadNullable(j, path, "grasp_success_rate", v.grasp_success_rate);
+  ReadNullable(j, path, "mean_cycle_time_s", v.mean_cycle_time_s);
+  ReadField(j, path, "status", v.run.status);
+  ReadField(j, path, "sim_time_s", v.run.sim_time_s);
+  ReadField(j, path, "wall_time_s", v.run.wall_time_s);
+  ReadField(j, path, "real_time_factor", v.run.real_time_factor);
+  ReadField(j, path, "frames", v.run.frames);
+  ReadField(j, path, "perception_ms_per_frame", v.run.perception_ms_per_frame);
+  ReadField(j, path, "render_ms_per_frame", v.run.render_ms_per_frame);
+  ReadField(j, path, "video_frames", v.run.video_frames);
+  ReadField(j, path, "video_render_wall_s", v.run.video_render_wall_s);
+  ReadField(j, path, "mujoco_warnings", v.run.mujoco_warnings);
+}
+
+void to_json(nlohmann::json& j, const EpisodeVariation& v) {
+  j = {{"light_intensity", v.light_intensity}, {"noise_scale", v.noise_scale},
+       {"friction_scale", v.friction_scale},   {"mass_scale", v.mass_scale},
+       {"camera_shift_m", v.camera_shift_m},   {"camera_turn_rad", v.camera_turn_rad}};
+}
+
+void to_json(nlohmann::json& j, const AttemptLogEntry& v) {
+  j = {{"time_s", v.time_s}, {"category", v.category}, {"xy", v.xy}, {"result", v.result}};
+  // A skipped cluster has no attempt figures; an attempt has all of them.
+  if (!v.duration_s) return;
+  j["duration_s"] = *v.duration_s;
+  j["confidence"] = OrNull(v.confidence);
+  j["pinch_yaw"] = OrNull(v.pinch_yaw);
+  j["width_m"] = OrNull(v.width_m);
+  j["top_z_m"] = OrNull(v.top_z_m);
+  j["truth_object"] = OrNull(v.truth_object);
+  j["truth_centre_error_m"] = OrNull(v.truth_centre_error_m);
+  j["truth_width_error_m"] = OrNull(v.truth_width_error_m);
+  j["detail"] = v.detail;
+}
+
+void to_json(nlohmann::json& j, const EpisodeMetrics& v) {
+  j = {{"seed", v.seed},
+       {"scene", v.scene},
+       {"object_set", v.object_set},
+       {"model", v.model},
+       {"descriptor", v.descriptor},
+       {"variation", v.variation},
+       {"items", v.items},
+       {"summary", v.summary},
+       {"attempts", v.attempts},
+       {"video", OrNull(v.video)}};
+}
+
+}  // namespace sortcell::app

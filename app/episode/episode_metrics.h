@@ -1,0 +1,134 @@
+#pragma once
+/// @file
+/// The episode's metrics.json as structs: written from them, and read back into them (the sweep's
+/// records carry an episode's items and summary). Reading is strict: a missing or mistyped key is an
+/// error naming the key.
+
+#include <array>
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "cell/outcomes.h"
+
+namespace sortcell::app {
+
+/// One placed object at the end of the episode.
+struct ItemResult {
+  std::string name, true_category;
+  std::optional<std::string> predicted_category;  ///< Null if never classified.
+  double confidence = 0;
+  int attempts = 0;
+  cell::ItemOutcome outcome = cell::ItemOutcome::kLeftOnTable;
+  std::optional<double> cycle_time_s;  ///< Null if never attempted.
+  std::array<double, 3> final_xyz{};
+};
+
+/// Counts per outcome, every outcome present.
+using OutcomeCounts = std::map<cell::ItemOutcome, int>;
+
+/// Figures of the run itself (not of the items).
+struct RunFigures {
+  cell::EpisodeStatus status = cell::EpisodeStatus::kCompleted;
+  double sim_time_s = 0, wall_time_s = 0, real_time_factor = 0;
+  int frames = 0;
+  double perception_ms_per_frame = 0, render_ms_per_frame = 0;
+  int video_frames = 0;
+  double video_render_wall_s = 0;
+  int mujoco_warnings = 0;
+};
+
+struct EpisodeSummary {
+  int items = 0;
+  OutcomeCounts outcomes;
+  std::optional<double> correct_sort_rate, recognition_accuracy;  ///< Null without items / classified items.
+  int items_classified = 0;
+  int grasp_attempts = 0, grasps = 0;
+  std::optional<double> grasp_success_rate, mean_cycle_time_s;
+  RunFigures run;
+};
+
+/// The scene variations the episode ran with.
+struct EpisodeVariation {
+  double light_intensity = 1, noise_scale = 1, friction_scale = 1, mass_scale = 1;
+  double camera_shift_m = 0, camera_turn_rad = 0;
+};
+
+/// One line of the attempts log: a grasp attempt, or a cluster skipped without one.
+struct AttemptLogEntry {
+  double time_s = 0;
+  std::optional<double> duration_s;  ///< Null for a skipped cluster.
+  std::string category;
+  std::optional<double> confidence;
+  std::array<double, 2> xy{};
+  std::optional<double> pinch_yaw, width_m, top_z_m;
+  std::string result;  ///< An attempt result (cell::ToString) or "skipped: <grasp status>".
+  std::optional<std::string> truth_object;  ///< Scoring: the object the cluster really was.
+  std::optional<double> truth_centre_error_m, truth_width_error_m;
+  std::string detail;
+};
+
+struct EpisodeMetrics {
+  uint64_t seed = 0;
+  std::string scene, object_set, model, descriptor;
+  EpisodeVariation variation;
+  std::vector<ItemResult> items;
+  EpisodeSummary summary;
+  std::vector<AttemptLogEntry> attempts;
+  std::optional<std::string> video;
+};
+
+/// Counts over items: one episode's, or many episodes' pooled (sweeps).
+struct ItemTally {
+  int items = 0, classified = 0, recognised = 0;
+  int completed = 0;   ///< Items that reached a bin (sorted or wrong_bin) with a cycle time.
+  double cycle_s = 0;  ///< Their cycle times, summed.
+  OutcomeCounts outcomes;
+
+  void Add(const ItemResult& item);
+  int Count(cell::ItemOutcome outcome) const;
+};
+
+/// The episode summary over `items`: outcome counts, correct-sort rate, recognition accuracy (of the
+/// items classified), grasp success rate, mean cycle time of the items that reached a bin.
+EpisodeSummary SummarizeEpisode(const std::vector<ItemResult>& items, int attempts, int grasps, const RunFigures& run);
+
+/// a / b, or null when b is 0.
+std::optional<double> Ratio(double a, int b);
+
+/// The one-paragraph summary printed after an episode.
+std::string EpisodeParagraph(const EpisodeMetrics& metrics);
+
+void to_json(nlohmann::json& j, const ItemResult& v);
+void from_json(const nlohmann::json& j, ItemResult& v);
+void to_json(nlohmann::json& j, const EpisodeSummary& v);
+void from_json(const nlohmann::json& j, EpisodeSummary& v);
+void to_json(nlohmann::json& j, const EpisodeVariation& v);
+void to_json(nlohmann::json& j, const AttemptLogEntry& v);
+void to_json(nlohmann::json& j, const EpisodeMetrics& v);
+/// {"sorted": n, ...} in the order of cell::kItemOutcomes.
+nlohmann::json OutcomeCountsJson(const OutcomeCounts& counts);
+
+}  // namespace sortcell::app
+
+namespace nlohmann {
+/// Outcomes and statuses travel as their cell::ToString spellings; an unknown spelling is an error.
+template <>
+struct adl_serializer<sortcell::cell::ItemOutcome> {
+  static void to_json(json& j, sortcell::cell::ItemOutcome v) { j = sortcell::cell::ToString(v); }
+  static void from_json(const json& j, sortcell::cell::ItemOutcome& v) {
+    v = sortcell::cell::ParseItemOutcome(j.get<std::string>());
+  }
+};
+template <>
+struct adl_serializer<sortcell::cell::EpisodeStatus> {
+  static void to_json(json& j, sortcell::cell::EpisodeStatus v) { j = sortcell::cell::ToString(v); }
+  static void from_json(const json& j, sortcell::cell::EpisodeStatus& v) {
+    v = sortcell::cell::ParseEpisodeStatus(j.get<std::string>());
+  }
+};
+}  // namespace nlohmann

@@ -1,0 +1,115 @@
+#include "app/episode/episode_recorder.h"
+
+#include <opencv2/imgproc.hpp>
+#include <spdlog/fmt/fmt.h>
+
+#include <algorithm>
+
+#include "perception/segment_overlay.h"
+
+namespace sortcell::app {
+
+EpisodeRecorder::EpisodeRecorder(EpisodeScorer& scorer, const SimCell& cell, const sim::Model& model,
+                                 const sim::Data& data, sim::VideoRecorder* video, uint64_t seed,
+                                 int max_attempts_per_object)
+    : scorer_(scorer), cell_(cell), model_(model), data_(data), video_(video), seed_(seed),
+      max_attempts_per_object_(max_attempts_per_object) {}
+
+void EpisodeRecorder::ShowStatus(const std::string& current) {
+  if (!video_) return;
+  video_->SetOverlay({fmt::format("seed {}   objects {}   frames {}", seed_, scorer_.objects().size(), cell_.frames()),
+                      current,
+                      fmt::format("released into bins {}   missed grasps {}   dropped {}   skipped {}", released_, missed_,
+                                  dropped_, skipped_)});
+}
+
+void EpisodeRecorder::Observing() { ShowStatus("observing"); }
+
+void EpisodeRecorder::Observed(const perception::Cloud& cloud, const cell::Observation& observation,
+                               double perception_wall_s) {
+  perception_wall_s_ += perception_wall_s;
+  std::vector<DetectionRecord> records;
+  for (const auto& d : observation.detections) records.push_back({&d.segment.indices, d.category, d.confidence});
+  scorer_.Observe(cell_.last_labels(), records);
+  if (video_ && observation.status == perception::SegmentationStatus::kOk) ShowObservation(cloud, observation.detections);
+}
+
+void EpisodeRecorder::ShowObservation(const perception::Cloud& cloud, const std::vector<cell::Detection>& detections) {
+  std::vector<perception::Segment> segments;
+  for (const auto& d : detections) segments.push_back(d.segment);
+  cv::Mat overlay = perception::SegmentOverlay(cloud, segments);
+  for (size_t i = 0; i < detections.size(); ++i) {
+    // Outline and name each cluster where it is in the image.
+    cv::Mat mask = cv::Mat::zeros(overlay.size(), CV_8UC1);
+    for (int p : detections[i].segment.indices) mask.at<uint8_t>(p / mask.cols, p % mask.cols) = 255;
+    std::vector<std::vector<cv::Point>> contours;
+    cv::findContours(mask, contours, cv::RETR_EXTERNAL, cv::CHAIN_APPROX_SIMPLE);
+    cv::drawContours(overlay, contours, -1, cv::Scalar(255, 255, 255), 2);
+    const cv::Rect box = cv::boundingRect(mask);
+    const std::string text =
+        fmt::format("{} {}", i,
+                    detections[i].category ? fmt::format("{} {:.2f}", *detections[i].category, detections[i].confidence) : "?");
+    const cv::Point at(box.x, std::max(14, box.y - 6));
+    cv::putText(overlay, text, at, cv::FONT_HERSHEY_SIMPLEX, 0.6, cv::Scalar(0, 0, 0), 4, cv::LINE_AA);
+    cv::putText(overlay, text, at, cv::FONT_HERSHEY_SIMPLEX, 0.6, cv::Scalar(255, 255, 255), 2, cv::LINE_AA);
+  }
+  video_->SetInset(overlay);
+}
+
+void EpisodeRecorder::Skipped(int detection, const cell::Detection& seen, robot::GraspStatus why) {
+  scorer_.Unreachable(detection);
+  ++skipped_;
+  AttemptLogEntry entry;
+  entry.time_s = cell_.Now();
+  entry.category = seen.category.value_or("");
+  entry.xy = {seen.footprint.centre_xy.x(), seen.footprint.centre_xy.y()};
+  entry.result = std::string("skipped: ") + robot::ToString(why);
+  log_.push_back(entry);
+}
+
+void EpisodeRecorder::AttemptStarting(const cell::AttemptReport& report) {
+  const cell::Detection& d = *report.seen;
+  ShowStatus(fmt::format("object {}: {} ({:.2f})  attempt {}/{}", report.detection, *d.category, d.confidence,
+                         report.attempt, max_attempts_per_object_));
+  // Measured before the pick moves the object.
+  truth_errors_ = scorer_.GraspErrors(report.detection, d.footprint.centre_xy, d.footprint.width, model_, data_);
+}
+
+void EpisodeRecorder::AttemptEnded(const cell::AttemptReport& report) {
+  const cell::Detection& d = *report.seen;
+  const cell::AttemptResult result = report.pick.result;
+  AttemptRecord record;
+  record.detection = report.detection;
+  record.predicted = *d.category;
+  record.confidence = d.confidence;
+  record.start_s = report.start_s;
+  record.end_s = report.end_s;
+  record.grasped = report.pick.grasped;
+  record.lifted = report.pick.lifted;
+  record.result = result;
+  scorer_.Attempt(record);
+  if (result == cell::AttemptResult::kReleased) ++released_;
+  if (result == cell::AttemptResult::kMissed) ++missed_;
+  if (result == cell::AttemptResult::kDropped) ++dropped_;
+
+  AttemptLogEntry entry;
+  entry.time_s = report.start_s;
+  entry.duration_s = report.end_s - report.start_s;
+  entry.category = *d.category;
+  entry.confidence = d.confidence;
+  entry.xy = {d.footprint.centre_xy.x(), d.footprint.centre_xy.y()};
+  entry.pinch_yaw = d.footprint.pinch_yaw;
+  entry.width_m = d.footprint.width;
+  entry.top_z_m = d.footprint.top_z;
+  entry.result = cell::ToString(result);
+  const int object = scorer_.ObjectOf(report.detection);
+  if (object >= 0) entry.truth_object = scorer_.objects()[object].name;
+  if (truth_errors_) {
+    entry.truth_centre_error_m = truth_errors_->first;
+    entry.truth_width_error_m = truth_errors_->second;
+  }
+  if (result == cell::AttemptResult::kMotionFailed) entry.detail = report.pick.detail;
+  log_.push_back(entry);
+}
+
+}  // namespace sortcell::app

@@ -1,0 +1,54 @@
+#pragma once
+/// @file
+/// The episode harness's side of the policy: it scores what the policy reports (the scorer reads the
+/// truth of each capture through the simulated cell's own channel), keeps the attempts log and draws
+/// the review video's overlay and inset. Nothing here is consulted by a decision.
+
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "app/episode/episode_metrics.h"
+#include "app/episode/episode_scoring.h"
+#include "app/episode/sim_cell.h"
+#include "cell/sorting_policy.h"
+#include "sim/model.h"
+#include "sim/video_recorder.h"
+
+namespace sortcell::app {
+
+class EpisodeRecorder : public cell::PolicyObserver {
+ public:
+  /// `video` may be null. `max_attempts_per_object` is for the overlay.
+  EpisodeRecorder(EpisodeScorer& scorer, const SimCell& cell, const sim::Model& model, const sim::Data& data,
+                  sim::VideoRecorder* video, uint64_t seed, int max_attempts_per_object);
+
+  void Observing() override;
+  void Observed(const perception::Cloud& cloud, const cell::Observation& observation, double perception_wall_s) override;
+  void Skipped(int detection, const cell::Detection& seen, robot::GraspStatus why) override;
+  void AttemptStarting(const cell::AttemptReport& report) override;
+  void AttemptEnded(const cell::AttemptReport& report) override;
+
+  /// The video overlay's middle line (the current activity); no-op without a video.
+  void ShowStatus(const std::string& current);
+  const std::vector<AttemptLogEntry>& attempts_log() const { return log_; }
+  double perception_wall_s() const { return perception_wall_s_; }
+
+ private:
+  void ShowObservation(const perception::Cloud& cloud, const std::vector<cell::Detection>& detections);
+
+  EpisodeScorer& scorer_;
+  const SimCell& cell_;
+  const sim::Model& model_;
+  const sim::Data& data_;
+  sim::VideoRecorder* video_;
+  uint64_t seed_;
+  int max_attempts_per_object_;
+  std::vector<AttemptLogEntry> log_;
+  std::optional<std::pair<double, double>> truth_errors_;  // Of the attempt in progress.
+  double perception_wall_s_ = 0;
+  int released_ = 0, missed_ = 0, dropped_ = 0, skipped_ = 0;
+};
+
+}  // namespace sortcell::app

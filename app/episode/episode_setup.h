@@ -1,0 +1,27 @@
+#pragma once
+/// @file
+/// Setting an episode's scene up: which objects of the set take part and where they stand.
+
+#include <random>
+#include <vector>
+
+#include "app/common/object_set.h"
+#include "app/episode/episode.h"
+#include "sim/object_placement.h"
+
+namespace sortcell::app {
+
+/// The objects of the episode: those placed by hand first, then the rest drawn at random from the
+/// set, `options.objects` in all (0: all of the set, at most 6).
+/// @throws std::invalid_argument for a count outside 1..set size, more placements than objects, an
+///         object placed twice, or a placement naming an object the set lacks.
+std::vector<ObjectSpec> ChooseObjects(const ObjectSet& set, const EpisodeOptions& options, std::mt19937_64& rng);
+
+/// Table poses for objects of footprint `radii`: the given placements first (as given), the rest drawn
+/// at random inside `area` with its gap to every other footprint (the training scenes' distribution).
+/// @throws std::invalid_argument "--objects: N objects do not fit the table area with the given
+///         placements" when no arrangement is found.
+std::vector<sim::TablePose> DrawPoses(const std::vector<ObjectPlacement>& placements, const std::vector<double>& radii,
+                                      const sim::PlacementArea& area, std::mt19937_64& rng);
+
+}  // namespace sortcell::app

@@ -1,0 +1,199 @@
+#include "app/episode/scripted_pick.h"
+
+#include <algorithm>
+#include <memory>
+#include <optional>
+#include <stdexcept>
+
+#include <nlohmann/json.hpp>
+
+#include "app/common/output_dir.h"
+#include "app/common/wall_clock.h"
+#include "app/episode/sim_cell.h"
+#include "app/episode/sim_layout.h"
+#include "cell/pick_and_place.h"
+#include "robot/grasp_planner.h"
+#include "robot/joint_trajectory.h"
+#include "sim/ground_truth.h"
+#include "sim/model.h"
+#include "sim/video_recorder.h"
+
+namespace sortcell::app {
+namespace {
+
+constexpr double kSettleTime = 0.5;  // s, before the pick and before judging the result
+
+std::string Join(const std::vector<std::string>& names) {
+  std::string text;
+  for (const auto& n : names) text += (text.empty() ? "" : ", ") + n;
+  return text;
+}
+
+// The scene's object and bin named by the options.
+struct PickTarget {
+  int object = -1;
+  sim::BinRef bin;
+};
+
+PickTarget FindTarget(const sim::Model& model, const PickOptions& options) {
+  const std::vector<std::string> objects = sim::FreeBodyNames(model);
+  if (std::find(objects.begin(), objects.end(), options.object) == objects.end()) {
+    throw std::invalid_argument("scene '" + options.scene.string() + "': no object named '" + options.object +
+                                "' (objects: " + Join(objects) + ")");
+  }
+  const std::string bin_name = options.bin.rfind(sim::BinName(""), 0) == 0 ? options.bin : sim::BinName(options.bin);
+  std::vector<std::string> bin_names;
+  PickTarget target;
+  target.object = model.Id(mjOBJ_BODY, options.object);
+  for (const auto& bin : sim::Bins(model)) {
+    bin_names.push_back(sim::BinName(bin.category));
+    if (sim::BinName(bin.category) == bin_name) target.bin = bin;
+  }
+  if (target.bin.body < 0) {
+    throw std::invalid_argument("scene '" + options.scene.string() + "': no bin named '" + options.bin +
+                                "' (bins: " + Join(bin_names) + ")");
+  }
+  return target;
+}
+
+// Scripted: the object's pose and shape from the scene (ground truth), as a grasp footprint.
+robot::ObjectFootprint FootprintFromScene(const sim::ObjectExtent& extent) {
+  robot::ObjectFootprint footprint;
+  footprint.centre_xy = extent.centre_xy;
+  footprint.base_z = extent.base_z;
+  footprint.top_z = extent.top_z;
+  footprint.pinch_yaw = extent.pinch_yaw;
+  footprint.width = extent.width;
+  return footprint;
+}
+
+// The pick command's status from how the sequence ended and where the object is.
+std::string PickStatus(cell::AttemptResult result, bool in_bin) {
+  switch (result) {
+    case cell::AttemptResult::kReleased: return in_bin ? "sorted" : "missed_bin";
+    case cell::AttemptResult::kMissed: return "grasp_failed";
+    case cell::AttemptResult::kDropped: return "dropped";
+    case cell::AttemptResult::kPutBack:
+    case cell::AttemptResult::kMotionFailed: return "unreachable";
+    case cell::AttemptResult::kSimDiverged: return "sim_diverged";
+  }
+  return "unreachable";
+}
+
+nlohmann::json ResultJson(const PickOptions& options, const PickResult& result, const std::string& detail,
+                          const sim::ObjectExtent& extent, const robot::GraspPlan& grasp, double held_gap,
+                          const SimCell& cell, const cell::CellLayout& layout, const std::vector<cell::PhaseSpan>& phases) {
+  nlohmann::json phase_list = nlohmann::json::array();
+  for (const auto& p : phases) phase_list.push_back({{"phase", p.phase}, {"start_s", p.start_s}, {"end_s", p.end_s}});
+  const robot::TrackingStats& tracking = cell.tracking();
+  return {{"scripted", true},
+          {"note", "robot-layer check: the object's pose and shape are read from the scene definition"},
+          {"scene", options.scene.string()},
+          {"object", options.object},
+          {"bin", options.bin.rfind(sim::BinName(""), 0) == 0 ? options.bin : sim::BinName(options.bin)},
+          {"status", result.status},
+          {"detail", detail},
+          {"in_bin", result.in_bin},
+          {"held_until_release", result.held},
+          {"slip_mm", result.slip_mm},
+          {"slip_total_mm", result.slip_total_mm},
+          {"slip_rotation_deg", result.slip_rotation_deg},
+          {"cycle_time_s", result.cycle_time_s},
+          {"sim_time_s", cell.Now()},
+          {"wall_time_s", result.wall_time_s},
+          {"real_time_factor", result.real_time_factor},
+          {"grasp",
+           {{"pinch_yaw", extent.pinch_yaw},
+            {"object_width_m", extent.width},
+            {"open_gap_m", grasp.open_gap},
+            {"grasp_height_m", grasp.grasp_height},
+            {"held_gap_m", held_gap}}},
+          {"tracking",
+           {{"max_error_rad", tracking.max_error},
+            {"rms_error_rad", tracking.rms_error()},
+            {"saturated_samples", tracking.saturated_samples},
+            {"control_rate_hz", 1.0 / layout.control_period}}},
+          {"phases", phase_list},
+          {"video", options.video.empty() ? nlohmann::json(nullptr) : nlohmann::json(options.video.string())},
+          {"video_frames", result.video_frames},
+          {"video_render_wall_s", result.video_render_wall_s}};
+}
+
+}  // namespace
+
+PickResult RunPick(const PickOptions& options, const std::vector<std::string>& command_line) {
+  const auto wall_start = WallClock::now();
+  PrepareOutputDir(options.out);
+  const sim::Model model = sim::Model::FromFile(options.scene.string());
+  const PickTarget target = FindTarget(model, options);
+  const cell::CellLayout layout = ReadCellLayout(model);
+  const int tcp = model.Id(mjOBJ_SITE, "tcp");
+
+  sim::Data data(model);
+  sim::ResetToObserve(model, data);
+  std::unique_ptr<sim::VideoRecorder> video;
+  if (!options.video.empty()) {
+    if (options.video.has_parent_path()) std::filesystem::create_directories(options.video.parent_path());
+    video = std::make_unique<sim::VideoRecorder>(model, options.video);
+  }
+  SimCell cell(model, data, nullptr, nullptr, nullptr, video.get(), layout.control_period);
+  cell.Reset(layout.q_observe, layout.observe_half_gap);
+  cell::MotionSequencer motions(cell);
+  motions.Wait("settle", kSettleTime);
+
+  const sim::ObjectExtent extent = sim::ObjectExtentOf(model, data, target.object);
+  const robot::GraspPlan grasp = robot::PlanTopDownGrasp(FootprintFromScene(extent), cell.CommandedJoints());
+
+  PickResult result;
+  const double t0 = cell.Now();
+  // The object's pose in the hand at the sequence's milestones (ground truth, to measure slip).
+  const auto object_in_tcp = [&] { return sim::SitePose(data, tcp).inverse() * sim::BodyPose(data, target.object); };
+  Eigen::Isometry3d X_TO_grasped = Eigen::Isometry3d::Identity(), X_TO_lifted = X_TO_grasped;
+  cell::PickHooks hooks;
+  hooks.grasped = [&] { X_TO_grasped = object_in_tcp(); };
+  hooks.lifted = [&] { X_TO_lifted = object_in_tcp(); };
+  hooks.carried = [&] {
+    result.slip_mm = 1000 * (object_in_tcp().translation() - X_TO_lifted.translation()).norm();
+    result.slip_rotation_deg = robot::RotationError(object_in_tcp(), X_TO_lifted) * 180 / M_PI;
+  };
+  hooks.lowered = [&] {
+    result.held = motions.Hold() == robot::HoldState::kHolding;
+    result.slip_total_mm = 1000 * (object_in_tcp().translation() - X_TO_grasped.translation()).norm();
+  };
+  double held_gap = cell.ReadGripper().gap();
+  std::string detail;
+  std::optional<cell::AttemptResult> outcome;
+  if (grasp.status == robot::GraspStatus::kOk) {
+    cell::PickRequest request;
+    request.grasp = grasp;
+    request.p_W_release = layout.p_W_bin.at(target.bin.category);  // The bin's middle.
+    request.place_yaw_step = M_PI / 8;
+    request.q_home = layout.q_observe;
+    request.approach_speed = layout.approach_speed;
+    hooks.grasped = [&, grasped = hooks.grasped] {
+      grasped();
+      held_gap = cell.ReadGripper().gap();
+    };
+    const cell::PickReport report = cell::PickAndPlace(motions, request, hooks);
+    outcome = report.result;
+    detail = report.detail;
+  }
+  result.cycle_time_s = cell.Now() - t0;
+  motions.Wait("settle_result", kSettleTime);
+  result.in_bin = sim::InBin(data, target.object, target.bin.body);
+  result.status = outcome ? PickStatus(*outcome, result.in_bin) : robot::ToString(grasp.status);
+  if (video) {
+    video->Close();
+    result.video_frames = video->frames();
+    result.video_render_wall_s = video->render_wall_s();
+  }
+  result.wall_time_s = SecondsSince(wall_start);
+  result.real_time_factor = cell.Now() / result.wall_time_s;
+  WriteJson(options.out / "result.json",
+            ResultJson(options, result, detail, extent, grasp, held_gap, cell, layout, motions.phases()));
+  WriteJson(options.out / "run.json", RunRecord(command_line, 0, {{"command", "pick"}, {"scene", options.scene.string()},
+                                                                  {"wall_time_s", result.wall_time_s}}));
+  return result;
+}
+
+}  // namespace sortcell::app

@@ -1,0 +1,294 @@
+#include "app/recognition/dataset_capture.h"
+
+#include <spdlog/fmt/fmt.h>
+
+#include <map>
+#include <memory>
+#include <numeric>
+#include <random>
+#include <stdexcept>
+
+#include "app/common/data_dir.h"
+#include "app/common/output_dir.h"
+#include "app/common/progress.h"
+#include "app/common/seeding.h"
+#include "app/episode/segment_labels.h"
+#include "cell/cell_layout.h"
+#include "perception/pcd_io.h"
+#include "perception/segmentation.h"
+#include "sim/arm_io.h"
+#include "sim/kinect_camera.h"
+#include "sim/object_placement.h"
+#include "sim/point_cloud.h"
+#include "sim/scene_composer.h"
+
+namespace sortcell::app {
+namespace {
+
+constexpr double kDeg = M_PI / 180.0;
+// Turntable cameras look from 30 degrees left of the Kinect's azimuth (+x): its tripod stands in the
+// Kinect's line of sight at low elevations.
+constexpr double kTurntableAzimuth = 30 * kDeg;
+
+// A segment with the ground-truth object most of its pixels show (label index into the camera's
+// object names, 1-based; 0 = none).
+struct LabelledSegment {
+  perception::Segment segment;
+  int label = 0;
+  double purity = 0, iou = 0;
+};
+
+sim::Lighting RandomLighting(std::mt19937_64& rng) {
+  std::uniform_real_distribution<double> intensity(0.7, 1.3), tilt(-0.2, 0.2);
+  sim::Lighting lighting;
+  lighting.intensity = intensity(rng);
+  lighting.tilt_x = tilt(rng);
+  lighting.tilt_y = tilt(rng);
+  return lighting;
+}
+
+// The cell with the set's objects and extra cameras, every object parked, captures segmented.
+class CaptureRig {
+ public:
+  CaptureRig(const ObjectSet& set, const std::vector<sim::CameraSpec>& cameras)
+      : model_(Compose(set, cameras)), data_(model_) {
+    // Composed cells have no keyframe: put the arm at its observe pose (out of the Kinect's view), open.
+    const sim::ArmIo arm(model_);
+    arm.SetArmPosition(data_, cell::CellLayout().q_observe);
+    arm.SetGripperPosition(data_, cell::CellLayout().observe_half_gap);
+    names_ = sim::FreeBodyNames(model_);
+    for (const auto& spec : set.objects) body_[spec.name] = model_.Id(mjOBJ_BODY, spec.name);
+    ParkAll();
+  }
+
+  const sim::Model& model() const { return model_; }
+  sim::Data& data() { return data_; }
+  int Body(const std::string& name) const { return body_.at(name); }
+  const std::vector<std::string>& object_names() const { return names_; }
+
+  void ParkAll() {
+    int slot = 0;
+    for (const auto& [name, body] : body_) sim::ParkObject(model_, data_, body, slot++);
+    mj_forward(model_.get(), data_.get());
+  }
+
+  sim::KinectCamera& Camera(const std::string& name) {
+    auto& camera = cameras_[name];
+    if (!camera) camera = std::make_unique<sim::KinectCamera>(model_, name);
+    return *camera;
+  }
+
+  // The empty cell seen by `camera` (objects parked, noise on), for background subtraction.
+  void CaptureBackground(const std::string& camera, std::mt19937_64& rng) {
+    ParkAll();
+    const sim::KinectNoiseParams noise;
+    background_[camera] = sim::ToOrganizedCloud(Camera(camera).Capture(data_, &noise, &rng));
+  }
+
+  // Captures the current state and labels each segment from the ground-truth label image. A capture
+  // that cannot be segmented (no table or no depth in view) has no segments; `failure` says why.
+  std::vector<LabelledSegment> CaptureSegments(const std::string& camera, std::mt19937_64& rng,
+                                               std::string* failure) {
+    mj_forward(model_.get(), data_.get());
+    sim::KinectCamera& kinect = Camera(camera);
+    kinect.SetLighting(RandomLighting(rng));
+    const sim::KinectNoiseParams noise;
+    sim::FrameTruth shown;  // Training labels: the true camera pose and label image.
+    const sim::KinectFrame frame = kinect.Capture(data_, &noise, &rng, &shown);
+    const auto cloud = sim::ToOrganizedCloud(frame);
+    perception::SegmentationResult result = perception::SegmentObjects(*cloud, shown.X_WC, background_.at(camera).get());
+    if (failure != nullptr) *failure = result.detail;
+    std::vector<LabelledSegment> out;
+    for (auto& segment : result.segments) {
+      const SegmentLabel truth = LabelSegment(shown.labels, segment.indices, static_cast<int>(names_.size()));
+      LabelledSegment l;
+      l.label = truth.label;
+      l.purity = truth.purity;
+      l.iou = truth.iou;
+      l.segment = std::move(segment);
+      out.push_back(std::move(l));
+    }
+    return out;
+  }
+
+ private:
+  static sim::Model Compose(const ObjectSet& set, const std::vector<sim::CameraSpec>& cameras) {
+    std::vector<std::filesystem::path> models;
+    for (const auto& spec : set.objects) models.push_back(spec.model);
+    return sim::LoadComposedCell(std::filesystem::path(DataDir()) / "models", models, set.source.string(), cameras);
+  }
+
+  sim::Model model_;
+  sim::Data data_;
+  std::vector<std::string> names_;
+  std::map<std::string, int> body_;
+  std::map<std::string, std::unique_ptr<sim::KinectCamera>> cameras_;
+  std::map<std::string, perception::Cloud::Ptr> background_;
+};
+
+// Describes a labelled segment and writes its cloud; false (with the reason) when it cannot be described.
+bool Describe(const LabelledSegment& l, const std::filesystem::path& dir, const perception::DescriptorParams& params,
+              Sample& sample, std::string& reason) {
+  sample.parts = perception::ComputeDescriptorParts(*l.segment.cloud_C, params);
+  if (sample.parts.status != perception::DescriptorStatus::kOk) {
+    reason = sample.parts.detail;
+    return false;
+  }
+  const std::string name = fmt::format("clouds/{:06}.pcd", sample.id);
+  perception::SaveCloud(dir / name, *l.segment.cloud_C);
+  sample.cloud = name;
+  sample.points = static_cast<int>(l.segment.cloud_C->size());
+  sample.purity = l.purity;
+  sample.iou = l.iou;
+  return true;
+}
+
+void PrepareDatasetDir(const std::filesystem::path& dir) {
+  PrepareOutputDir(dir);
+  std::filesystem::create_directories(dir / "clouds");
+}
+
+}  // namespace
+
+Dataset CaptureTurntable(const ObjectSet& set, const TurntableOptions& options, const std::filesystem::path& dir) {
+  if (options.views < 3) throw std::invalid_argument("--views: expected at least 3 views per revolution");
+  PrepareDatasetDir(dir);
+  std::vector<sim::CameraSpec> cameras;
+  const Eigen::Vector3d aim = options.centre_W + Eigen::Vector3d(0, 0, options.aim_height_m);
+  for (double e : options.elevations_deg) {
+    // From the Kinect's side of the table, so the robot stays behind the turntable, outside the box.
+    const Eigen::Vector3d direction(std::cos(e * kDeg) * std::cos(kTurntableAzimuth),
+                                    std::cos(e * kDeg) * std::sin(kTurntableAzimuth), std::sin(e * kDeg));
+    cameras.push_back({"turntable_" + std::to_string(static_cast<int>(e)), aim + options.distance_m * direction, aim});
+  }
+  CaptureRig rig(set, cameras);
+  Dataset dataset;
+  dataset.object_set = set.source.string();
+  dataset.views = options.views;
+  dataset.seed = options.seed;
+  nlohmann::json skipped = nlohmann::json::array();
+  std::mt19937_64 background_rng = EpisodeRng(options.seed, 0xbac0);
+  for (const auto& camera : cameras) rig.CaptureBackground(camera.name, background_rng);
+
+  const int total = static_cast<int>(set.objects.size() * cameras.size()) * options.views;
+  Progress progress("dataset " + set.name, total);
+  uint64_t index = 0;
+  for (const auto& spec : set.objects) {
+    const int body = rig.Body(spec.name);
+    for (size_t c = 0; c < cameras.size(); ++c) {
+      for (int view = 0; view < options.views; ++view, ++index) {
+        std::mt19937_64 rng = EpisodeRng(options.seed, index);
+        std::uniform_real_distribution<double> unit(-1.0, 1.0);
+        rig.ParkAll();
+        const double yaw = 2 * M_PI * view / options.views + options.yaw_jitter_rad * unit(rng);
+        sim::PlaceObject(rig.model(), rig.data(), body, options.centre_W.x() + options.jitter_m * unit(rng),
+                         options.centre_W.y() + options.jitter_m * unit(rng), yaw);
+        std::string segmentation_failure;
+        const auto segments = rig.CaptureSegments(cameras[c].name, rng, &segmentation_failure);
+        const int label = static_cast<int>(std::find(rig.object_names().begin(), rig.object_names().end(), spec.name) -
+                                           rig.object_names().begin()) + 1;
+        const LabelledSegment* best = nullptr;
+        for (const auto& l : segments) {
+          if (l.label == label && (best == nullptr || l.iou > best->iou)) best = &l;
+        }
+        Sample sample;
+        sample.id = static_cast<int>(dataset.samples.size());
+        sample.category = spec.category;
+        sample.instance = spec.instance;
+        sample.source = "turntable";
+        sample.elevation_deg = options.elevations_deg[c];
+        sample.frame = view;
+        std::string reason = segmentation_failure.empty() ? "no segment of the object" : segmentation_failure;
+        if (best != nullptr && Describe(*best, dir, dataset.params, sample, reason)) {
+          dataset.samples.push_back(std::move(sample));
+        } else {
+          skipped.push_back({{"instance", spec.instance}, {"elevation_deg", options.elevations_deg[c]},
+                             {"frame", view}, {"reason", reason}});
+        }
+        progress.Advance();
+      }
+    }
+  }
+  progress.Finish();
+  dataset.capture = {{"kind", "turntable"}, {"captures", total}, {"samples", dataset.samples.size()},
+                     {"skipped", skipped}, {"elevations_deg", options.elevations_deg},
+                     {"distance_m", options.distance_m}, {"jitter_m", options.jitter_m}};
+  return dataset;
+}
+
+Dataset CaptureScenes(const ObjectSet& set, const SceneOptions& options, const std::filesystem::path& dir) {
+  if (options.min_objects < 1 || options.max_objects < options.min_objects ||
+      options.max_objects > static_cast<int>(set.objects.size())) {
+    throw std::invalid_argument("scene object count range [" + std::to_string(options.min_objects) + ", " +
+                                std::to_string(options.max_objects) + "] does not fit the set's " +
+                                std::to_string(set.objects.size()) + " objects");
+  }
+  PrepareDatasetDir(dir);
+  CaptureRig rig(set, {});
+  Dataset dataset;
+  dataset.object_set = set.source.string();
+  dataset.seed = options.seed;
+  std::mt19937_64 background_rng = EpisodeRng(options.seed, 0xbac0);
+  rig.CaptureBackground("kinect", background_rng);
+  std::vector<double> radii;
+  for (const auto& spec : set.objects) radii.push_back(sim::FootprintRadius(rig.model(), rig.data(), rig.Body(spec.name)));
+
+  int placed = 0, missed = 0, spurious = 0, undescribed = 0;
+  Progress progress("scenes " + set.name, options.scenes);
+  for (int scene = 0; scene < options.scenes; ++scene) {
+    std::mt19937_64 rng = EpisodeRng(options.seed, static_cast<uint64_t>(scene));
+    std::vector<int> order(set.objects.size());
+    std::iota(order.begin(), order.end(), 0);
+    std::shuffle(order.begin(), order.end(), rng);
+    const int count = std::uniform_int_distribution<int>(options.min_objects, options.max_objects)(rng);
+    order.resize(count);
+    std::vector<double> chosen_radii;
+    for (int o : order) chosen_radii.push_back(radii[o]);
+    const auto poses = sim::SampleTablePoses(chosen_radii, options.area, rng);
+    if (!poses) throw std::invalid_argument("scene " + std::to_string(scene) + ": the objects do not fit the area");
+    rig.ParkAll();
+    for (int k = 0; k < count; ++k) {
+      sim::PlaceObject(rig.model(), rig.data(), rig.Body(set.objects[order[k]].name), (*poses)[k].x, (*poses)[k].y,
+                       (*poses)[k].yaw);
+    }
+    placed += count;
+    const auto segments = rig.CaptureSegments("kinect", rng, nullptr);
+    std::vector<bool> found(rig.object_names().size() + 1, false);
+    for (const auto& l : segments) {
+      if (l.label == 0) {
+        ++spurious;
+        continue;
+      }
+      const ObjectSpec& spec = set.Find(rig.object_names()[l.label - 1]);
+      found[l.label] = true;
+      Sample sample;
+      sample.id = static_cast<int>(dataset.samples.size());
+      sample.category = spec.category;
+      sample.instance = spec.instance;
+      sample.source = "scene";
+      sample.elevation_deg = 45;
+      sample.frame = static_cast<int>(&l - segments.data());
+      sample.scene = scene;
+      std::string reason;
+      if (Describe(l, dir, dataset.params, sample, reason)) {
+        dataset.samples.push_back(std::move(sample));
+      } else {
+        ++undescribed;
+      }
+    }
+    for (int o : order) {
+      const int label = static_cast<int>(std::find(rig.object_names().begin(), rig.object_names().end(),
+                                                   set.objects[o].name) - rig.object_names().begin()) + 1;
+      if (!found[label]) ++missed;
+    }
+    progress.Advance();
+  }
+  progress.Finish();
+  dataset.capture = {{"kind", "scenes"}, {"scenes", options.scenes}, {"objects_placed", placed},
+                     {"objects_not_segmented", missed}, {"segments_without_object", spurious},
+                     {"segments_not_described", undescribed}, {"samples", dataset.samples.size()},
+                     {"objects_per_scene", {options.min_objects, options.max_objects}}};
+  return dataset;
+}
+
+}  // namespace sortcell::app

@@ -1,0 +1,30 @@
+#pragma once
+/// @file
+/// The cached recognition model an episode uses when none is named: Color-CVFH (normalization)
+/// trained on random cell scenes of the object set (the conditions the sorting cell sees), kept in
+/// the model cache folder (ModelCacheDir: the build folder's models/ by default, never the source tree).
+
+#include <filesystem>
+#include <string>
+
+#include "app/common/object_set.h"
+
+namespace sortcell::app {
+
+/// The folder of cached default models: $SORTCELL_MODEL_CACHE when set; else the folder the build
+/// names (compile definition SORTCELL_DEFAULT_MODEL_CACHE, <build folder>/models); else out/models
+/// under the working directory.
+std::filesystem::path ModelCacheDir();
+
+/// <ModelCacheDir()>/<set name>-color-cvfh-norm.model.json.
+std::filesystem::path DefaultModelPath(const ObjectSet& set);
+
+/// The command that makes the default model, for error messages.
+std::string DefaultModelHint(const ObjectSet& set);
+
+/// Trains the default model of `set` if it is not there yet (150 random scenes, seed 0; about 20 s;
+/// the scenes' dataset is kept next to it) and returns its path. Written to a temporary file and
+/// renamed, so concurrent runs never read a half-written model.
+std::filesystem::path EnsureDefaultModel(const ObjectSet& set);
+
+}  // namespace sortcell::app

@@ -1,0 +1,344 @@
+#include "app/sweep/sweep.h"
+
+#include <fcntl.h>
+#include <signal.h>
+#include <sys/prctl.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <spdlog/fmt/fmt.h>
+#include <spdlog/spdlog.h>
+
+#include <chrono>
+#include <fstream>
+#include <map>
+#include <set>
+#include <sstream>
+#include <stdexcept>
+#include <thread>
+
+#include "app/common/object_set.h"
+#include "app/common/output_dir.h"
+#include "app/common/progress.h"
+#include "app/common/wall_clock.h"
+#include "app/recognition/default_model.h"
+#include "app/sweep/sweep_record.h"
+#include "app/sweep/sweep_report.h"
+#include "app/sweep/sweep_spec.h"
+#include "perception/recognition_model.h"
+#include "sim/model.h"
+
+namespace sortcell::app {
+namespace {
+
+std::string ReadText(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+// ---- Checks before anything runs ----
+
+void CheckOptions(const SweepOptions& options) {
+  if (options.jobs < 1 || options.jobs > 256) throw std::invalid_argument("-j: expected 1..256 worker processes");
+  if (options.shards < 1 || options.shard < 1 || options.shard > options.shards) {
+    throw std::invalid_argument("--shard: expected i/N with 1 <= i <= N");
+  }
+}
+
+// What spec.yaml in the output folder holds: the spec's text, and the --set overrides after it.
+std::string SpecCopyText(const SweepOptions& options) {
+  std::string text = ReadText(options.spec);
+  if (options.sets.empty()) return text;
+  if (!text.empty() && text.back() != '\n') text += '\n';
+  text += "# Overridden on the command line (sortcell sweep --set), applied over the keys above:\n";
+  for (const auto& set : options.sets) text += "#   --set " + set + "\n";
+  return text;
+}
+
+void CheckSameSpec(const std::filesystem::path& out, const std::filesystem::path& spec_copy, const std::string& spec_text) {
+  if (std::filesystem::exists(spec_copy) && ReadText(spec_copy) != spec_text) {
+    throw std::invalid_argument("output folder '" + out.string() + "' holds a sweep of another spec (" + spec_copy.string() +
+                                "): use another --out");
+  }
+}
+
+// The finished episodes of results.jsonl. Without --resume a folder with any is refused (before
+// they are read, so the hint is not hidden behind a damaged line); with it they are read strictly.
+SweepResults ReadFinishedResults(const std::filesystem::path& file, const SweepOptions& options) {
+  if (options.resume) return ReadSweepResults(file);
+  SweepResults results;
+  if (!std::filesystem::exists(file)) return results;
+  const std::string text = ReadText(file);
+  results.file_bytes = text.size();
+  int lines = 0;
+  for (size_t start = 0, end; (end = text.find('\n', start)) != std::string::npos; start = end + 1) {
+    results.complete_bytes = end + 1;
+    if (text.find_first_not_of(" \t\r", start) < end) ++lines;
+  }
+  if (lines > 0) {
+    throw std::invalid_argument("output folder '" + options.out.string() + "' already holds " + std::to_string(lines) +
+                                " results: add --resume to run what is missing");
+  }
+  return results;
+}
+
+// The model every episode sorts with (the spec's, or the set's default, trained if missing), after
+// loading it and every model of a `model` axis once, so a bad one fails before any worker starts.
+std::filesystem::path CheckModels(const SweepSpec& spec, const ObjectSet& set, const std::filesystem::path& spec_file) {
+  std::filesystem::path model = spec.model;
+  if (model.empty()) model = EnsureDefaultModel(set);
+  std::vector<std::filesystem::path> models{model};
+  for (const auto& axis : spec.axes) {
+    if (axis.name == "model") {
+      for (const auto& v : axis.values) models.push_back(v.get<std::string>());
+    }
+  }
+  for (const auto& m : models) {
+    try {
+      perception::LoadModel(m);
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument("sweep spec '" + spec_file.string() + "': " + e.what());
+    }
+  }
+  return model;
+}
+
+// A last line cut short by an interruption is dropped; its episode runs again.
+void DropCutShortRecord(const std::filesystem::path& file, const SweepResults& results) {
+  if (results.file_bytes <= results.complete_bytes) return;
+  spdlog::warn("{}: dropping an incomplete last record ({} bytes); its episode runs again", file.string(),
+               results.file_bytes - results.complete_bytes);
+  std::filesystem::resize_file(file, results.complete_bytes);
+}
+
+// This shard's episodes not yet in `records`; counts them into `run`.
+std::vector<int> EpisodesToRun(const SweepOptions& options, const std::vector<SweepRecord>& records, SweepRun& run) {
+  std::set<int> done;
+  for (const auto& r : records) done.insert(r.episode);
+  std::vector<int> todo;
+  for (int i = 0; i < run.total; ++i) {
+    if (i % options.shards != options.shard - 1) continue;
+    ++run.in_shard;
+    if (done.count(i)) ++run.already;
+    else todo.push_back(i);
+  }
+  return todo;
+}
+
+// ---- Worker processes ----
+
+struct Worker {
+  pid_t pid = 0;
+  int episode = 0;
+  uint64_t seed = 0;
+  nlohmann::json axes;
+  std::filesystem::path dir;
+  WallClock::time_point started;
+};
+
+// What every episode of the sweep shares.
+struct SweepSetup {
+  const SweepSpec& spec;
+  const SweepOptions& options;
+  std::filesystem::path model;
+};
+
+// Starts `sortcell episode` with `args`; its output goes to `log`.
+pid_t Spawn(const std::vector<std::string>& args, const std::filesystem::path& log) {
+  std::vector<char*> argv;
+  for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+  argv.push_back(nullptr);
+  const std::string log_path = log.string();
+  const pid_t pid = fork();
+  if (pid < 0) throw std::runtime_error("sweep: cannot start a worker process (fork failed)");
+  if (pid == 0) {
+    // A worker dies with the sweep (no orphans writing into a folder that a --resume reuses).
+    prctl(PR_SET_PDEATHSIG, SIGKILL);
+    const int fd = open(log_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    if (fd >= 0) {
+      dup2(fd, 1);
+      dup2(fd, 2);
+      close(fd);
+    }
+    execv("/proc/self/exe", argv.data());
+    _exit(127);
+  }
+  return pid;
+}
+
+// The `sortcell episode` command line of worker `w`.
+std::vector<std::string> EpisodeArguments(const SweepSetup& s, const Worker& w) {
+  std::vector<std::string> args{"sortcell",      "episode",
+                                "--scene",       s.spec.scene.string(),
+                                "--object-set",  s.spec.object_set.string(),
+                                "--seed",        std::to_string(w.seed),
+                                "--out",         w.dir.string(),
+                                "--model",       w.axes.contains("model") ? w.axes["model"].get<std::string>() : s.model.string()};
+  static const std::map<std::string, std::string> kAxisOptions{
+      {"light_intensity", "--light-intensity"}, {"noise_scale", "--noise-scale"},   {"friction_scale", "--friction-scale"},
+      {"mass_scale", "--mass-scale"},           {"camera_shift_m", "--camera-shift"}, {"camera_turn_rad", "--camera-turn"}};
+  for (const auto& [axis, value] : w.axes.items()) {
+    if (axis == "objects") args.insert(args.end(), {"--objects", std::to_string(value.get<int>())});
+    const auto option = kAxisOptions.find(axis);
+    if (option != kAxisOptions.end()) args.insert(args.end(), {option->second, fmt::format("{:.17g}", value.get<double>())});
+  }
+  return args;
+}
+
+Worker StartEpisode(const SweepSetup& s, int episode) {
+  Worker w;
+  w.episode = episode;
+  std::tie(w.seed, w.axes) = s.spec.Episode(episode);
+  w.dir = s.options.out / fmt::format("episodes/{:06d}", episode);
+  std::filesystem::create_directories(w.dir);
+  std::filesystem::remove(w.dir / "metrics.json");
+  w.started = WallClock::now();
+  w.pid = Spawn(EpisodeArguments(s, w), w.dir / "log.txt");
+  return w;
+}
+
+std::string LastLine(const std::filesystem::path& file) {
+  std::string text = ReadText(file);
+  while (!text.empty() && (text.back() == '\n' || text.back() == '\r')) text.pop_back();
+  const size_t nl = text.rfind('\n');
+  std::string line = nl == std::string::npos ? text : text.substr(nl + 1);
+  const size_t cr = line.rfind('\r');  // Progress lines on a terminal.
+  return cr == std::string::npos ? line : line.substr(cr + 1);
+}
+
+// The record of a worker that ended with wait status `status`: its metrics.json if it exited 0 and
+// left a readable one, else what is known of the failure.
+SweepRecord FinishedRecord(const Worker& w, int status, bool timed_out) {
+  SweepRecord record;
+  record.episode = w.episode;
+  record.seed = w.seed;
+  record.axes = w.axes;
+  record.wall_time_s = SecondsSince(w.started);
+  const std::filesystem::path metrics_file = w.dir / "metrics.json";
+  std::string problem;
+  if (!timed_out && WIFEXITED(status) && WEXITSTATUS(status) == 0 && std::filesystem::exists(metrics_file)) {
+    try {
+      ReadSummaryAndItems(nlohmann::json::parse(ReadText(metrics_file)), record.summary, record.items);
+      record.status = RunStatus::kOk;
+      return record;
+    } catch (const nlohmann::json::exception& e) {
+      problem = metrics_file.string() + ": not JSON: " + e.what();
+    } catch (const std::invalid_argument& e) {
+      problem = metrics_file.string() + ": " + e.what();
+    }
+  }
+  record.status = timed_out ? RunStatus::kTimeout : RunStatus::kCrashed;
+  if (WIFEXITED(status)) record.exit_code = WEXITSTATUS(status);
+  if (WIFSIGNALED(status)) record.signal = WTERMSIG(status);
+  record.error = problem.empty() ? LastLine(w.dir / "log.txt") : problem;
+  return record;
+}
+
+// Runs the episodes `todo`, `jobs` at a time; each finished one is appended to `writer` at once
+// and to `records`. A worker past the spec's timeout is killed and recorded as such.
+class EpisodeRunner {
+ public:
+  EpisodeRunner(const SweepSetup& setup, SweepResultsWriter& writer, std::vector<SweepRecord>& records, SweepRun& run)
+      : setup_(setup), writer_(writer), records_(records), run_(run) {}
+
+  void Run(const std::vector<int>& todo) {
+    Progress progress("sweep " + setup_.spec.source.filename().string(), static_cast<int>(todo.size()));
+    size_t next = 0;
+    while (next < todo.size() || !running_.empty()) {
+      while (next < todo.size() && static_cast<int>(running_.size()) < setup_.options.jobs) {
+        Worker w = StartEpisode(setup_, todo[next++]);
+        running_[w.pid] = w;
+      }
+      if (ReapOne(progress)) continue;
+      KillOverdue(progress);
+      std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    }
+    progress.Finish();
+  }
+
+ private:
+  // Records a worker that has ended, if one has. Returns whether one had.
+  bool ReapOne(Progress& progress) {
+    int status = 0;
+    const pid_t pid = waitpid(-1, &status, WNOHANG);
+    const auto it = running_.find(pid);
+    if (pid <= 0 || it == running_.end()) return false;
+    Finish(it->second, status, false, progress);
+    running_.erase(it);
+    return true;
+  }
+
+  void KillOverdue(Progress& progress) {
+    for (auto it = running_.begin(); it != running_.end();) {
+      if (SecondsSince(it->second.started) > setup_.spec.episode_timeout_s) {
+        int status = 0;
+        kill(it->first, SIGKILL);
+        waitpid(it->first, &status, 0);
+        Finish(it->second, status, true, progress);
+        it = running_.erase(it);
+      } else {
+        ++it;
+      }
+    }
+  }
+
+  void Finish(const Worker& w, int status, bool timed_out, Progress& progress) {
+    SweepRecord record = FinishedRecord(w, status, timed_out);
+    if (!record.ok()) {
+      ++run_.crashed;
+      spdlog::warn("episode {} {}: {}", record.episode, ToString(record.status), record.error.value_or(""));
+    }
+    writer_.Append(record);
+    records_.push_back(std::move(record));
+    ++run_.ran;
+    progress.Advance();
+  }
+
+  const SweepSetup& setup_;
+  SweepResultsWriter& writer_;
+  std::vector<SweepRecord>& records_;
+  SweepRun& run_;
+  std::map<pid_t, Worker> running_;
+};
+
+}  // namespace
+
+SweepRun RunSweep(const SweepOptions& options, const std::vector<std::string>& command_line) {
+  const auto wall_start = WallClock::now();
+  // Cheap checks first: nothing in the output folder is touched until the spec, the set, the scene
+  // and the folder's earlier results are known to be good.
+  CheckOptions(options);
+  const SweepSpec spec = LoadSweepSpec(options.spec, options.sets);
+  const ObjectSet set = LoadObjectSet(spec.object_set);
+  sim::Model::FromFile(spec.scene.string());  // Fails here, once, rather than in every worker.
+  PrepareOutputDir(options.out);
+  const std::filesystem::path results_file = options.out / "results.jsonl";
+  const std::filesystem::path spec_copy = options.out / "spec.yaml";
+  const std::string spec_text = SpecCopyText(options);
+  CheckSameSpec(options.out, spec_copy, spec_text);
+  SweepResults finished = ReadFinishedResults(results_file, options);
+  const std::filesystem::path model = CheckModels(spec, set, options.spec);
+
+  if (!std::filesystem::exists(spec_copy)) WriteTextFile(spec_copy, spec_text);
+  DropCutShortRecord(results_file, finished);
+  SweepRun run;
+  run.total = spec.EpisodeCount();
+  const std::vector<int> todo = EpisodesToRun(options, finished.records, run);
+  WriteJson(options.out / ("run_shard" + std::to_string(options.shard) + ".json"),
+            RunRecord(command_line, spec.seed,
+                      {{"command", "sweep"}, {"spec", options.spec.string()}, {"jobs", options.jobs},
+                       {"shard", std::to_string(options.shard) + "/" + std::to_string(options.shards)},
+                       {"episodes_to_run", todo.size()}, {"set", options.sets}}));
+
+  SweepResultsWriter writer(results_file);
+  const SweepSetup setup{spec, options, model};
+  EpisodeRunner(setup, writer, finished.records, run).Run(todo);
+  writer.Close();
+  run.wall_time_s = SecondsSince(wall_start);
+  run.summary = WriteSweepReport(options.out, spec, finished.records);
+  return run;
+}
+
+}  // namespace sortcell::app

@@ -1,0 +1,46 @@
+#pragma once
+/// @file
+/// `sortcell sweep`: many episodes of a spec (sweep_spec.h), each in its own worker process
+/// (`sortcell episode`), `jobs` at a time. Each finished episode is appended to results.jsonl at once
+/// and flushed, so an interrupted sweep loses only the episodes in flight; --resume runs what is
+/// missing; --shard i/N runs the episodes whose index is i-1 modulo N, so shards can run on other
+/// machines and their results.jsonl files be concatenated and summarised (--resume on the merged
+/// folder runs nothing and writes the summary).
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+namespace sortcell::app {
+
+struct SweepOptions {
+  std::filesystem::path spec;
+  std::filesystem::path out;
+  int jobs = 1;
+  bool resume = false;
+  int shard = 1, shards = 1;  ///< This is shard `shard` (1-based) of `shards`.
+  /// --set KEY=VALUE: overrides of the spec's keys (LoadSweepSpec). They are part of the sweep:
+  /// spec.yaml in the output folder lists them, and a --resume must give the same ones.
+  std::vector<std::string> sets;
+};
+
+struct SweepRun {
+  int total = 0;      ///< Episodes of the spec.
+  int in_shard = 0;   ///< Of them, this shard's.
+  int already = 0;    ///< Found in results.jsonl.
+  int ran = 0, crashed = 0;
+  double wall_time_s = 0;
+  nlohmann::json summary;  ///< summary.json of everything in results.jsonl.
+};
+
+/// @throws std::invalid_argument for a bad spec (naming it) or --set, a bad shard or job count, an
+///         output folder holding another spec's results, results without --resume, or (on --resume) a
+///         damaged line in results.jsonl ("<file> line <n>: <key>: <what>"; a cut-short last line is
+///         dropped and its episode runs again).
+/// @throws std::runtime_error "cannot write '<file>'" if a result or summary cannot be written (a
+///         full disk): the results written before stay.
+SweepRun RunSweep(const SweepOptions& options, const std::vector<std::string>& command_line);
+
+}  // namespace sortcell::app

@@ -1,0 +1,189 @@
+#include "app/sweep/sweep_record.h"
+
+#include <array>
+#include <cerrno>
+#include <cstring>
+#include <sstream>
+#include <stdexcept>
+#include <system_error>
+#include <utility>
+
+#include "app/common/json_fields.h"
+#include "app/common/output_dir.h"
+
+namespace sortcell::app {
+namespace {
+
+constexpr std::array<std::pair<RunStatus, const char*>, 3> kRunStatusNames{
+    {{RunStatus::kOk, "ok"}, {RunStatus::kCrashed, "crashed"}, {RunStatus::kTimeout, "timeout"}}};
+
+std::string SystemReason() { return errno != 0 ? std::string(": ") + std::strerror(errno) : std::string(); }
+
+// `json[key]`, if present, into `out` (which is reset otherwise).
+template <typename T>
+void ReadOptional(const nlohmann::json& json, const char* key, std::optional<T>& out) {
+  out.reset();
+  if (!json.contains(key)) return;
+  T value;
+  ReadField(json, "", key, value);
+  out = value;
+}
+
+void ReadEpisodeIndex(const nlohmann::json& j, SweepRecord& v) {
+  ReadField(j, "", "episode", v.episode);
+  if (!j["episode"].is_number_integer() || v.episode < 0) {
+    throw std::invalid_argument("episode: expected a non-negative integer, found " + j["episode"].dump());
+  }
+  ReadField(j, "", "seed", v.seed);
+  if (!j["seed"].is_number_unsigned()) {
+    throw std::invalid_argument("seed: expected a non-negative integer, found " + j["seed"].dump());
+  }
+}
+
+void ReadStatus(const nlohmann::json& j, RunStatus& status) {
+  std::string text;
+  ReadField(j, "", "status", text);
+  try {
+    status = ParseRunStatus(text);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(std::string("status: ") + e.what());
+  }
+}
+
+// One line of results.jsonl. @throws std::invalid_argument naming the key.
+SweepRecord ParseRecord(std::string_view line) {
+  nlohmann::json j;
+  try {
+    j = nlohmann::json::parse(line.begin(), line.end());
+  } catch (const nlohmann::json::parse_error& e) {
+    throw std::invalid_argument(std::string("not a JSON record (damaged line?): ") + e.what());
+  }
+  try {
+    return j.get<SweepRecord>();
+  } catch (const nlohmann::json::exception& e) {
+    throw std::invalid_argument(std::string("not a sweep record: ") + e.what());
+  }
+}
+
+std::string ReadText(const std::filesystem::path& file) {
+  errno = 0;
+  std::ifstream in(file, std::ios::binary);
+  std::stringstream text;
+  if (in) text << in.rdbuf();
+  if (!in || in.bad()) throw std::runtime_error("cannot read '" + file.string() + "'" + SystemReason());
+  return text.str();
+}
+
+}  // namespace
+
+const char* ToString(RunStatus status) {
+  for (const auto& [value, text] : kRunStatusNames) {
+    if (value == status) return text;
+  }
+  return "?";  // Unreachable for a valid enumerator.
+}
+
+RunStatus ParseRunStatus(std::string_view text) {
+  std::string expected;
+  for (const auto& [value, spelling] : kRunStatusNames) {
+    if (text == spelling) return value;
+    expected += (expected.empty() ? "" : ", ") + std::string(spelling);
+  }
+  throw std::invalid_argument("unknown run status '" + std::string(text) + "' (expected " + expected + ")");
+}
+
+void to_json(nlohmann::json& j, const SweepRecord& v) {
+  j = {{"episode", v.episode},
+       {"seed", v.seed},
+       {"axes", v.axes},
+       {"wall_time_s", v.wall_time_s},
+       {"status", ToString(v.status)}};
+  if (v.ok()) {
+    j["summary"] = v.summary;
+    j["items"] = v.items;
+    return;
+  }
+  if (v.exit_code) j["exit_code"] = *v.exit_code;
+  if (v.signal) j["signal"] = *v.signal;
+  if (v.error) j["error"] = *v.error;
+}
+
+void from_json(const nlohmann::json& j, SweepRecord& v) {
+  if (!j.is_object()) throw std::invalid_argument(std::string("record: expected an object, found ") + j.type_name());
+  ReadEpisodeIndex(j, v);
+  ReadField(j, "", "axes", v.axes);
+  if (!v.axes.is_object()) throw std::invalid_argument(std::string("axes: expected an object, found ") + v.axes.type_name());
+  ReadField(j, "", "wall_time_s", v.wall_time_s);
+  ReadStatus(j, v.status);
+  v.summary = EpisodeSummary{};
+  v.items.clear();
+  if (v.ok()) ReadSummaryAndItems(j, v.summary, v.items);
+  ReadOptional(j, "exit_code", v.exit_code);
+  ReadOptional(j, "signal", v.signal);
+  ReadOptional(j, "error", v.error);
+}
+
+void ReadSummaryAndItems(const nlohmann::json& json, EpisodeSummary& summary, std::vector<ItemResult>& items) {
+  if (!json.is_object()) throw std::invalid_argument(std::string("record: expected an object, found ") + json.type_name());
+  const auto s = json.find("summary");
+  if (s == json.end()) throw std::invalid_argument("summary: missing");
+  from_json(*s, summary);  // Its messages name "summary.<key>".
+  const auto list = json.find("items");
+  if (list == json.end()) throw std::invalid_argument("items: missing");
+  if (!list->is_array()) throw std::invalid_argument(std::string("items: expected a list, found ") + list->type_name());
+  items.clear();
+  for (size_t i = 0; i < list->size(); ++i) {
+    const std::string where = "items[" + std::to_string(i) + "]";
+    const nlohmann::json& item = (*list)[i];
+    if (!item.is_object()) throw std::invalid_argument(where + ": expected an object, found " + item.type_name());
+    try {
+      items.push_back(item.get<ItemResult>());
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument(where + "." + e.what());  // ItemResult's messages start with the key.
+    }
+  }
+}
+
+SweepResults ReadSweepResults(const std::filesystem::path& file) {
+  SweepResults results;
+  std::error_code ec;
+  if (!std::filesystem::exists(file, ec)) return results;
+  const std::string text = ReadText(file);
+  results.file_bytes = text.size();
+  size_t start = 0;
+  int line = 0;
+  while (start < text.size()) {
+    const size_t end = text.find('\n', start);
+    if (end == std::string::npos) break;  // No newline: cut short, no record.
+    ++line;
+    const std::string_view content(text.data() + start, end - start);
+    start = end + 1;
+    results.complete_bytes = start;
+    if (content.find_first_not_of(" \t\r") == std::string_view::npos) continue;
+    try {
+      results.records.push_back(ParseRecord(content));
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument(file.string() + " line " + std::to_string(line) + ": " + e.what());
+    }
+  }
+  return results;
+}
+
+SweepResultsWriter::SweepResultsWriter(std::filesystem::path file) : file_(std::move(file)) {
+  errno = 0;
+  out_.open(file_, std::ios::binary | std::ios::app);
+  if (!out_) throw std::runtime_error("cannot append to '" + file_.string() + "'" + SystemReason());
+}
+
+void SweepResultsWriter::Append(const SweepRecord& record) {
+  // A worker's log line may hold bytes that are not UTF-8: replaced, not a reason to lose the record.
+  const std::string line = nlohmann::json(record).dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
+  errno = 0;
+  out_ << line << '\n';
+  out_.flush();
+  if (!out_) throw std::runtime_error("cannot write '" + file_.string() + "'" + SystemReason());
+}
+
+void SweepResultsWriter::Close() { CloseChecked(out_, file_); }
+
+}  // namespace sortcell::app

@@ -1,0 +1,99 @@
+#pragma once
+/// @file
+/// One line of a sweep's results.jsonl as a struct, and the file read back into them (by --resume
+/// and the report). Reading is strict: a line that is not JSON, or a missing or mistyped key, is an
+/// error naming the file, the line and the key ("<file> line 17: summary.grasps: missing"), never a
+/// silent zero.
+///
+/// A line, as written (keys as in every results.jsonl so far, so old result folders still read):
+///   {"episode": 3, "seed": 3, "axes": {"objects": 5}, "wall_time_s": 6.6, "status": "ok",
+///    "summary": {...metrics.json's summary...}, "items": [...metrics.json's items...]}
+///   {"episode": 4, ..., "status": "crashed" | "timeout", "exit_code": 2, "signal": 9, "error": "..."}
+/// (exit_code or signal as the worker ended; error: the last line of its log).
+
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "app/episode/episode_metrics.h"
+
+namespace sortcell::app {
+
+/// How a sweep's worker process ended.
+enum class RunStatus {
+  kOk,       ///< Exited 0 and left a readable metrics.json.
+  kCrashed,  ///< Anything else, before the timeout.
+  kTimeout,  ///< Killed after the spec's episode_timeout_s.
+};
+
+/// "ok", "crashed", "timeout".
+const char* ToString(RunStatus status);
+/// The inverse of ToString.
+/// @throws std::invalid_argument "unknown run status '<text>' (expected ok, crashed, timeout)".
+RunStatus ParseRunStatus(std::string_view text);
+
+/// One episode of a sweep: one line of results.jsonl.
+struct SweepRecord {
+  int episode = 0;  ///< Index in the spec.
+  uint64_t seed = 0;
+  nlohmann::json axes = nlohmann::json::object();  ///< The episode's axis values, as the spec gave them.
+  double wall_time_s = 0;
+  RunStatus status = RunStatus::kOk;
+  // kOk: the episode's metrics.
+  EpisodeSummary summary;
+  std::vector<ItemResult> items;
+  // kCrashed, kTimeout: what is known of the failure.
+  std::optional<int> exit_code, signal;
+  std::optional<std::string> error;
+
+  bool ok() const { return status == RunStatus::kOk; }
+};
+
+void to_json(nlohmann::json& j, const SweepRecord& v);
+/// @throws std::invalid_argument "<key path>: <what>" for a missing or mistyped key, an unknown
+///         status or outcome ("summary.grasps: missing", "items[2].outcome: unknown item outcome ...").
+void from_json(const nlohmann::json& j, SweepRecord& v);
+
+/// Reads `json["summary"]` and `json["items"]` (a metrics.json, or a record of status ok).
+/// @throws std::invalid_argument naming the key, as from_json.
+void ReadSummaryAndItems(const nlohmann::json& json, EpisodeSummary& summary, std::vector<ItemResult>& items);
+
+/// results.jsonl as read.
+struct SweepResults {
+  std::vector<SweepRecord> records;
+  /// Length of the file up to the end of its last complete line. A last line without its newline
+  /// was cut short by an interruption: it is no record, and its episode runs again.
+  size_t complete_bytes = 0;
+  size_t file_bytes = 0;
+};
+
+/// Reads results.jsonl (none: no records). Blank lines are skipped.
+/// @throws std::invalid_argument "<file> line <n>: <key>: <what>" for a complete line that is not
+///         JSON or not a record (a damaged line anywhere but a cut-short last one).
+/// @throws std::runtime_error "cannot read '<file>'" if it exists but cannot be read.
+SweepResults ReadSweepResults(const std::filesystem::path& file);
+
+/// Appends records to results.jsonl, one line each, flushed as written.
+class SweepResultsWriter {
+ public:
+  /// @throws std::runtime_error "cannot append to '<file>'" if it cannot be opened.
+  explicit SweepResultsWriter(std::filesystem::path file);
+  /// Writes `record` as one line and flushes it.
+  /// @throws std::runtime_error "cannot write '<file>'" (with the system's reason) if any of it did
+  ///         not reach the file (a full disk, a lost folder).
+  void Append(const SweepRecord& record);
+  /// Closes the file, checked as Append. (The destructor closes it unchecked.)
+  void Close();
+
+ private:
+  std::filesystem::path file_;
+  std::ofstream out_;
+};
+
+}  // namespace sortcell::app

@@ -1,0 +1,275 @@
+#include "app/sweep/sweep_report.h"
+
+#include <spdlog/fmt/fmt.h>
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <optional>
+#include <stdexcept>
+#include <string>
+
+#include "app/common/json_fields.h"
+#include "app/common/output_dir.h"
+#include "app/episode/episode_metrics.h"
+
+namespace sortcell::app {
+namespace {
+
+// ---- Totals over a group of episodes ----
+
+struct Tally {
+  int episodes = 0, failed_episodes = 0, attempts = 0, grasps = 0;
+  double sim_s = 0, wall_s = 0;
+  ItemTally items;
+
+  void Add(const SweepRecord& record) {
+    ++episodes;
+    if (!record.ok()) {
+      ++failed_episodes;
+      return;
+    }
+    attempts += record.summary.grasp_attempts;
+    grasps += record.summary.grasps;
+    sim_s += record.summary.run.sim_time_s;
+    wall_s += record.summary.run.wall_time_s;
+    for (const auto& item : record.items) items.Add(item);
+  }
+};
+
+// A group's figures, as summary.json, summary.csv and summary.md show them.
+struct GroupFigures {
+  int episodes = 0, episodes_failed = 0, items = 0, sorted = 0, grasp_attempts = 0;
+  std::optional<double> correct_sort_rate, recognition_accuracy, grasp_success_rate, mean_cycle_time_s, real_time_factor;
+  std::pair<double, double> ci95{0, 1};
+  OutcomeCounts outcomes;
+  double sim_time_s = 0, episode_wall_time_s = 0;
+};
+
+GroupFigures Figures(const Tally& t) {
+  GroupFigures f;
+  f.episodes = t.episodes;
+  f.episodes_failed = t.failed_episodes;
+  f.items = t.items.items;
+  f.sorted = t.items.Count(cell::ItemOutcome::kSorted);
+  f.correct_sort_rate = Ratio(f.sorted, f.items);
+  f.ci95 = WilsonInterval(f.sorted, f.items);
+  for (const auto outcome : cell::kItemOutcomes) f.outcomes[outcome] = t.items.Count(outcome);
+  f.recognition_accuracy = Ratio(t.items.recognised, t.items.classified);
+  f.grasp_success_rate = Ratio(t.grasps, t.attempts);
+  f.grasp_attempts = t.attempts;
+  f.mean_cycle_time_s = Ratio(t.items.cycle_s, t.items.completed);
+  f.sim_time_s = t.sim_s;
+  f.episode_wall_time_s = t.wall_s;
+  if (t.wall_s > 0) f.real_time_factor = t.sim_s / t.wall_s;
+  return f;
+}
+
+nlohmann::json FiguresJson(const GroupFigures& f) {
+  return {{"episodes", f.episodes},
+          {"episodes_failed", f.episodes_failed},
+          {"items", f.items},
+          {"correct_sort_rate", OrNull(f.correct_sort_rate)},
+          {"correct_sort_rate_ci95", {f.ci95.first, f.ci95.second}},
+          {"outcomes", OutcomeCountsJson(f.outcomes)},
+          {"recognition_accuracy", OrNull(f.recognition_accuracy)},
+          {"grasp_success_rate", OrNull(f.grasp_success_rate)},
+          {"grasp_attempts", f.grasp_attempts},
+          {"mean_cycle_time_s", OrNull(f.mean_cycle_time_s)},
+          {"sim_time_s", f.sim_time_s},
+          {"episode_wall_time_s", f.episode_wall_time_s},
+          {"real_time_factor", OrNull(f.real_time_factor)}};
+}
+
+// The outcomes other than sorted (the failures), in metrics.json's order.
+std::vector<cell::ItemOutcome> Failures() {
+  std::vector<cell::ItemOutcome> failures;
+  for (const auto o : cell::kItemOutcomes) {
+    if (o != cell::ItemOutcome::kSorted) failures.push_back(o);
+  }
+  return failures;
+}
+
+// ---- Grouping by axis value ----
+
+struct AxisGroup {
+  std::string label;
+  GroupFigures figures;
+};
+
+// The label of a record's value of `axis`: a range axis is cut into 4 equal bins, a model shows its
+// file name.
+std::string ValueLabel(const SweepAxis& axis, const SweepRecord& record) {
+  const nlohmann::json& value = record.axes.at(axis.name);
+  const bool model = axis.name == "model";
+  if (model ? !value.is_string() : !value.is_number()) {
+    throw std::invalid_argument("episode " + std::to_string(record.episode) + ": axes." + axis.name + ": expected " +
+                                (model ? "a file name" : "a number") + ", found " + value.dump());
+  }
+  if (model) return std::filesystem::path(value.get<std::string>()).filename().string();
+  if (axis.is_range() && axis.name != "objects" && axis.max > axis.min) {
+    const double width = (axis.max - axis.min) / 4;
+    const int bin = std::min(3, static_cast<int>((value.get<double>() - axis.min) / width));
+    return fmt::format("{:.3g}-{:.3g}", axis.min + bin * width, axis.min + (bin + 1) * width);
+  }
+  if (value.is_number_integer()) return std::to_string(value.get<long long>());
+  return fmt::format("{:.4g}", value.get<double>());
+}
+
+// Numeric labels in numeric order, others in text order.
+bool LabelLess(const std::string& a, const std::string& b) {
+  try {
+    return std::stod(a) < std::stod(b);
+  } catch (const std::logic_error&) {
+    return a < b;
+  }
+}
+
+// The records grouped by their value of `axis` (records without it are left out), in label order.
+std::vector<AxisGroup> GroupByAxis(const SweepAxis& axis, const std::vector<SweepRecord>& records) {
+  std::map<std::string, Tally> tallies;
+  std::vector<std::string> order;
+  for (const auto& r : records) {
+    if (!r.axes.contains(axis.name)) continue;
+    const std::string label = ValueLabel(axis, r);
+    if (!tallies.count(label)) order.push_back(label);
+    tallies[label].Add(r);
+  }
+  std::sort(order.begin(), order.end(), LabelLess);
+  std::vector<AxisGroup> groups;
+  for (const auto& label : order) groups.push_back({label, Figures(tallies[label])});
+  return groups;
+}
+
+// ---- summary.csv ----
+
+std::string Number(double v) { return nlohmann::json(v).dump(); }
+
+std::string CsvHeader() {
+  std::string header = "axis,value,episodes,items,sorted,correct_sort_rate,ci95_low,ci95_high";
+  for (const auto o : Failures()) header += std::string(",") + cell::ToString(o);
+  return header + ",episodes_failed\n";
+}
+
+std::string CsvRow(const std::string& axis, const std::string& value, const GroupFigures& f) {
+  std::string row = fmt::format("{},{},{},{},{},{},{},{}", CsvField(axis), CsvField(value), f.episodes, f.items, f.sorted,
+                                f.correct_sort_rate ? Number(*f.correct_sort_rate) : "", Number(f.ci95.first),
+                                Number(f.ci95.second));
+  for (const auto o : Failures()) row += fmt::format(",{}", f.outcomes.at(o));
+  return row + fmt::format(",{}\n", f.episodes_failed);
+}
+
+// ---- summary.md ----
+
+std::string Percent(const std::optional<double>& v) { return v ? fmt::format("{:.1f} %", 100 * *v) : "n/a"; }
+
+std::string MarkdownOverview(const SweepSpec& spec, const GroupFigures& all) {
+  std::string md = fmt::format("# Sweep {}\n\n{} episodes ({} failed to run) of {} in the spec, {} items.\n\n",
+                               spec.source.filename().string(), all.episodes, all.episodes_failed, spec.EpisodeCount(),
+                               all.items);
+  md += "| items | correct-sort rate (95 % CI) | recognition accuracy | grasp success | mean cycle per item |\n"
+        "|---|---|---|---|---|\n";
+  md += fmt::format("| {} | {} ({:.1f}-{:.1f} %) | {} | {} | {} |\n\n", all.items, Percent(all.correct_sort_rate),
+                    100 * all.ci95.first, 100 * all.ci95.second, Percent(all.recognition_accuracy),
+                    Percent(all.grasp_success_rate),
+                    all.mean_cycle_time_s ? fmt::format("{:.1f} s", *all.mean_cycle_time_s) : "n/a");
+  md += "Outcomes: ";
+  for (size_t i = 0; i < cell::kItemOutcomes.size(); ++i) {
+    const auto o = cell::kItemOutcomes[i];
+    md += fmt::format("{} {}{}", cell::ToString(o), all.outcomes.at(o), i + 1 == cell::kItemOutcomes.size() ? ".\n" : ", ");
+  }
+  return md;
+}
+
+std::string MarkdownAxisTable(const std::string& axis, const std::vector<AxisGroup>& groups) {
+  std::string failures;
+  for (const auto o : Failures()) {
+    std::string name = cell::ToString(o);
+    std::replace(name.begin(), name.end(), '_', ' ');
+    failures += (failures.empty() ? "" : " / ") + name;
+  }
+  std::string md = fmt::format(
+      "\n## By {0}\n\n| {0} | episodes | items | correct-sort rate | 95 % CI | failures ({1}) |\n|---|---|---|---|---|---|\n",
+      axis, failures);
+  for (const auto& g : groups) {
+    const GroupFigures& f = g.figures;
+    std::string counts;
+    for (const auto o : Failures()) counts += (counts.empty() ? "" : " / ") + std::to_string(f.outcomes.at(o));
+    md += fmt::format("| {} | {} | {} | {} | {:.1f}-{:.1f} % | {} |\n", g.label, f.episodes, f.items,
+                      Percent(f.correct_sort_rate), 100 * f.ci95.first, 100 * f.ci95.second, counts);
+  }
+  return md;
+}
+
+// ---- plot_<axis>.png ----
+
+// The correct-sort rate by axis value with its 95 % interval, drawn by gnuplot (if installed).
+void Plot(const std::filesystem::path& dir, const std::string& axis, const std::vector<AxisGroup>& groups) {
+  const std::filesystem::path data = dir / ("plot_" + axis + ".dat");
+  std::string rows;
+  for (size_t i = 0; i < groups.size(); ++i) {
+    const GroupFigures& f = groups[i].figures;
+    if (!f.correct_sort_rate) continue;
+    std::string label = groups[i].label;
+    std::replace(label.begin(), label.end(), '"', '\'');
+    rows += fmt::format("{} \"{}\" {} {} {}\n", i, label, 100 * *f.correct_sort_rate, 100 * f.ci95.first, 100 * f.ci95.second);
+  }
+  WriteTextFile(data, rows);
+  const std::filesystem::path png = dir / ("plot_" + axis + ".png");
+  const std::string script = fmt::format(
+      "set terminal pngcairo size 800,500\nset output '{0}'\nset title 'Correct-sort rate by {1} (95% CI)'\n"
+      "set ylabel 'items in the correct bin (%)'\nset xlabel '{1}'\nset yrange [0:105]\nset grid ytics\n"
+      "set xrange [-0.5:{2:.1f}]\nset key off\n"
+      "plot '{3}' using 1:3:4:5:xticlabels(2) with yerrorbars pt 7 ps 1.5 lw 2\n",
+      png.string(), axis, groups.size() - 0.5, data.string());
+  FILE* gnuplot = popen("gnuplot 2>/dev/null", "w");
+  if (gnuplot != nullptr) {
+    std::fputs(script.c_str(), gnuplot);
+    if (pclose(gnuplot) != 0) spdlog::warn("gnuplot could not draw {} (is gnuplot installed?)", png.string());
+  }
+  std::error_code ec;
+  std::filesystem::remove(data, ec);
+}
+
+}  // namespace
+
+std::pair<double, double> WilsonInterval(int successes, int n) {
+  if (n <= 0) return {0.0, 1.0};
+  const double z = 1.959963984540054, p = static_cast<double>(successes) / n;
+  const double centre = (p + z * z / (2 * n)) / (1 + z * z / n);
+  const double half = z * std::sqrt(p * (1 - p) / n + z * z / (4.0 * n * n)) / (1 + z * z / n);
+  return {std::max(0.0, centre - half), std::min(1.0, centre + half)};
+}
+
+nlohmann::json WriteSweepReport(const std::filesystem::path& dir, const SweepSpec& spec,
+                                const std::vector<SweepRecord>& records) {
+  Tally tally;
+  for (const auto& r : records) tally.Add(r);
+  const GroupFigures all = Figures(tally);
+  nlohmann::json summary = FiguresJson(all);
+  summary["spec"] = spec.source.string();
+  summary["episodes_in_spec"] = spec.EpisodeCount();
+  nlohmann::json by_axis = nlohmann::json::object();
+  std::string csv = CsvHeader() + CsvRow("all", "all", all);
+  std::string md = MarkdownOverview(spec, all);
+  for (const auto& axis : spec.axes) {
+    const std::vector<AxisGroup> groups = GroupByAxis(axis, records);
+    if (groups.size() < 2) continue;
+    for (const auto& g : groups) {
+      by_axis[axis.name][g.label] = FiguresJson(g.figures);
+      csv += CsvRow(axis.name, g.label, g.figures);
+    }
+    md += MarkdownAxisTable(axis.name, groups);
+    Plot(dir, axis.name, groups);
+    md += "\n![correct-sort rate by " + axis.name + "](plot_" + axis.name + ".png)\n";
+  }
+  summary["by_axis"] = by_axis;
+  WriteTextFile(dir / "summary.csv", csv);
+  WriteTextFile(dir / "summary.md", md);
+  WriteJson(dir / "summary.json", summary);
+  return summary;
+}
+
+}  // namespace sortcell::app

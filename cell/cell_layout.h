@@ -1,0 +1,54 @@
+#pragma once
+/// @file
+/// What the sorting cell knows of itself, in one place: the arm's observe pose, where the bins are and
+/// how they are filled, the workspace the camera watches, the table, the speeds of the careful
+/// motions and the control period. The simulated cell reads the bins and the table from its scene
+/// (app/episode/sim_layout.h); everything else is fixed here.
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "robot/gripper_geometry.h"
+#include "robot/ur5_kinematics.h"
+
+namespace sortcell::cell {
+
+struct CellLayout {
+  /// The arm's home (= observe) pose: tool down, upper arm leaning back, TCP at (0.281, 0.109, 0.446),
+  /// above and behind the workspace's near edge, where no ray from the Kinect to the table or an
+  /// object passes (those rays are below the table there), and high enough that every transit starts
+  /// above the tallest objects. The IK branch nearest to it (shoulder facing the workspace, elbow up)
+  /// is the natural one for picking.
+  robot::Joints q_observe = (robot::Joints() << M_PI, -1.9, 1.3, -M_PI_2 + 0.6, -M_PI_2, 0).finished();
+  /// Half of the finger gap at the observe pose (m): fully open.
+  double observe_half_gap = robot::kMaxGap / 2;
+
+  /// Each category's bin: the centre of its floor in the world (m).
+  std::map<std::string, Eigen::Vector3d> p_W_bin;
+  /// Where released objects go in a bin, in order (offsets from the floor centre, m): its quadrants,
+  /// then the middle, so a bin takes four objects without dropping one onto another.
+  std::vector<Eigen::Vector3d> bin_slots{{-0.05, -0.05, 0}, {0.05, 0.05, 0}, {-0.05, 0.05, 0}, {0.05, -0.05, 0}, {0, 0, 0}};
+  /// Held objects are released square to the bin: placement yaws in steps of this (rad).
+  double place_yaw_step = M_PI / 2;
+
+  /// The pick area the camera watches (world box, m): the table in front of the robot up to its far
+  /// edge (objects out of reach there are seen and reported unreachable), between the bins.
+  Eigen::Vector3d workspace_min_W{0.28, -0.34, -0.05};
+  Eigen::Vector3d workspace_max_W{0.88, 0.34, 0.40};
+  /// The table top (z = 0), x and y extent (m).
+  Eigen::Vector2d table_min_xy{-0.3, -0.7};
+  Eigen::Vector2d table_max_xy{0.9, 0.7};
+
+  /// The last straight descent onto an object (m/s); other straight lines run at robot::kMovelSpeed.
+  double approach_speed = 0.10;
+  /// The arm controller's period (s): 500 Hz.
+  double control_period = 0.002;
+};
+
+/// The bin slot for the `filled`-th object released into a bin (cycling through the slots).
+Eigen::Vector3d BinSlot(const CellLayout& layout, const std::string& category, int filled);
+
+}  // namespace sortcell::cell

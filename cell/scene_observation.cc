@@ -1,0 +1,50 @@
+#include "cell/scene_observation.h"
+
+#include <cmath>
+
+#include "perception/descriptor.h"
+#include "robot/footprint_estimation.h"
+
+namespace sortcell::cell {
+namespace {
+
+constexpr size_t kMinFootprintPoints = 10;  // robot::EstimateFootprint's minimum
+
+// The table's height under `p_W`, from the fitted plane n.p + d = 0 in the camera frame.
+double TableHeightAt(const Eigen::Vector3d& p_W, const Eigen::Vector4d& plane_C, const Eigen::Isometry3d& X_WC) {
+  const Eigen::Vector3d n_W = X_WC.linear() * plane_C.head<3>();
+  const double d_W = plane_C[3] - n_W.dot(X_WC.translation());
+  return std::abs(n_W.z()) > 1e-6 ? -(n_W.x() * p_W.x() + n_W.y() * p_W.y() + d_W) / n_W.z() : 0.0;
+}
+
+}  // namespace
+
+Observation ObserveScene(const perception::Cloud& cloud, const CameraCalibration& calibration,
+                         const perception::SegmentationParams& params, const perception::RecognitionModel& model) {
+  Observation observation;
+  perception::SegmentationResult segmented =
+      perception::SegmentObjects(cloud, calibration.X_WC, calibration.background.get(), params);
+  observation.status = segmented.status;
+  if (segmented.status != perception::SegmentationStatus::kOk) return observation;
+  const Eigen::Isometry3d& X_WC = calibration.X_WC;
+  for (auto& segment : segmented.segments) {
+    std::vector<Eigen::Vector3d> p_W;
+    p_W.reserve(segment.cloud_C->size());
+    for (const auto& p : segment.cloud_C->points) p_W.push_back(X_WC * Eigen::Vector3d(p.x, p.y, p.z));
+    if (p_W.size() < kMinFootprintPoints) continue;
+    Detection d;
+    const double table_z = TableHeightAt(segment.centroid, segmented.plane_C, X_WC);
+    d.footprint = robot::EstimateFootprint(p_W, X_WC.translation(), table_z).footprint;
+    const perception::DescriptorParts parts = perception::ComputeDescriptorParts(*segment.cloud_C, model.params);
+    if (parts.status == perception::DescriptorStatus::kOk) {
+      const auto result = model.Classify(parts);
+      d.category = result.name;
+      d.confidence = result.confidence;
+    }
+    d.segment = std::move(segment);
+    observation.detections.push_back(std::move(d));
+  }
+  return observation;
+}
+
+}  // namespace sortcell::cell

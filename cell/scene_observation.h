@@ -1,0 +1,48 @@
+#pragma once
+/// @file
+/// What the cell makes of one capture: the clusters on the table, each with a grasp footprint from
+/// its visible points and, where it can be described, a category and the classifier's confidence.
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <Eigen/Geometry>
+
+#include "perception/cloud.h"
+#include "perception/recognition_model.h"
+#include "perception/segmentation.h"
+#include "robot/grasp_planner.h"
+
+namespace sortcell::cell {
+
+/// The robot's calibration of its camera: the camera's pose as calibrated (not necessarily where it
+/// truly is) and the empty cell as it saw it, for background subtraction.
+struct CameraCalibration {
+  Eigen::Isometry3d X_WC = Eigen::Isometry3d::Identity();
+  perception::Cloud::Ptr background;  ///< Organized, same size as the captures; null: none.
+};
+
+/// One cluster of a capture.
+struct Detection {
+  perception::Segment segment;
+  robot::ObjectFootprint footprint;
+  std::optional<std::string> category;  ///< Empty when it could not be described (a fragment).
+  double confidence = 0;
+};
+
+struct Observation {
+  perception::SegmentationStatus status = perception::SegmentationStatus::kOk;
+  std::vector<Detection> detections;  ///< Largest cluster first; empty unless status is kOk.
+};
+
+/// Segments `cloud` (organized, camera frame) within `params`' workspace, estimates each cluster's
+/// footprint on the fitted table plane and classifies it. Clusters of fewer than 10 points are left
+/// out; clusters too small to describe are kept without a category (neighbours, never picked).
+/// An expected failure (no table in view, no valid point) is a status, not an exception.
+/// @throws std::invalid_argument for misuse: a cloud that is not organized or empty, a background of
+///         another size.
+Observation ObserveScene(const perception::Cloud& cloud, const CameraCalibration& calibration,
+                         const perception::SegmentationParams& params, const perception::RecognitionModel& model);
+
+}  // namespace sortcell::cell

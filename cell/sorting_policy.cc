@@ -1,0 +1,123 @@
+#include "cell/sorting_policy.h"
+
+#include <algorithm>
+#include <chrono>
+#include <stdexcept>
+
+#include "robot/gripper_geometry.h"
+
+namespace sortcell::cell {
+namespace {
+
+// Finger clearance per side for a perceived width (Kinect noise ~2 mm at 1 m), reduced down to the
+// scripted pick's 4.5 mm when the object is that close to the stroke.
+constexpr double kPerceivedClearance = 0.008, kMinClearance = 0.0045;
+
+double WallSecondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+}  // namespace
+
+SortingPolicy::SortingPolicy(CellIo& io, const CellLayout& layout, const CameraCalibration& calibration,
+                             const perception::RecognitionModel& model, const PolicyOptions& options,
+                             PolicyObserver* observer)
+    : io_(io), layout_(layout), calibration_(calibration), model_(model), options_(options),
+      observer_(observer ? *observer : no_observer_), motions_(io) {
+  if (options.max_attempts_per_position < 1 || options.max_attempts < 1) {
+    throw std::invalid_argument("policy options: attempt limits must be at least 1");
+  }
+  if (!(options.time_limit_s > 0)) throw std::invalid_argument("policy options: time limit must be > 0 s");
+  for (const auto& c : model.classes) {
+    if (!layout.p_W_bin.count(c)) throw std::invalid_argument("cell layout: no bin for the model's class '" + c + "'");
+  }
+  segmentation_.workspace_min_W = layout.workspace_min_W;
+  segmentation_.workspace_max_W = layout.workspace_max_W;
+}
+
+Observation SortingPolicy::Observe() {
+  observer_.Observing();
+  const perception::Cloud::Ptr cloud = io_.Capture();
+  const auto start = std::chrono::steady_clock::now();
+  Observation observation = ObserveScene(*cloud, calibration_, segmentation_, model_);
+  observer_.Observed(*cloud, observation, WallSecondsSince(start));
+  return observation;
+}
+
+int SortingPolicy::Choose(const std::vector<Detection>& detections, robot::PickMemory& memory,
+                          robot::GraspPlan& plan) {
+  // Candidates: every described cluster; the undescribed ones still count as neighbours.
+  std::vector<robot::ObjectFootprint> footprints;
+  for (const auto& d : detections) footprints.push_back(d.footprint);
+  robot::PickMemory view = memory;  // This capture's view: undescribed clusters are never picked.
+  for (const auto& d : detections) {
+    if (!d.category) view.Skip(d.footprint.centre_xy, robot::SkipReason::kUnreachable);
+  }
+  while (true) {
+    const int i = robot::ChooseNextPick(footprints, view);
+    if (i < 0) return -1;
+    robot::GraspOptions grasp_options;
+    grasp_options.finger_clearance =
+        std::max(kMinClearance, std::min(kPerceivedClearance, 0.5 * (robot::kMaxGap - footprints[i].width)));
+    plan = robot::PlanTopDownGrasp(footprints[i], io_.CommandedJoints(), grasp_options);
+    if (plan.status == robot::GraspStatus::kOk) return i;
+    memory.Skip(footprints[i].centre_xy, robot::SkipReason::kUnreachable);
+    view.Skip(footprints[i].centre_xy, robot::SkipReason::kUnreachable);
+    observer_.Skipped(i, detections[i], plan.status);
+  }
+}
+
+AttemptReport SortingPolicy::Attempt(const Detection& seen, int index, int attempt, const robot::GraspPlan& plan) {
+  AttemptReport report;
+  report.detection = index;
+  report.seen = &seen;
+  report.attempt = attempt;
+  report.start_s = io_.Now();
+  observer_.AttemptStarting(report);
+  int& filled = released_into_[*seen.category];
+  PickRequest request;
+  request.grasp = plan;
+  request.p_W_release = BinSlot(layout_, *seen.category, filled);
+  request.place_yaw_step = layout_.place_yaw_step;
+  request.q_home = layout_.q_observe;
+  request.approach_speed = layout_.approach_speed;
+  report.pick = PickAndPlace(motions_, request);
+  if (report.pick.reached_bin) ++filled;
+  report.end_s = io_.Now();
+  observer_.AttemptEnded(report);
+  return report;
+}
+
+PolicyResult SortingPolicy::Run() {
+  PolicyResult result;
+  const double start = io_.Now();
+  robot::PickMemory memory(options_.same_object_radius, options_.max_attempts_per_position);
+  while (!motions_.faulted()) {
+    if (io_.Now() - start >= options_.time_limit_s) {
+      result.status = EpisodeStatus::kTimeLimit;
+      break;
+    }
+    if (result.attempts >= options_.max_attempts) {
+      result.status = EpisodeStatus::kAttemptLimit;
+      break;
+    }
+    const Observation observation = Observe();
+    ++result.frames;
+    robot::GraspPlan plan;
+    const int chosen = Choose(observation.detections, memory, plan);
+    if (chosen < 0) break;  // Nothing left that can be picked.
+    const Detection& seen = observation.detections[chosen];
+    const int attempt = memory.RecordAttempt(seen.footprint.centre_xy);
+    ++result.attempts;
+    const AttemptReport report = Attempt(seen, chosen, attempt, plan);
+    const AttemptResult r = report.pick.result;
+    if (r == AttemptResult::kMotionFailed || r == AttemptResult::kPutBack) {
+      memory.Skip(seen.footprint.centre_xy, robot::SkipReason::kUnreachable);
+    }
+    if (r == AttemptResult::kSimDiverged) break;
+  }
+  if (motions_.faulted()) result.status = EpisodeStatus::kSimDiverged;
+  return result;
+}
+
+}  // namespace sortcell::cell

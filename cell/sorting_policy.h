@@ -1,0 +1,97 @@
+#pragma once
+/// @file
+/// The sorting cell's policy (paper section 2.3), over any CellIo: capture, describe and classify
+/// every cluster, choose the one with the most room around it, plan a top-down grasp from its
+/// footprint, pick it and put it into its category's bin, and again, until nothing pickable is left
+/// in view or a budget runs out. A missed grasp is retried from a fresh capture, at most
+/// max_attempts_per_position times at one table position; a cluster with no grasp plan is skipped
+/// as unreachable; a cluster too small to describe is never picked. It decides from the camera's
+/// clouds, the encoders and the gripper's sensors only.
+
+#include <map>
+#include <string>
+
+#include "cell/cell_io.h"
+#include "cell/cell_layout.h"
+#include "cell/motion_sequencer.h"
+#include "cell/outcomes.h"
+#include "cell/pick_and_place.h"
+#include "cell/scene_observation.h"
+#include "perception/recognition_model.h"
+#include "robot/grasp_planner.h"
+#include "robot/pick_selection.h"
+
+namespace sortcell::cell {
+
+struct PolicyOptions {
+  int max_attempts_per_position = 3;  ///< Grasp attempts at one table position before it is given up.
+  int max_attempts = 24;              ///< Grasp attempts in all before the episode ends.
+  double time_limit_s = 330;          ///< Seconds on the cell's clock from the start before it ends.
+  double same_object_radius = 0.04;   ///< Clusters this close in two captures are one object (m).
+};
+
+/// One attempt, as the policy saw it go.
+struct AttemptReport {
+  int detection = -1;      ///< Index into the last observation's detections.
+  const Detection* seen = nullptr;  ///< That detection (valid during the callback).
+  int attempt = 0;         ///< 1 for the first attempt at this position.
+  double start_s = 0, end_s = 0;  ///< The cell's clock from leaving the observe pose to being back.
+  PickReport pick;
+};
+
+/// What the policy reports as it goes (the episode harness: scoring, logs, video). Never consulted
+/// for a decision.
+class PolicyObserver {
+ public:
+  virtual ~PolicyObserver() = default;
+  /// About to capture.
+  virtual void Observing() {}
+  /// A capture and what the policy made of it; `perception_wall_s`: wall time of perception.
+  virtual void Observed(const perception::Cloud& /*cloud*/, const Observation& /*observation*/,
+                        double /*perception_wall_s*/) {}
+  /// Detection `detection` of the last observation has no grasp plan and is given up.
+  virtual void Skipped(int /*detection*/, const Detection& /*seen*/, robot::GraspStatus /*why*/) {}
+  /// About to attempt detection `report.detection` (report.pick not yet filled).
+  virtual void AttemptStarting(const AttemptReport& /*report*/) {}
+  virtual void AttemptEnded(const AttemptReport& /*report*/) {}
+};
+
+struct PolicyResult {
+  EpisodeStatus status = EpisodeStatus::kCompleted;
+  int attempts = 0;  ///< Grasp attempts made.
+  int frames = 0;    ///< Captures taken.
+};
+
+class SortingPolicy {
+ public:
+  /// @throws std::invalid_argument if a class of `model` has no bin in `layout`, or an option is out
+  ///         of range (attempt limits < 1, time limit <= 0).
+  SortingPolicy(CellIo& io, const CellLayout& layout, const CameraCalibration& calibration,
+                const perception::RecognitionModel& model, const PolicyOptions& options,
+                PolicyObserver* observer = nullptr);
+
+  /// Sorts until nothing pickable is left in view or a budget runs out. Starts from the observe pose.
+  PolicyResult Run();
+
+  const MotionSequencer& motions() const { return motions_; }
+
+ private:
+  Observation Observe();
+  // The detection to pick next and its grasp plan, or -1. Detections without a plan are given up in
+  // `memory` (and reported); undescribed ones are never chosen.
+  int Choose(const std::vector<Detection>& detections, robot::PickMemory& memory, robot::GraspPlan& plan);
+  AttemptReport Attempt(const Detection& seen, int index, int attempt, const robot::GraspPlan& plan);
+
+  CellIo& io_;
+  const CellLayout& layout_;
+  const CameraCalibration& calibration_;
+  const perception::RecognitionModel& model_;
+  PolicyOptions options_;
+  PolicyObserver no_observer_;
+  PolicyObserver& observer_;
+  MotionSequencer motions_;
+  perception::SegmentationParams segmentation_;
+  std::map<std::string, int> released_into_;  // Objects released into each category's bin so far.
+};
+
+}  // namespace sortcell::cell

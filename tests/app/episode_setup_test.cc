@@ -1,0 +1,113 @@
+// An episode's set-up refuses what it cannot do, naming the culprit: an object placed twice, objects
+// that do not fit the table, a model that does not know a category of the set, a model class without
+// a bin in the scene (unit: no rendering).
+#include "app/episode/episode_setup.h"
+
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "app/episode/episode.h"
+#include "error_of.h"
+#include "perception/recognition_model.h"
+#include "temp_dir.h"
+
+namespace sortcell::app {
+namespace {
+
+using sortcell_test::ErrorOf;
+
+const std::string kSource = SORTCELL_SOURCE_DIR;
+
+ObjectSet ThreeObjects() {
+  ObjectSet set;
+  set.name = "three";
+  set.source = "three.yaml";
+  for (const char* name : {"a", "b", "c"}) set.objects.push_back({name, "cup", name, ""});
+  return set;
+}
+
+TEST(EpisodeSetup, AnObjectPlacedTwiceIsRefused) {
+  EpisodeOptions options;
+  options.placements = {{"a", 0.4, 0.0, 0.0}, {"a", 0.5, 0.1, 0.0}};
+  std::mt19937_64 rng(1);
+  EXPECT_EQ(ErrorOf([&] { ChooseObjects(ThreeObjects(), options, rng); }), "--place: object 'a' placed twice");
+}
+
+TEST(EpisodeSetup, PlacedObjectsComeFirstAndTheCountIsChecked) {
+  EpisodeOptions options;
+  options.objects = 2;
+  options.placements = {{"c", 0.4, 0.0, 0.0}};
+  std::mt19937_64 rng(1);
+  const auto chosen = ChooseObjects(ThreeObjects(), options, rng);
+  ASSERT_EQ(chosen.size(), 2u);
+  EXPECT_EQ(chosen[0].name, "c");
+  EXPECT_NE(chosen[1].name, "c");
+  options.objects = 4;
+  EXPECT_EQ(ErrorOf([&] { ChooseObjects(ThreeObjects(), options, rng); }),
+            "--objects: expected 1..3 (the objects of set 'three.yaml'), got 4");
+}
+
+TEST(EpisodeSetup, ObjectsThatDoNotFitTheTableAreRefused) {
+  std::mt19937_64 rng(1);
+  const sim::PlacementArea area;  // 0.36 x 0.44 m
+  EXPECT_EQ(ErrorOf([&] { DrawPoses({}, {0.15, 0.15, 0.15}, area, rng); }),
+            "--objects: 3 objects do not fit the table area with the given placements");
+  // One placed by hand in the middle leaves no room for a second large one.
+  EXPECT_EQ(ErrorOf([&] { DrawPoses({{"a", 0.5, 0.0, 0.0}}, {0.15, 0.1}, area, rng); }),
+            "--objects: 2 objects do not fit the table area with the given placements");
+  const auto poses = DrawPoses({{"a", 0.5, 0.0, 0.3}}, {0.03, 0.03}, area, rng);
+  ASSERT_EQ(poses.size(), 2u);
+  EXPECT_EQ(poses[0].x, 0.5);
+  EXPECT_EQ(poses[0].yaw, 0.3);
+  EXPECT_GE(std::hypot(poses[1].x - 0.5, poses[1].y), 0.03 + 0.03 + area.gap_m);
+}
+
+// A model file with the given classes (an SVM on separable blobs; only its classes matter here).
+std::filesystem::path ModelWithClasses(const std::vector<std::string>& classes, const std::string& name) {
+  const int n = static_cast<int>(classes.size());
+  Eigen::MatrixXf x(6 * n, 500);
+  std::vector<int> y, groups;
+  std::mt19937_64 rng(3);
+  std::normal_distribution<float> noise(0.0f, 0.1f);
+  for (int r = 0; r < x.rows(); ++r) {
+    for (int k = 0; k < x.cols(); ++k) x(r, k) = (k % n == r % n ? 1.0f : 0.0f) + noise(rng);
+    y.push_back(r % n);
+    groups.push_back(r / n);
+  }
+  perception::SvmGrid grid;
+  grid.C = {4};
+  grid.gamma = {1.0 / 32};
+  perception::RecognitionModel model;
+  model.classes = classes;
+  model.classifier = perception::SvmClassifier::Train(x, y, groups, n, grid);
+  const std::filesystem::path file = std::filesystem::path(sortcell_test::TestTempDir()) / (name + ".model.json");
+  perception::SaveModel(file, model);
+  return file;
+}
+
+EpisodeOptions PaperEpisode(const std::filesystem::path& model) {
+  EpisodeOptions options;
+  options.scene = kSource + "/scenes/cell.xml";
+  options.object_set = kSource + "/scenes/objects/paper.yaml";
+  options.model = model;
+  options.out = std::filesystem::path(sortcell_test::TestTempDir()) / "episode";
+  return options;
+}
+
+TEST(EpisodeSetup, AModelThatDoesNotKnowACategoryOfTheSetIsRefused) {
+  const auto model = ModelWithClasses({"bottle", "cup", "ball"}, "three_classes");
+  EXPECT_EQ(ErrorOf([&] { RunEpisode(PaperEpisode(model), {}); }),
+            "model '" + model.string() + "': does not know category 'others' of object set '" + kSource +
+                "/scenes/objects/paper.yaml'");
+}
+
+TEST(EpisodeSetup, AModelClassWithoutABinIsRefused) {
+  const auto model = ModelWithClasses({"bottle", "cup", "ball", "others", "plate"}, "five_classes");
+  EXPECT_EQ(ErrorOf([&] { RunEpisode(PaperEpisode(model), {}); }),
+            "model '" + model.string() + "': class 'plate' has no bin 'bin_plate' in scene '" + kSource +
+                "/scenes/cell.xml'");
+}
+
+}  // namespace
+}  // namespace sortcell::app

@@ -1,0 +1,390 @@
+// The sweep's typed records (results.jsonl): round trip, strict reading with errors that name the
+// file, line and key; the report's checked, quoted CSV; and --set on `episode` and `sweep`.
+#include <gtest/gtest.h>
+
+#include <CLI/CLI.hpp>
+
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "app/cli/episode_command.h"
+#include "app/sweep/sweep_record.h"
+#include "app/sweep/sweep_report.h"
+#include "app/sweep/sweep_spec.h"
+#include "error_of.h"
+#include "run_sortcell.h"
+#include "temp_dir.h"
+
+namespace sortcell::app {
+namespace {
+
+using sortcell_test::ErrorOf;
+using sortcell_test::TempDir;
+
+const std::string kSource = SORTCELL_SOURCE_DIR;
+const std::string kScene = kSource + "/scenes/cell.xml";
+const std::string kSet = kSource + "/scenes/objects/paper.yaml";
+
+// The first line of a results.jsonl written before the records were typed (two of its items kept).
+const std::string kOldLine =
+    R"({"axes":{"objects":6},"episode":0,"items":[{"attempts":1,"confidence":0.9867939749764291,"cycle_time_s":13.052000000015951,)"
+    R"("final_xyz":[0.3859753375632356,-0.4243846303689717,0.008688501691959859],"name":"bottle3","outcome":"sorted",)"
+    R"("predicted_category":"others","true_category":"others"},{"attempts":1,"confidence":0.9894401504002078,)"
+    R"("cycle_time_s":11.543999999997176,"final_xyz":[0.394846591054806,0.40904708809087653,0.00027294697641732816],)"
+    R"("name":"cup","outcome":"sorted","predicted_category":"cup","true_category":"cup"}],"seed":0,"status":"ok",)"
+    R"("summary":{"correct_sort_rate":1.0,"frames":7,"grasp_attempts":6,"grasp_success_rate":1.0,"grasps":6,"items":6,)"
+    R"("items_classified":6,"mean_cycle_time_s":12.23866666666799,"mujoco_warnings":0,"outcomes":{"dropped":0,)"
+    R"("grasp_failed":0,"left_on_table":0,"not_detected":0,"sorted":6,"unreachable":0,"wrong_bin":0},)"
+    R"("perception_ms_per_frame":24.124468999999994,"real_time_factor":12.025111796484216,"recognition_accuracy":1.0,)"
+    R"("render_ms_per_frame":117.4162777142857,"sim_time_s":75.4320000000056,"status":"completed","video_frames":0,)"
+    R"("video_render_wall_s":0.0,"wall_time_s":6.272873074},"wall_time_s":6.599238022})";
+
+// An episode that ran: one item sorted, one never grasped.
+SweepRecord OkRecord(int episode, const nlohmann::json& axes) {
+  SweepRecord r;
+  r.episode = episode;
+  r.seed = 100 + episode;
+  r.axes = axes.is_null() ? nlohmann::json::object() : axes;  // {} is null.
+  r.wall_time_s = 6.5;
+  r.status = RunStatus::kOk;
+  ItemResult cup;
+  cup.name = "cup";
+  cup.true_category = "cup";
+  cup.predicted_category = "cup";
+  cup.confidence = 0.9;
+  cup.attempts = 1;
+  cup.outcome = cell::ItemOutcome::kSorted;
+  cup.cycle_time_s = 12.5;
+  cup.final_xyz = {0.4, 0.4, 0.01};
+  ItemResult ball;
+  ball.name = "ball";
+  ball.true_category = "ball";
+  ball.attempts = 2;
+  ball.outcome = cell::ItemOutcome::kGraspFailed;
+  RunFigures run;
+  run.sim_time_s = 40;
+  run.wall_time_s = 4;
+  run.real_time_factor = 10;
+  run.frames = 3;
+  r.items = {cup, ball};
+  r.summary = SummarizeEpisode(r.items, 3, 1, run);
+  return r;
+}
+
+std::string Dump(const SweepRecord& r) { return nlohmann::json(r).dump(); }
+
+std::filesystem::path WriteFile(const std::filesystem::path& file, const std::string& text) {
+  std::ofstream(file, std::ios::binary) << text;
+  return file;
+}
+
+std::string Read(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// ---- Records ----
+
+TEST(SweepRecord, RoundTripKeepsEveryField) {
+  const SweepRecord r = OkRecord(3, {{"objects", 2}, {"noise_scale", 1.25}});
+  const nlohmann::json j = r;
+  const SweepRecord back = j.get<SweepRecord>();
+  EXPECT_EQ(nlohmann::json(back), j);
+  EXPECT_EQ(back.episode, 3);
+  EXPECT_EQ(back.seed, 103u);
+  EXPECT_EQ(back.axes["noise_scale"], 1.25);
+  EXPECT_EQ(back.status, RunStatus::kOk);
+  ASSERT_EQ(back.items.size(), 2u);
+  EXPECT_EQ(back.items[1].outcome, cell::ItemOutcome::kGraspFailed);
+  EXPECT_FALSE(back.items[1].predicted_category.has_value());
+  EXPECT_EQ(back.summary.grasps, 1);
+  EXPECT_EQ(back.summary.outcomes.at(cell::ItemOutcome::kSorted), 1);
+  EXPECT_DOUBLE_EQ(back.summary.run.sim_time_s, 40);
+
+  SweepRecord failed;
+  failed.episode = 4;
+  failed.status = RunStatus::kTimeout;
+  failed.signal = 9;
+  failed.error = "killed after 900 s";
+  const nlohmann::json f = failed;
+  EXPECT_EQ(f["status"], "timeout");
+  EXPECT_FALSE(f.contains("summary"));
+  EXPECT_FALSE(f.contains("exit_code"));
+  const SweepRecord failed_back = f.get<SweepRecord>();
+  EXPECT_EQ(nlohmann::json(failed_back), f);
+  EXPECT_EQ(failed_back.signal, 9);
+  EXPECT_FALSE(failed_back.exit_code.has_value());
+}
+
+TEST(SweepRecord, StatusSpellings) {
+  for (const RunStatus s : {RunStatus::kOk, RunStatus::kCrashed, RunStatus::kTimeout}) {
+    EXPECT_EQ(ParseRunStatus(ToString(s)), s);
+  }
+  EXPECT_EQ(ErrorOf([] { ParseRunStatus("exploded"); }), "unknown run status 'exploded' (expected ok, crashed, timeout)");
+}
+
+TEST(SweepResults, OldResultsReadAndWriteBackTheSameKeys) {
+  const TempDir dir("records_old");
+  const auto file = WriteFile(dir / "results.jsonl", kOldLine + "\n");
+  const SweepResults results = ReadSweepResults(file);
+  ASSERT_EQ(results.records.size(), 1u);
+  const SweepRecord& r = results.records[0];
+  EXPECT_EQ(r.axes, nlohmann::json({{"objects", 6}}));
+  EXPECT_EQ(r.summary.grasp_attempts, 6);
+  EXPECT_EQ(r.items[1].name, "cup");
+  EXPECT_EQ(nlohmann::json(r), nlohmann::json::parse(kOldLine));
+  EXPECT_EQ(results.complete_bytes, results.file_bytes);
+}
+
+TEST(SweepResults, WrittenRecordsReadBack) {
+  const TempDir dir("records_write");
+  const auto file = dir / "results.jsonl";
+  {
+    SweepResultsWriter writer(file);
+    writer.Append(OkRecord(0, {{"objects", 2}}));
+    writer.Append(OkRecord(1, {{"objects", 3}}));
+    writer.Close();
+  }
+  const SweepResults results = ReadSweepResults(file);
+  ASSERT_EQ(results.records.size(), 2u);
+  EXPECT_EQ(results.records[1].episode, 1);
+  EXPECT_EQ(Read(file), Dump(OkRecord(0, {{"objects", 2}})) + "\n" + Dump(OkRecord(1, {{"objects", 3}})) + "\n");
+}
+
+TEST(SweepResults, AFullDiskIsAnErrorNamingTheFile) {
+  if (!std::filesystem::exists("/dev/full")) GTEST_SKIP() << "no /dev/full";
+  SweepResultsWriter writer("/dev/full");
+  try {
+    writer.Append(OkRecord(0, {}));
+    FAIL() << "no exception";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("cannot write '/dev/full'"), std::string::npos) << e.what();
+  }
+}
+
+// results.jsonl with `middle` as line 2 between two good records: the error reading it.
+std::string ErrorWithLine2(const std::string& name, const std::string& middle) {
+  const TempDir dir(name);
+  const auto file = WriteFile(dir / "results.jsonl",
+                              Dump(OkRecord(0, {})) + "\n" + middle + "\n" + Dump(OkRecord(2, {})) + "\n");
+  return ErrorOf([&] { ReadSweepResults(file); });
+}
+
+// A good record with one change.
+std::string Changed(const std::function<void(nlohmann::json&)>& change) {
+  nlohmann::json j = OkRecord(1, {});
+  change(j);
+  return j.dump();
+}
+
+TEST(SweepResults, BadLinesNameTheFileTheLineAndTheKey) {
+  const auto expect = [](const std::string& error, const std::string& name, const std::string& where) {
+    EXPECT_NE(error.find(name), std::string::npos) << error;  // The file.
+    EXPECT_NE(error.find("/results.jsonl line 2: " + where), std::string::npos) << error;
+  };
+  expect(ErrorWithLine2("missing", Changed([](nlohmann::json& j) { j["summary"].erase("grasps"); })), "missing",
+         "summary.grasps: missing");
+  expect(ErrorWithLine2("mistyped", Changed([](nlohmann::json& j) { j["summary"]["grasps"] = "six"; })), "mistyped",
+         "summary.grasps: expected a number, found string");
+  expect(ErrorWithLine2("status", Changed([](nlohmann::json& j) { j["status"] = "exploded"; })), "status",
+         "status: unknown run status 'exploded'");
+  expect(ErrorWithLine2("outcome", Changed([](nlohmann::json& j) { j["items"][1]["outcome"] = "vanished"; })), "outcome",
+         "items[1].outcome: unknown item outcome 'vanished'");
+  expect(ErrorWithLine2("episode", Changed([](nlohmann::json& j) { j.erase("episode"); })), "episode",
+         "episode: missing");
+  expect(ErrorWithLine2("axes", Changed([](nlohmann::json& j) { j["axes"] = 3; })), "axes", "axes: expected an object");
+  // A line cut short in the middle of the file (e.g. shards concatenated after an interruption).
+  expect(ErrorWithLine2("damaged", R"({"episode":1,"sta)"), "damaged", "not a JSON record");
+}
+
+TEST(SweepResults, ACutShortLastLineIsNoRecord) {
+  const TempDir dir("records_cut");
+  const std::string good = Dump(OkRecord(0, {})) + "\n";
+  const auto file = WriteFile(dir / "results.jsonl", good + R"({"episode":1,"sta)");
+  const SweepResults results = ReadSweepResults(file);
+  EXPECT_EQ(results.records.size(), 1u);
+  EXPECT_EQ(results.complete_bytes, good.size());
+  EXPECT_GT(results.file_bytes, results.complete_bytes);
+  EXPECT_TRUE(ReadSweepResults(dir / "none.jsonl").records.empty());
+}
+
+// ---- The report ----
+
+SweepSpec ModelAxisSpec(const std::vector<std::string>& models) {
+  SweepSpec spec;
+  spec.source = "/specs/commas.yaml";
+  spec.grid = true;
+  spec.episodes = 1;
+  SweepAxis axis;
+  axis.name = "model";
+  for (const auto& m : models) axis.values.push_back(m);
+  spec.axes.push_back(axis);
+  return spec;
+}
+
+TEST(SweepReport, CsvQuotesAValueWithAComma) {
+  const TempDir dir("report_csv");
+  const std::vector<std::string> models{"/models/a,b.model.json", "/models/plain.model.json", "/models/say \"hi\".model.json"};
+  const SweepSpec spec = ModelAxisSpec(models);
+  std::vector<SweepRecord> records;
+  for (int i = 0; i < 3; ++i) records.push_back(OkRecord(i, {{"model", models[i]}}));
+  const nlohmann::json summary = WriteSweepReport(dir.path(), spec, records);
+  const std::string csv = Read(dir / "summary.csv");
+  EXPECT_NE(csv.find("\nmodel,\"a,b.model.json\",1,2,1,0.5,"), std::string::npos) << csv;
+  EXPECT_NE(csv.find("\nmodel,plain.model.json,1,2,1,0.5,"), std::string::npos) << csv;
+  EXPECT_NE(csv.find("\nmodel,\"say \"\"hi\"\".model.json\",1,2,1,0.5,"), std::string::npos) << csv;
+  EXPECT_NE(csv.find("\nall,all,3,6,3,0.5,"), std::string::npos) << csv;
+  EXPECT_EQ(summary["items"], 6);
+  EXPECT_EQ(summary["grasp_attempts"], 9);
+  EXPECT_EQ(summary["by_axis"]["model"]["a,b.model.json"]["outcomes"]["grasp_failed"], 1);
+  EXPECT_NE(Read(dir / "summary.md").find("| a,b.model.json | 1 | 2 | 50.0 % |"), std::string::npos);
+}
+
+TEST(SweepReport, AFailedWriteIsAnErrorNamingTheFile) {
+  const TempDir dir("report_fail");
+  SweepSpec spec;
+  spec.source = "/specs/x.yaml";
+  try {
+    WriteSweepReport(dir / "not_there", spec, {OkRecord(0, {})});
+    FAIL() << "no exception";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("cannot write '" + (dir / "not_there").string() + "/summary."), std::string::npos)
+        << e.what();
+  }
+}
+
+// ---- --set on episode ----
+
+// A `sortcell` command line parsed as RunCli does: --set expanded, then CLI11.
+struct ParsedEpisode {
+  CLI::App app;
+  std::function<int()> run;
+  CLI::App* episode = nullptr;
+
+  explicit ParsedEpisode(std::vector<std::string> args) {
+    AddEpisodeCommand(app, run, {});
+    episode = app.get_subcommand("episode");
+    args = ExpandEpisodeSets(*episode, args);
+    std::vector<char*> argv;
+    for (auto& a : args) argv.push_back(a.data());
+    app.parse(static_cast<int>(argv.size()), argv.data());
+  }
+};
+
+TEST(EpisodeSet, RewritesToTheOptionAfterTheOthers) {
+  CLI::App app;
+  std::function<int()> run;
+  AddEpisodeCommand(app, run, {});
+  const CLI::App& episode = *app.get_subcommand("episode");
+  EXPECT_EQ(ExpandEpisodeSets(episode, {"sortcell", "episode", "--set", "seed=3", "--scene", "s.xml",
+                                        "--set=noise-scale=1.5", "--out", "o"}),
+            (std::vector<std::string>{"sortcell", "episode", "--scene", "s.xml", "--out", "o", "--seed=3",
+                                      "--noise-scale=1.5"}));
+}
+
+TEST(EpisodeSet, AKnownKeyTakesEffectAndOverridesTheOption) {
+  const ParsedEpisode p({"sortcell", "episode", "--scene", "s.xml", "--noise-scale", "2", "--set", "noise-scale=1.5",
+                         "--set", "seed=3", "--set", "time-limit=100", "--out", "o"});
+  EXPECT_DOUBLE_EQ(p.episode->get_option("--noise-scale")->as<double>(), 1.5);
+  EXPECT_EQ(p.episode->get_option("--seed")->as<uint64_t>(), 3u);
+  EXPECT_DOUBLE_EQ(p.episode->get_option("--time-limit")->as<double>(), 100);
+  EXPECT_TRUE(static_cast<bool>(p.run));
+}
+
+TEST(EpisodeSet, TheOptionsOwnChecksApply) {
+  EXPECT_THROW(ParsedEpisode({"sortcell", "episode", "--scene", "s.xml", "--out", "o", "--set", "objects=500"}),
+               CLI::ValidationError);
+  EXPECT_THROW(ParsedEpisode({"sortcell", "episode", "--scene", "s.xml", "--out", "o", "--set", "seed=-1"}),
+               CLI::ValidationError);
+}
+
+TEST(EpisodeSet, AnUnknownKeyIsRejectedWithTheValidOnes) {
+  CLI::App app;
+  std::function<int()> run;
+  AddEpisodeCommand(app, run, {});
+  const CLI::App& episode = *app.get_subcommand("episode");
+  const std::string error = ErrorOf([&] { ExpandEpisodeSets(episode, {"sortcell", "episode", "--set", "nois-scale=1"}); });
+  EXPECT_NE(error.find("--set: unknown key 'nois-scale' (valid keys: "), std::string::npos) << error;
+  for (const char* key : {"noise-scale", "seed", "time-limit", "objects"}) EXPECT_NE(error.find(key), std::string::npos) << key;
+  EXPECT_EQ(error.find("help"), std::string::npos) << error;
+  EXPECT_NE(ErrorOf([&] { ExpandEpisodeSets(episode, {"sortcell", "episode", "--set", "seed"}); })
+                .find("--set: expected KEY=VALUE, found 'seed'"),
+            std::string::npos);
+}
+
+TEST(EpisodeSet, TheCommandLineRejectsAnUnknownKey) {
+  sortcell_test::ExpectOneLineError(
+      sortcell_test::RunSortcell("episode --scene " + kScene + " --out " + (TempDir("set_cli") / "out").string() +
+                                 " --set colour=red"),
+      "--set: unknown key 'colour'");
+}
+
+// ---- --set on sweep ----
+
+std::filesystem::path WriteSpec(const TempDir& dir, const std::string& body) {
+  return WriteFile(dir / "spec.yaml", "scene: " + kScene + "\nobject_set: " + kSet + "\n" + body);
+}
+
+TEST(SweepSet, OverridesKeysOfTheSpec) {
+  const TempDir dir("sweep_set");
+  const auto file = WriteSpec(dir, "seed: 1\nseeds: [3, 7]\naxes:\n  objects: [2, 4]\n  noise_scale: {min: 1, max: 2}\n");
+  const SweepSpec spec = LoadSweepSpec(
+      file, {"seed=9", "episodes=5", "axes.objects=3", "axes.light_intensity=[0.5, 1.5]", "episode_timeout_s=60"});
+  EXPECT_EQ(spec.seed, 9u);
+  EXPECT_TRUE(spec.seeds.empty());  // episodes replaces seeds.
+  EXPECT_EQ(spec.EpisodeCount(), 5);
+  EXPECT_DOUBLE_EQ(spec.episode_timeout_s, 60);
+  ASSERT_EQ(spec.axes.size(), 3u);
+  EXPECT_EQ(spec.axes[0].name, "objects");
+  EXPECT_EQ(spec.axes[0].values, std::vector<nlohmann::json>{3});
+  EXPECT_TRUE(spec.axes[1].is_range());
+  EXPECT_EQ(spec.axes[2].name, "light_intensity");
+  EXPECT_EQ(spec.axes[2].values.size(), 2u);
+  for (int i = 0; i < 5; ++i) EXPECT_EQ(spec.Episode(i).second["objects"], 3);
+  // Without overrides the file reads as written.
+  EXPECT_EQ(LoadSweepSpec(file).seeds, (std::vector<uint64_t>{3, 7}));
+}
+
+TEST(SweepSet, UnknownOrBadOverridesAreRejected) {
+  const TempDir dir("sweep_set_bad");
+  const auto file = WriteSpec(dir, "episodes: 2\n");
+  const auto error = [&](const std::string& set) { return ErrorOf([&] { LoadSweepSpec(file, {set}); }); };
+  EXPECT_NE(error("episodez=3").find("--set: unknown sweep spec key 'episodez' (expected "), std::string::npos);
+  EXPECT_NE(error("axes.lighting=1").find("--set: unknown sweep spec key 'axes.lighting'"), std::string::npos);
+  EXPECT_NE(error("seed").find("--set: expected KEY=VALUE, found 'seed'"), std::string::npos);
+  EXPECT_NE(error("episodes=many").find("key 'episodes': expected a non-negative integer, found 'many'"),
+            std::string::npos);
+  EXPECT_NE(error("axes.objects=0").find("key 'axes.objects[0]': expected at least 1 object"), std::string::npos);
+}
+
+// ---- The sweep command ----
+
+TEST(SweepCli, UnknownSetKeyIsAOneLineError) {
+  const TempDir dir("sweep_cli_set");
+  sortcell_test::ExpectOneLineError(sortcell_test::RunSortcell("sweep " + WriteSpec(dir, "episodes: 2\n").string() +
+                                                               " --set episodez=3 --out " + (dir / "out").string()),
+                                    "--set: unknown sweep spec key 'episodez'");
+}
+
+TEST(SweepCli, ResumeRefusesADamagedMiddleLineAndKeepsTheFile) {
+  const TempDir dir("sweep_cli_damaged");
+  const auto spec = WriteSpec(dir, "episodes: 3\n");
+  const auto out = dir / "out";
+  std::filesystem::create_directories(out);
+  std::filesystem::copy_file(spec, out / "spec.yaml");
+  const std::string results = Dump(OkRecord(0, {})) + "\n" + R"({"episode":1,"sta)" + "\n" + Dump(OkRecord(2, {})) + "\n";
+  WriteFile(out / "results.jsonl", results);
+  sortcell_test::ExpectOneLineError(sortcell_test::RunSortcell("sweep " + spec.string() + " --resume --out " + out.string()),
+                                    (out / "results.jsonl").string() + " line 2: not a JSON record");
+  EXPECT_EQ(Read(out / "results.jsonl"), results);
+}
+
+}  // namespace
+}  // namespace sortcell::app

@@ -1,0 +1,81 @@
+#pragma once
+// A scripted cell for the policy's unit tests: clouds from a list (the last one repeats), an arm that
+// arrives wherever it is sent, a clock that advances by what each motion takes, and a gripper whose
+// closing either holds the object or closes on nothing, as each scripted grasp says.
+#include <deque>
+#include <string>
+#include <vector>
+
+#include "cell/cell_io.h"
+
+namespace sortcell_test {
+
+class FakeCell : public sortcell::cell::CellIo {
+ public:
+  // What the next closings of the fingers find: true = an object (held until the fingers open).
+  std::deque<bool> grasps;
+  // Lose the held object during the lift (the next "lift" motion).
+  bool drop_on_lift = false;
+  std::vector<sortcell::perception::Cloud::Ptr> clouds;
+  int captures = 0;
+  std::vector<std::string> motions;  // Phase of every Follow, in order.
+
+  explicit FakeCell(const sortcell::robot::Joints& q) : q_(q) { Open(0.055, 0.055); }
+
+  sortcell::perception::Cloud::Ptr Capture() override {
+    const size_t i = std::min<size_t>(captures++, clouds.size() - 1);
+    return clouds[i];
+  }
+  sortcell::robot::Joints ReadJoints() const override { return q_; }
+  sortcell::robot::Joints CommandedJoints() const override { return q_; }
+  sortcell::robot::GripperSensors ReadGripper() const override { return sensors_; }
+
+  sortcell::cell::MotionResult Follow(std::string_view phase, const sortcell::robot::JointTrajectory& t) override {
+    motions.emplace_back(phase);
+    if (t.size() > 0) q_ = t.q.back();
+    now_ += t.duration();
+    if (phase == "lift" && drop_on_lift && holding_) Open(0.0, 0.0);
+    return {};
+  }
+  void CommandFingers(double left, double right) override {
+    if (left <= 0 && right <= 0) {  // Closing on whatever is between the fingers.
+      const bool object = !grasps.empty() && grasps.front();
+      if (!grasps.empty()) grasps.pop_front();
+      holding_ = object;
+      sensors_ = {};
+      if (object) sensors_.left_half_gap = sensors_.right_half_gap = 0.02, sensors_.left_pad_force = sensors_.right_pad_force = 20;
+    } else if (holding_ && left < sensors_.left_half_gap) {
+      sensors_.left_pad_force = sensors_.right_pad_force = 30;  // Squeezing what is held.
+    } else {
+      Open(left, right);
+    }
+  }
+  sortcell::cell::MotionResult HoldUntil(std::string_view, double max_seconds, const std::function<bool()>& done) override {
+    const double start = now_;
+    while (now_ - start < max_seconds) {
+      now_ += 0.002;
+      if (done()) break;
+    }
+    return {};
+  }
+  sortcell::cell::MotionResult Wait(std::string_view, double seconds) override {
+    now_ += seconds;
+    return {};
+  }
+  double Now() const override { return now_; }
+
+ private:
+  void Open(double left, double right) {
+    holding_ = false;
+    sensors_ = {};
+    sensors_.left_half_gap = left;
+    sensors_.right_half_gap = right;
+  }
+
+  sortcell::robot::Joints q_;
+  sortcell::robot::GripperSensors sensors_;
+  bool holding_ = false;
+  double now_ = 0;
+};
+
+}  // namespace sortcell_test
