@@ -49,6 +49,7 @@ struct CellLayout {
 };
 
 /// The bin slot for the `filled`-th object released into a bin (cycling through the slots).
+/// @throws std::invalid_argument naming the category if the layout has no bin for it.
 Eigen::Vector3d BinSlot(const CellLayout& layout, const std::string& category, int filled);
 
 }  // namespace sortcell::cell

@@ -16,7 +16,7 @@ bool MotionSequencer::Phase(const std::string& name, const std::function<MotionR
   const MotionResult result = action();
   phases_.push_back({name, start, io_.Now()});
   if (result.ok()) return true;
-  failure_ = name + ": simulation " + result.detail;
+  failure_ = name + ": cell fault: " + result.detail;
   faulted_ = true;
   return false;
 }

@@ -18,8 +18,8 @@ PickReport Fail(MotionSequencer& run, const PickRequest& request, PickReport rep
     report.result = AttemptResult::kSimDiverged;
     return report;
   }
-  run.Gripper("open", robot::kMaxGap);
-  report.result = run.MoveJ("home", request.q_home) ? AttemptResult::kMotionFailed : AttemptResult::kSimDiverged;
+  const bool recovered = run.Gripper("open", robot::kMaxGap) && run.MoveJ("home", request.q_home);
+  report.result = recovered ? AttemptResult::kMotionFailed : AttemptResult::kSimDiverged;
   return report;
 }
 
@@ -27,8 +27,8 @@ PickReport Fail(MotionSequencer& run, const PickRequest& request, PickReport rep
 PickReport PutBack(MotionSequencer& run, const PickRequest& request, PickReport report) {
   const robot::GraspPlan& plan = request.grasp;
   if (!run.MoveL("put_back", plan.X_WT_grasp, robot::kMovelSpeed)) return Fail(run, request, report);
-  run.Gripper("open", plan.open_gap);
-  if (!run.MoveL("retreat", plan.X_WT_lift, robot::kMovelSpeed) || !run.MoveJ("home", request.q_home)) {
+  if (!run.Gripper("open", plan.open_gap) || !run.MoveL("retreat", plan.X_WT_lift, robot::kMovelSpeed) ||
+      !run.MoveJ("home", request.q_home)) {
     return Fail(run, request, report);
   }
   report.result = AttemptResult::kPutBack;
@@ -58,8 +58,8 @@ PickReport PickAndPlace(MotionSequencer& run, const PickRequest& request, const 
   if (!run.MoveL("lift", plan.X_WT_lift, robot::kMovelSpeed)) return Fail(run, request, report);
   Notify(hooks.lifted);
   if (run.Hold() == robot::HoldState::kEmpty) {
-    run.Gripper("open", robot::kMaxGap);
-    report.result = run.MoveJ("home", request.q_home) ? AttemptResult::kDropped : AttemptResult::kSimDiverged;
+    const bool home = run.Gripper("open", robot::kMaxGap) && run.MoveJ("home", request.q_home);
+    report.result = home ? AttemptResult::kDropped : AttemptResult::kSimDiverged;
     return report;
   }
   report.lifted = true;

@@ -3,13 +3,15 @@
 /// The pick-and-place sequence of the cell, one attempt: open, approach above the object, descend
 /// and reach in straight lines, close and squeeze, check the hold, lift, check again, carry above
 /// the bin, lower, release, retreat, home. The episode's policy and the scripted `sortcell pick` run
-/// this same sequence; they differ only in where the grasp and the bin come from.
+/// this same sequence; they differ in where the grasp (a footprint perceived or read from the scene,
+/// its finger clearance) and the release point (a bin slot or the bin's middle, its yaw step) come from.
 
 #include <functional>
 #include <string>
 
 #include <Eigen/Core>
 
+#include "cell/cell_layout.h"
 #include "cell/motion_sequencer.h"
 #include "cell/outcomes.h"
 #include "robot/grasp_planner.h"
@@ -17,11 +19,11 @@
 namespace sortcell::cell {
 
 struct PickRequest {
-  robot::GraspPlan grasp;          ///< A plan with status kOk.
-  Eigen::Vector3d p_W_release;     ///< The floor point of the bin slot the object goes to.
-  double place_yaw_step = M_PI / 2;  ///< Yaws tried for the placement (robot::PlanPlacement).
-  robot::Joints q_home;            ///< Where the arm returns afterwards (the observe pose).
-  double approach_speed = 0.10;    ///< The last straight descent onto the object (m/s).
+  robot::GraspPlan grasp;  ///< A plan with status kOk.
+  Eigen::Vector3d p_W_release = Eigen::Vector3d::Zero();  ///< The floor point the object is released over.
+  double place_yaw_step = CellLayout().place_yaw_step;    ///< Yaws tried for the placement (robot::PlanPlacement).
+  robot::Joints q_home = CellLayout().q_observe;          ///< Where the arm returns afterwards.
+  double approach_speed = CellLayout().approach_speed;    ///< The last straight descent onto the object (m/s).
 };
 
 /// Called at the sequence's milestones, for callers that measure (the scripted pick's slip); the

@@ -10,8 +10,9 @@ namespace sortcell::cell {
 namespace {
 
 // Finger clearance per side for a perceived width (Kinect noise ~2 mm at 1 m), reduced down to the
-// scripted pick's 4.5 mm when the object is that close to the stroke.
-constexpr double kPerceivedClearance = 0.008, kMinClearance = 0.0045;
+// planner's default (the scripted pick's 4.5 mm) when the object is that close to the stroke.
+constexpr double kPerceivedClearance = 0.008;
+const double kMinClearance = robot::GraspOptions().finger_clearance;
 
 double WallSecondsSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

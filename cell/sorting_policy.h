@@ -69,6 +69,8 @@ class SortingPolicy {
   SortingPolicy(CellIo& io, const CellLayout& layout, const CameraCalibration& calibration,
                 const perception::RecognitionModel& model, const PolicyOptions& options,
                 PolicyObserver* observer = nullptr);
+  SortingPolicy(const SortingPolicy&) = delete;  // It refers to its own members (observer_).
+  SortingPolicy& operator=(const SortingPolicy&) = delete;
 
   /// Sorts until nothing pickable is left in view or a budget runs out. Starts from the observe pose.
   PolicyResult Run();

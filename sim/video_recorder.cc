@@ -1,11 +1,11 @@
 #include "sim/video_recorder.h"
 
+#include <spdlog/fmt/fmt.h>
+
 #include <opencv2/imgproc.hpp>
 
 #include <chrono>
-#include <cstdio>
 #include <stdexcept>
-
 
 namespace sortcell::sim {
 namespace {
@@ -38,9 +38,7 @@ void VideoRecorder::WriteFrame(const Data& data) {
   const auto start = std::chrono::steady_clock::now();
   renderer_.Render(data, view_, rgb_, depth_);
   cv::cvtColor(rgb_, bgr_, cv::COLOR_RGB2BGR);
-  char clock[32];
-  std::snprintf(clock, sizeof clock, "t = %6.2f s", data->time);
-  const std::string line = std::string(clock) + (caption_.empty() ? "" : "   " + caption_);
+  const std::string line = fmt::format("t = {:6.2f} s{}{}", data->time, caption_.empty() ? "" : "   ", caption_);
   DrawText(bgr_, line, cv::Point(16, 36), 0.8);
   for (size_t i = 0; i < overlay_.size(); ++i) DrawText(bgr_, overlay_[i], cv::Point(16, 72 + 30 * static_cast<int>(i)), 0.65);
   if (!inset_.empty()) {

@@ -21,8 +21,7 @@ class ArmExecutor {
  public:
   /// The control period must be a whole number of physics timesteps.
   /// @throws std::invalid_argument otherwise, or if the model lacks the arm or gripper.
-  ArmExecutor(const sim::Model& model, sim::Data& data, sim::VideoRecorder* video = nullptr,
-              double control_period = 0.002);
+  ArmExecutor(const sim::Model& model, sim::Data& data, sim::VideoRecorder* video, double control_period);
 
   /// Puts the arm at q and the fingers at `half_gap`, at rest, and holds them there from now on.
   void Reset(const robot::Joints& q, double half_gap);

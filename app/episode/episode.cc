@@ -116,7 +116,7 @@ void EpisodeRun::PlaceObjects() {
 
 // The policy's budget from the options (the number of objects asked for, not what the scene holds).
 cell::PolicyOptions EpisodeRun::Budget() const {
-  const int objects = static_cast<int>(scorer_->objects().size());
+  const int objects = ObjectCount(set_, options_);
   cell::PolicyOptions budget;
   budget.max_attempts_per_position = options_.max_attempts_per_object;
   budget.max_attempts = (options_.max_attempts_per_object + 1) * objects;

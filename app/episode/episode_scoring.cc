@@ -52,9 +52,11 @@ void EpisodeScorer::Attempt(const AttemptRecord& attempt) {
   t.cycle_time_s += attempt.end_s - attempt.start_s;
   t.predicted = attempt.predicted;
   t.confidence = attempt.confidence;
-  // Put back because its bin is out of reach: it stands on the table again, given up as unreachable.
+  // Put back because its bin is out of reach: it stands on the table again (whatever happened to it
+  // before), given up as unreachable.
   if (attempt.result == cell::AttemptResult::kPutBack) {
     t.unreachable = true;
+    t.lifted = false;
   } else {
     t.lifted = t.lifted || attempt.lifted;
   }

@@ -12,13 +12,18 @@ constexpr int kDefaultMaxObjects = 6;
 
 }  // namespace
 
-std::vector<ObjectSpec> ChooseObjects(const ObjectSet& set, const EpisodeOptions& options, std::mt19937_64& rng) {
+int ObjectCount(const ObjectSet& set, const EpisodeOptions& options) {
   const int n = static_cast<int>(set.objects.size());
   const int count = options.objects > 0 ? options.objects : std::min(n, kDefaultMaxObjects);
   if (count < 1 || count > n) {
     throw std::invalid_argument("--objects: expected 1.." + std::to_string(n) + " (the objects of set '" +
                                 set.source.string() + "'), got " + std::to_string(options.objects));
   }
+  return count;
+}
+
+std::vector<ObjectSpec> ChooseObjects(const ObjectSet& set, const EpisodeOptions& options, std::mt19937_64& rng) {
+  const int count = ObjectCount(set, options);
   if (static_cast<int>(options.placements.size()) > count) {
     throw std::invalid_argument("--place: " + std::to_string(options.placements.size()) +
                                 " placements for " + std::to_string(count) + " objects");

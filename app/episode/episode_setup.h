@@ -11,6 +11,10 @@
 
 namespace sortcell::app {
 
+/// How many objects the episode asks for: `options.objects`, or (0) all of the set, at most 6.
+/// @throws std::invalid_argument for a count outside 1..set size.
+int ObjectCount(const ObjectSet& set, const EpisodeOptions& options);
+
 /// The objects of the episode: those placed by hand first, then the rest drawn at random from the
 /// set, `options.objects` in all (0: all of the set, at most 6).
 /// @throws std::invalid_argument for a count outside 1..set size, more placements than objects, an

@@ -1,6 +1,7 @@
 #include "app/episode/scripted_pick.h"
 
 #include <algorithm>
+#include <cmath>
 #include <memory>
 #include <optional>
 #include <stdexcept>
@@ -81,7 +82,7 @@ std::string PickStatus(cell::AttemptResult result, bool in_bin) {
 }
 
 nlohmann::json ResultJson(const PickOptions& options, const PickResult& result, const std::string& detail,
-                          const sim::ObjectExtent& extent, const robot::GraspPlan& grasp, double held_gap,
+                          const sim::ObjectExtent& extent, const robot::GraspPlan& grasp, std::optional<double> held_gap,
                           const SimCell& cell, const cell::CellLayout& layout, const std::vector<cell::PhaseSpan>& phases) {
   nlohmann::json phase_list = nlohmann::json::array();
   for (const auto& p : phases) phase_list.push_back({{"phase", p.phase}, {"start_s", p.start_s}, {"end_s", p.end_s}});
@@ -107,12 +108,12 @@ nlohmann::json ResultJson(const PickOptions& options, const PickResult& result, 
             {"object_width_m", extent.width},
             {"open_gap_m", grasp.open_gap},
             {"grasp_height_m", grasp.grasp_height},
-            {"held_gap_m", held_gap}}},
+            {"held_gap_m", held_gap ? nlohmann::json(*held_gap) : nlohmann::json(nullptr)}}},
           {"tracking",
            {{"max_error_rad", tracking.max_error},
             {"rms_error_rad", tracking.rms_error()},
             {"saturated_samples", tracking.saturated_samples},
-            {"control_rate_hz", 1.0 / layout.control_period}}},
+            {"control_rate_hz", std::lround(1.0 / layout.control_period)}}},
           {"phases", phase_list},
           {"video", options.video.empty() ? nlohmann::json(nullptr) : nlohmann::json(options.video.string())},
           {"video_frames", result.video_frames},
@@ -160,14 +161,14 @@ PickResult RunPick(const PickOptions& options, const std::vector<std::string>& c
     result.held = motions.Hold() == robot::HoldState::kHolding;
     result.slip_total_mm = 1000 * (object_in_tcp().translation() - X_TO_grasped.translation()).norm();
   };
-  double held_gap = cell.ReadGripper().gap();
+  std::optional<double> held_gap;  // The finger gap when the grasp closed on the object.
   std::string detail;
   std::optional<cell::AttemptResult> outcome;
   if (grasp.status == robot::GraspStatus::kOk) {
     cell::PickRequest request;
     request.grasp = grasp;
     request.p_W_release = layout.p_W_bin.at(target.bin.category);  // The bin's middle.
-    request.place_yaw_step = M_PI / 8;
+    request.place_yaw_step = robot::GraspOptions().place_yaw_step;  // Any yaw: the bin's middle.
     request.q_home = layout.q_observe;
     request.approach_speed = layout.approach_speed;
     hooks.grasped = [&, grasped = hooks.grasped] {

@@ -25,6 +25,7 @@ class SimCell : public cell::CellIo {
   SimCell(const sim::Model& model, sim::Data& data, sim::KinectCamera* kinect, const sim::KinectNoiseParams* noise,
           std::mt19937_64* rng, sim::VideoRecorder* video, double control_period);
 
+  /// @throws std::logic_error for a cell made without a camera.
   perception::Cloud::Ptr Capture() override;
   robot::Joints ReadJoints() const override { return exec_.JointPositions(); }
   robot::Joints CommandedJoints() const override { return exec_.ReferenceJoints(); }

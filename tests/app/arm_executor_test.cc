@@ -23,7 +23,7 @@ class ArmExecutorTest : public ::testing::Test {
   }
   const sim::Model model_ = sim::Model::FromFile(kCell);
   sim::Data data_{model_};
-  ArmExecutor exec_{model_, data_};
+  ArmExecutor exec_{model_, data_, nullptr, cell::CellLayout().control_period};
 };
 
 TEST_F(ArmExecutorTest, ObserveKeyframeIsTheHomePose) {
@@ -50,7 +50,7 @@ TEST(SimCell, ClosingOnNothingIsEmpty) {
   const sim::Model model = sim::Model::FromFile(kCell);
   sim::Data data(model);
   ASSERT_TRUE(sim::ResetToObserve(model, data));
-  SimCell cell(model, data, nullptr, nullptr, nullptr, nullptr, 0.002);
+  SimCell cell(model, data, nullptr, nullptr, nullptr, nullptr, cell::CellLayout().control_period);
   cell.Reset(cell::CellLayout().q_observe, 0.055);
   cell::MotionSequencer motions(cell);
   ASSERT_TRUE(motions.Grasp("grasp")) << motions.failure();

@@ -62,6 +62,17 @@ TEST_F(ScorerTest, ReadsTheLayoutFromTheScene) {
   EXPECT_TRUE(layout.table_max_xy.isApprox(Eigen::Vector2d(0.9, 0.7)));
 }
 
+TEST(SimLayout, ASceneWithoutTableOrBinSiteIsNamed) {
+  const sim::Model no_table = sim::Model::FromVirtualFiles(
+      {{"t.xml", "<mujoco><worldbody><geom name='floor' type='plane' size='1 1 0.1'/></worldbody></mujoco>"}}, "no table");
+  EXPECT_EQ(ErrorOf([&] { ReadCellLayout(no_table); }), "scene 'no table': no table geom 'table_top'");
+  const sim::Model no_site = sim::Model::FromVirtualFiles(
+      {{"b.xml", "<mujoco><worldbody><body name='bin_cup'><geom type='box' size='0.1 0.1 0.01'/></body></worldbody></mujoco>"}},
+      "no site");
+  EXPECT_EQ(ErrorOf([&] { ReadCellLayout(no_site); }), "scene 'no site': bin 'bin_cup' has no floor site 'bin_cup'");
+  EXPECT_NE(ErrorOf([&] { NominalCameraPose(no_site, "kinect"); }).find("kinect"), std::string::npos);
+}
+
 TEST_F(ScorerTest, EveryOutcomeFromWhereObjectsEndedAndWhatWasTried) {
   EpisodeScorer scorer = Scorer();
   const std::vector<int> p0{0}, p1{1}, p2{2};
@@ -106,6 +117,9 @@ TEST_F(ScorerTest, AnObjectPutBackBecauseItsBinIsOutOfReachIsUnreachableNotDropp
   // Lifted and then lost on the way, standing on the table: dropped.
   scorer.Attempt({0, "cup", 0.9, 12, 20, true, true, cell::AttemptResult::kDropped});
   EXPECT_EQ(scorer.Items(data_, sim::Bins(model_))[0].outcome, cell::ItemOutcome::kDropped);
+  // Then picked up again and put back: it stands on the table, its bin out of reach.
+  scorer.Attempt({0, "cup", 0.9, 20, 32, true, true, cell::AttemptResult::kPutBack});
+  EXPECT_EQ(scorer.Items(data_, sim::Bins(model_))[0].outcome, cell::ItemOutcome::kUnreachable);
 }
 
 TEST(ItemTally, CountsOutcomesRecognitionAndCyclesOfItemsThatReachedABin) {

@@ -34,6 +34,18 @@ TEST(EpisodeSetup, AnObjectPlacedTwiceIsRefused) {
   EXPECT_EQ(ErrorOf([&] { ChooseObjects(ThreeObjects(), options, rng); }), "--place: object 'a' placed twice");
 }
 
+TEST(EpisodeSetup, MorePlacementsThanObjectsOrAnUnknownObjectAreRefused) {
+  std::mt19937_64 rng(1);
+  EpisodeOptions options;
+  options.objects = 1;
+  options.placements = {{"a", 0.4, 0.0, 0.0}, {"b", 0.5, 0.1, 0.0}};
+  EXPECT_EQ(ErrorOf([&] { ChooseObjects(ThreeObjects(), options, rng); }), "--place: 2 placements for 1 objects");
+  options.objects = 0;
+  options.placements = {{"z", 0.4, 0.0, 0.0}};
+  EXPECT_NE(ErrorOf([&] { ChooseObjects(ThreeObjects(), options, rng); }).find("'z'"), std::string::npos);
+  EXPECT_EQ(ObjectCount(ThreeObjects(), options), 3);
+}
+
 TEST(EpisodeSetup, PlacedObjectsComeFirstAndTheCountIsChecked) {
   EpisodeOptions options;
   options.objects = 2;

@@ -171,7 +171,7 @@ TEST(SweepResults, AFullDiskIsAnErrorNamingTheFile) {
 
 // results.jsonl with `middle` as line 2 between two good records: the error reading it.
 std::string ErrorWithLine2(const std::string& name, const std::string& middle) {
-  const TempDir dir(name);
+  const TempDir dir("results_of_" + name);  // A folder name no key contains.
   const auto file = WriteFile(dir / "results.jsonl",
                               Dump(OkRecord(0, {})) + "\n" + middle + "\n" + Dump(OkRecord(2, {})) + "\n");
   return ErrorOf([&] { ReadSweepResults(file); });
@@ -186,7 +186,7 @@ std::string Changed(const std::function<void(nlohmann::json&)>& change) {
 
 TEST(SweepResults, BadLinesNameTheFileTheLineAndTheKey) {
   const auto expect = [](const std::string& error, const std::string& name, const std::string& where) {
-    EXPECT_NE(error.find(name), std::string::npos) << error;  // The file.
+    EXPECT_NE(error.find("results_of_" + name + "_"), std::string::npos) << error;  // The file.
     EXPECT_NE(error.find("/results.jsonl line 2: " + where), std::string::npos) << error;
   };
   expect(ErrorWithLine2("missing", Changed([](nlohmann::json& j) { j["summary"].erase("grasps"); })), "missing",

@@ -19,8 +19,13 @@ class FakeCell : public sortcell::cell::CellIo {
   std::vector<sortcell::perception::Cloud::Ptr> clouds;
   int captures = 0;
   std::vector<std::string> motions;  // Phase of every Follow, in order.
+  std::vector<sortcell::robot::Joints> motion_ends;  // Where each of them left the arm.
+  std::string fault_on;  // The cell stops under the first motion of this phase.
 
-  explicit FakeCell(const sortcell::robot::Joints& q) : q_(q) { Open(0.055, 0.055); }
+  // The clock starts at `start_s`, not 0: budgets count from the policy's start.
+  explicit FakeCell(const sortcell::robot::Joints& q, double start_s = 100.0) : q_(q), now_(start_s) {
+    Open(0.055, 0.055);
+  }
 
   sortcell::perception::Cloud::Ptr Capture() override {
     const size_t i = std::min<size_t>(captures++, clouds.size() - 1);
@@ -32,7 +37,9 @@ class FakeCell : public sortcell::cell::CellIo {
 
   sortcell::cell::MotionResult Follow(std::string_view phase, const sortcell::robot::JointTrajectory& t) override {
     motions.emplace_back(phase);
+    if (!fault_on.empty() && phase == fault_on) return {sortcell::cell::MotionStatus::kFault, "diverged (scripted)"};
     if (t.size() > 0) q_ = t.q.back();
+    motion_ends.push_back(q_);
     now_ += t.duration();
     if (phase == "lift" && drop_on_lift && holding_) Open(0.0, 0.0);
     return {};
@@ -75,7 +82,7 @@ class FakeCell : public sortcell::cell::CellIo {
   sortcell::robot::Joints q_;
   sortcell::robot::GripperSensors sensors_;
   bool holding_ = false;
-  double now_ = 0;
+  double now_;
 };
 
 }  // namespace sortcell_test

@@ -8,8 +8,10 @@
 #include <memory>
 
 #include "cell/cell_layout.h"
+#include "error_of.h"
 #include "fake_cell.h"
 #include "perception/descriptor.h"
+#include "robot/ur5_kinematics.h"
 #include "synthetic_scene.h"
 
 namespace sortcell::cell {
@@ -83,15 +85,24 @@ struct Recorder : PolicyObserver {
   std::vector<AttemptResult> results;
   std::vector<robot::GraspStatus> skipped;
   std::vector<std::optional<std::string>> categories;  // Of the last observation.
+  std::vector<Eigen::Vector2d> centres;                 // Their footprint centres.
+  std::vector<std::string> attempted;                   // Category of each attempt.
   const FakeCell* cell = nullptr;
 
   void Observed(const perception::Cloud&, const Observation& o, double) override {
     ++observed;
     categories.clear();
-    for (const auto& d : o.detections) categories.push_back(d.category);
+    centres.clear();
+    for (const auto& d : o.detections) {
+      categories.push_back(d.category);
+      centres.push_back(d.footprint.centre_xy);
+    }
   }
   void Skipped(int, const Detection&, robot::GraspStatus why) override { skipped.push_back(why); }
-  void AttemptStarting(const AttemptReport&) override { captures_before_attempt.push_back(cell->captures); }
+  void AttemptStarting(const AttemptReport& r) override {
+    captures_before_attempt.push_back(cell->captures);
+    attempted.push_back(r.seen->category.value_or("?"));
+  }
   void AttemptEnded(const AttemptReport& r) override { results.push_back(r.pick.result); }
 };
 
@@ -100,21 +111,25 @@ struct SortRun {
   Recorder seen;
   int captures = 0;
   std::vector<std::string> motions;
+  std::vector<robot::Joints> motion_ends;
 };
 
 SortRun Sort(const std::vector<Cylinder>& objects, std::deque<bool> grasps, PolicyOptions options = {},
-         CellLayout layout = Layout(), const perception::RecognitionModel& model = Model(), bool drop_on_lift = false) {
+         CellLayout layout = Layout(), const perception::RecognitionModel& model = Model(), bool drop_on_lift = false,
+         const std::string& fault_on = "") {
   const CameraCalibration calibration = Calibration();
   FakeCell cell(layout.q_observe);
   cell.clouds = {sortcell_test::RenderTable(objects, calibration.X_WC)};
   cell.grasps = std::move(grasps);
   cell.drop_on_lift = drop_on_lift;
+  cell.fault_on = fault_on;
   SortRun run;
   run.seen.cell = &cell;
   SortingPolicy policy(cell, layout, calibration, model, options, &run.seen);
   run.result = policy.Run();
   run.captures = cell.captures;
   run.motions = cell.motions;
+  run.motion_ends = cell.motion_ends;
   return run;
 }
 
@@ -125,13 +140,15 @@ TEST(SortingPolicy, RecognisesTheSyntheticObjects) {
     return o;
   }());
   ASSERT_EQ(run.seen.categories.size(), 2u);
-  EXPECT_NE(run.seen.categories[0], run.seen.categories[1]);
-  for (const auto& c : run.seen.categories) EXPECT_TRUE(c.has_value());
+  for (size_t i = 0; i < 2; ++i) {
+    // Each cluster named for the object standing where its footprint is.
+    const bool bottle = (run.seen.centres[i] - kBottle.xy).norm() < (run.seen.centres[i] - kCup.xy).norm();
+    EXPECT_EQ(run.seen.categories[i], std::optional<std::string>(bottle ? "bottle" : "cup"));
+    EXPECT_LT((run.seen.centres[i] - (bottle ? kBottle.xy : kCup.xy)).norm(), 0.01);
+  }
 }
 
 TEST(SortingPolicy, SortsAnObjectItHoldsAndMovesThroughThePhases) {
-  // A scripted cell does not take the object away: after the release the same cloud is seen again,
-  // so the next attempt at that position follows until the position is given up.
   const SortRun run = Sort({kBottle}, {true}, [] {
     PolicyOptions o;
     o.max_attempts = 1;
@@ -142,6 +159,31 @@ TEST(SortingPolicy, SortsAnObjectItHoldsAndMovesThroughThePhases) {
   EXPECT_EQ(run.result.status, EpisodeStatus::kAttemptLimit);
   const std::vector<std::string> expected{"approach", "descend", "reach", "lift", "carry", "lower", "retreat", "home"};
   EXPECT_EQ(run.motions, expected);
+}
+
+TEST(SortingPolicy, ReleasesIntoThePredictedBinSlotBySlot) {
+  // The scripted cell does not take the object away: it is seen and sorted again, into the next slot.
+  PolicyOptions options;
+  options.max_attempts = 2;
+  const SortRun run = Sort({kBottle}, {true, true}, options);
+  ASSERT_EQ(run.seen.results, (std::vector<AttemptResult>{AttemptResult::kReleased, AttemptResult::kReleased}));
+  std::vector<Eigen::Vector2d> released;
+  for (size_t i = 0; i < run.motions.size(); ++i) {
+    if (run.motions[i] == "lower") released.push_back(robot::TcpPose(run.motion_ends[i]).translation().head<2>());
+  }
+  const CellLayout layout = Layout();
+  ASSERT_EQ(released.size(), 2u);
+  for (int k = 0; k < 2; ++k) {
+    EXPECT_LT((released[k] - BinSlot(layout, "bottle", k).head<2>()).norm(), 1e-4) << k;
+  }
+}
+
+TEST(SortingPolicy, AFaultOfTheCellEndsTheEpisode) {
+  const SortRun run = Sort({kBottle}, {true}, {}, Layout(), Model(), false, "carry");
+  ASSERT_EQ(run.seen.results.size(), 1u);
+  EXPECT_EQ(run.seen.results[0], AttemptResult::kSimDiverged);
+  EXPECT_EQ(run.result.status, EpisodeStatus::kSimDiverged);
+  EXPECT_EQ(run.motions.back(), "carry");  // Nothing moves after the fault.
 }
 
 TEST(SortingPolicy, RetriesAMissedGraspFromAFreshCaptureUpToTheLimit) {
@@ -207,11 +249,16 @@ TEST(SortingPolicy, ReportsADropDuringTheLift) {
 TEST(SortingPolicy, NeverPicksAFragmentTooSmallToDescribe) {
   perception::RecognitionModel model = TrainModel();
   model.params.cvfh.min_points = 400;  // The small object below has fewer points after downsampling.
-  const Cylinder fragment{{0.5, 0.0}, 0.02, 0.03, 40, 160, 60};
-  const SortRun run = Sort({fragment}, {true}, {}, Layout(), model);
-  ASSERT_EQ(run.seen.categories.size(), 1u);  // Seen ...
-  EXPECT_FALSE(run.seen.categories[0].has_value());  // ... but not described ...
-  EXPECT_TRUE(run.seen.results.empty());             // ... and never picked.
+  const Cylinder fragment{{0.45, -0.12}, 0.02, 0.03, 40, 160, 60};
+  PolicyOptions options;
+  options.max_attempts_per_position = 1;
+  const SortRun run = Sort({fragment, kBottle}, {false}, options, Layout(), model);
+  // Both seen; the fragment not described; only the bottle attempted (once), then nothing left.
+  ASSERT_EQ(run.seen.categories.size(), 2u);
+  int undescribed = 0;
+  for (const auto& c : run.seen.categories) undescribed += c.has_value() ? 0 : 1;
+  EXPECT_EQ(undescribed, 1);
+  EXPECT_EQ(run.seen.attempted, (std::vector<std::string>{"bottle"}));
   EXPECT_TRUE(run.seen.skipped.empty());
   EXPECT_EQ(run.result.status, EpisodeStatus::kCompleted);
 }
@@ -235,10 +282,39 @@ TEST(SortingPolicy, RejectsBudgetsOutOfRange) {
   const CameraCalibration calibration = Calibration();
   PolicyOptions options;
   options.max_attempts = 0;
-  EXPECT_THROW(SortingPolicy(cell, layout, calibration, Model(), options), std::invalid_argument);
+  const auto error = [&] { return sortcell_test::ErrorOf([&] { SortingPolicy(cell, layout, calibration, Model(), options); }); };
+  EXPECT_EQ(error(), "policy options: attempt limits must be at least 1");
+  options = {};
+  options.max_attempts_per_position = 0;
+  EXPECT_EQ(error(), "policy options: attempt limits must be at least 1");
   options = {};
   options.time_limit_s = 0;
-  EXPECT_THROW(SortingPolicy(cell, layout, calibration, Model(), options), std::invalid_argument);
+  EXPECT_EQ(error(), "policy options: time limit must be > 0 s");
+}
+
+TEST(CellLayout, BinSlotsCycleAndAnUnknownBinIsNamed) {
+  const CellLayout layout = Layout();
+  EXPECT_TRUE(BinSlot(layout, "cup", 0).isApprox(layout.p_W_bin.at("cup") + layout.bin_slots[0]));
+  EXPECT_TRUE(BinSlot(layout, "cup", 6).isApprox(layout.p_W_bin.at("cup") + layout.bin_slots[1]));
+  EXPECT_EQ(sortcell_test::ErrorOf([&] { BinSlot(layout, "plate", 0); }), "cell layout: no bin for category 'plate'");
+}
+
+TEST(ObserveScene, MisuseThrowsAndAnEmptyViewIsAStatus) {
+  const CameraCalibration calibration = Calibration();
+  perception::Cloud unorganized = *sortcell_test::RenderTable({kBottle}, calibration.X_WC);
+  unorganized.width = unorganized.width * unorganized.height;
+  unorganized.height = 1;
+  EXPECT_NE(sortcell_test::ErrorOf([&] { ObserveScene(unorganized, calibration, {}, Model()); }).find("not organized"),
+            std::string::npos);
+  // The camera turned away from the table: nothing valid in view, a status, not an exception.
+  CameraCalibration away = calibration;
+  Eigen::Isometry3d X_WC = Eigen::Isometry3d::Identity();
+  X_WC.translation() = Eigen::Vector3d(0.5, 0, 0.75);  // looking straight up
+  const auto sky = sortcell_test::RenderTable({}, X_WC);
+  away.background = nullptr;
+  const Observation o = ObserveScene(*sky, away, {}, Model());
+  EXPECT_EQ(o.status, perception::SegmentationStatus::kNoValidPoints);
+  EXPECT_TRUE(o.detections.empty());
 }
 
 }  // namespace
