@@ -82,7 +82,9 @@ AttemptReport SortingPolicy::Attempt(const Detection& seen, int index, int attem
   request.place_yaw_step = layout_.place_yaw_step;
   request.q_home = layout_.q_observe;
   request.approach_speed = layout_.approach_speed;
+  const size_t first_phase = motions_.phases().size();
   report.pick = PickAndPlace(motions_, request);
+  report.phases.assign(motions_.phases().begin() + first_phase, motions_.phases().end());
   if (report.pick.reached_bin) ++filled;
   report.end_s = io_.Now();
   observer_.AttemptEnded(report);

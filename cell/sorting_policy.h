@@ -37,6 +37,7 @@ struct AttemptReport {
   int attempt = 0;         ///< 1 for the first attempt at this position.
   double start_s = 0, end_s = 0;  ///< The cell's clock from leaving the observe pose to being back.
   PickReport pick;
+  std::vector<PhaseSpan> phases;  ///< The attempt's motion phases, in order (filled when it ended).
 };
 
 /// What the policy reports as it goes (the episode harness: scoring, logs, video). Never consulted

@@ -51,6 +51,12 @@ void ReadNullable(const nlohmann::json& json, const std::string& path, const cha
   out = value;
 }
 
+/// As ReadField, for a key that later versions added: absent leaves `out` as it is.
+template <typename T>
+void ReadAddedField(const nlohmann::json& json, const std::string& path, const char* key, T& out) {
+  if (json.is_object() && json.contains(key)) ReadField(json, path, key, out);
+}
+
 /// A value or JSON null.
 template <typename T>
 nlohmann::json OrNull(const std::optional<T>& value) {

@@ -160,6 +160,9 @@ EpisodeMetrics EpisodeRun::Metrics(const cell::PolicyResult& result, double wall
   run.video_frames = video_ ? video_->frames() : 0;
   run.video_render_wall_s = video_ ? video_->render_wall_s() : 0.0;
   for (int i = 0; i < mjNWARNING; ++i) run.mujoco_warnings += (*data_)->warning[i].number;
+  run.cycle_phases_s = recorder_->CyclePhases();
+  run.tracking_max_error_rad = cell_->tracking().max_error;
+  run.torque_saturated_samples = cell_->tracking().saturated_samples;
 
   EpisodeMetrics m;
   m.seed = options_.seed;

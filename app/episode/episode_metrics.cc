@@ -27,6 +27,10 @@ int ItemTally::Count(cell::ItemOutcome outcome) const {
 
 std::optional<double> Ratio(double a, int b) { return b > 0 ? std::optional<double>(a / b) : std::nullopt; }
 
+std::optional<double> PicksPerHour(int sorted, double sim_time_s) {
+  return sim_time_s > 0 ? std::optional<double>(3600.0 * sorted / sim_time_s) : std::nullopt;
+}
+
 EpisodeSummary SummarizeEpisode(const std::vector<ItemResult>& items, int attempts, int grasps, const RunFigures& run) {
   ItemTally tally;
   for (const auto& item : items) tally.Add(item);
@@ -40,6 +44,7 @@ EpisodeSummary SummarizeEpisode(const std::vector<ItemResult>& items, int attemp
   s.grasps = grasps;
   s.grasp_success_rate = Ratio(grasps, attempts);
   s.mean_cycle_time_s = Ratio(tally.cycle_s, tally.completed);
+  s.picks_per_hour = PicksPerHour(tally.Count(cell::ItemOutcome::kSorted), run.sim_time_s);
   s.run = run;
   return s;
 }
@@ -53,10 +58,11 @@ std::string EpisodeParagraph(const EpisodeMetrics& metrics) {
     const int n = s.outcomes.at(outcome);
     if (outcome != cell::ItemOutcome::kSorted && n > 0) text += fmt::format(", {} {}", n, cell::ToString(outcome));
   }
-  text += fmt::format(". Recognition accuracy {}, grasp success {} of {} attempts, {}. ", rate(s.recognition_accuracy),
+  text += fmt::format(". Recognition accuracy {}, grasp success {} of {} attempts, {}{}. ", rate(s.recognition_accuracy),
                       rate(s.grasp_success_rate), s.grasp_attempts,
                       s.mean_cycle_time_s ? fmt::format("mean cycle {:.1f} s per item", *s.mean_cycle_time_s)
-                                          : std::string("no completed pick"));
+                                          : std::string("no completed pick"),
+                      s.picks_per_hour ? fmt::format(" ({:.0f} picks per hour)", *s.picks_per_hour) : std::string());
   text += fmt::format("{:.1f} s simulated in {:.1f} s (real-time factor {:.1f}), perception {:.0f} ms per frame over {} "
                       "frames, status {}.",
                       s.run.sim_time_s, s.run.wall_time_s, s.run.real_time_factor, s.run.perception_ms_per_frame,
@@ -105,6 +111,7 @@ void to_json(nlohmann::json& j, const EpisodeSummary& v) {
        {"grasps", v.grasps},
        {"grasp_success_rate", OrNull(v.grasp_success_rate)},
        {"mean_cycle_time_s", OrNull(v.mean_cycle_time_s)},
+       {"picks_per_hour", OrNull(v.picks_per_hour)},
        // The run's own figures, flat beside the counts.
        {"status", v.run.status},
        {"sim_time_s", v.run.sim_time_s},
@@ -115,7 +122,10 @@ void to_json(nlohmann::json& j, const EpisodeSummary& v) {
        {"render_ms_per_frame", v.run.render_ms_per_frame},
        {"video_frames", v.run.video_frames},
        {"video_render_wall_s", v.run.video_render_wall_s},
-       {"mujoco_warnings", v.run.mujoco_warnings}};
+       {"mujoco_warnings", v.run.mujoco_warnings},
+       {"cycle_phases_s", v.run.cycle_phases_s},
+       {"tracking_max_error_rad", v.run.tracking_max_error_rad},
+       {"torque_saturated_samples", v.run.torque_saturated_samples}};
 }
 
 void from_json(const nlohmann::json& j, EpisodeSummary& v) {
@@ -142,6 +152,11 @@ void from_json(const nlohmann::json& j, EpisodeSummary& v) {
   ReadField(j, path, "video_frames", v.run.video_frames);
   ReadField(j, path, "video_render_wall_s", v.run.video_render_wall_s);
   ReadField(j, path, "mujoco_warnings", v.run.mujoco_warnings);
+  // Added later: records written before them still read.
+  v.picks_per_hour = PicksPerHour(v.outcomes.at(cell::ItemOutcome::kSorted), v.run.sim_time_s);
+  ReadAddedField(j, path, "cycle_phases_s", v.run.cycle_phases_s);
+  ReadAddedField(j, path, "tracking_max_error_rad", v.run.tracking_max_error_rad);
+  ReadAddedField(j, path, "torque_saturated_samples", v.run.torque_saturated_samples);
 }
 
 void to_json(nlohmann::json& j, const EpisodeVariation& v) {

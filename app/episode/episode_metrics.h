@@ -40,6 +40,11 @@ struct RunFigures {
   int video_frames = 0;
   double video_render_wall_s = 0;
   int mujoco_warnings = 0;
+  /// The pick cycle by phase: mean simulated seconds per attempt in each motion phase (approach,
+  /// descend, reach, grasp, lift, carry, lower, release, retreat, home, ...).
+  std::map<std::string, double> cycle_phases_s;
+  double tracking_max_error_rad = 0;  ///< Largest joint tracking error of the arm's controller.
+  int torque_saturated_samples = 0;   ///< Control periods with a joint torque at its limit.
 };
 
 struct EpisodeSummary {
@@ -49,6 +54,7 @@ struct EpisodeSummary {
   int items_classified = 0;
   int grasp_attempts = 0, grasps = 0;
   std::optional<double> grasp_success_rate, mean_cycle_time_s;
+  std::optional<double> picks_per_hour;  ///< Items sorted per simulated hour (null without simulated time).
   RunFigures run;
 };
 
@@ -99,6 +105,8 @@ EpisodeSummary SummarizeEpisode(const std::vector<ItemResult>& items, int attemp
 
 /// a / b, or null when b is 0.
 std::optional<double> Ratio(double a, int b);
+/// Items sorted per simulated hour, or null without simulated time.
+std::optional<double> PicksPerHour(int sorted, double sim_time_s);
 
 /// The one-paragraph summary printed after an episode.
 std::string EpisodeParagraph(const EpisodeMetrics& metrics);

@@ -88,6 +88,8 @@ void EpisodeRecorder::AttemptEnded(const cell::AttemptReport& report) {
   record.lifted = report.pick.lifted;
   record.result = result;
   scorer_.Attempt(record);
+  ++attempts_;
+  for (const auto& span : report.phases) phase_s_[span.phase] += span.end_s - span.start_s;
   if (result == cell::AttemptResult::kReleased) ++released_;
   if (result == cell::AttemptResult::kMissed) ++missed_;
   if (result == cell::AttemptResult::kDropped) ++dropped_;
@@ -110,6 +112,12 @@ void EpisodeRecorder::AttemptEnded(const cell::AttemptReport& report) {
   }
   if (result == cell::AttemptResult::kMotionFailed) entry.detail = report.pick.detail;
   log_.push_back(entry);
+}
+
+std::map<std::string, double> EpisodeRecorder::CyclePhases() const {
+  std::map<std::string, double> mean;
+  for (const auto& [phase, seconds] : phase_s_) mean[phase] = seconds / attempts_;
+  return mean;
 }
 
 }  // namespace sortcell::app

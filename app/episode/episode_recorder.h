@@ -4,6 +4,7 @@
 /// truth of each capture through the simulated cell's own channel), keeps the attempts log and draws
 /// the review video's overlay and inset. Nothing here is consulted by a decision.
 
+#include <map>
 #include <optional>
 #include <string>
 #include <utility>
@@ -34,6 +35,8 @@ class EpisodeRecorder : public cell::PolicyObserver {
   void ShowStatus(const std::string& current);
   const std::vector<AttemptLogEntry>& attempts_log() const { return log_; }
   double perception_wall_s() const { return perception_wall_s_; }
+  /// Mean simulated seconds per attempt in each motion phase.
+  std::map<std::string, double> CyclePhases() const;
 
  private:
   void ShowObservation(const perception::Cloud& cloud, const std::vector<cell::Detection>& detections);
@@ -48,6 +51,8 @@ class EpisodeRecorder : public cell::PolicyObserver {
   std::vector<AttemptLogEntry> log_;
   std::optional<std::pair<double, double>> truth_errors_;  // Of the attempt in progress.
   double perception_wall_s_ = 0;
+  std::map<std::string, double> phase_s_;  // Simulated seconds in each phase, over every attempt.
+  int attempts_ = 0;
   int released_ = 0, missed_ = 0, dropped_ = 0, skipped_ = 0;
 };
 

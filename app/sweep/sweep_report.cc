@@ -24,6 +24,9 @@ struct Tally {
   int episodes = 0, failed_episodes = 0, attempts = 0, grasps = 0;
   double sim_s = 0, wall_s = 0;
   ItemTally items;
+  std::map<std::string, double> phase_s;  // Simulated seconds in each pick phase, over every attempt.
+  int saturated = 0;
+  double max_error = 0;
 
   void Add(const SweepRecord& record) {
     ++episodes;
@@ -36,6 +39,10 @@ struct Tally {
     sim_s += record.summary.run.sim_time_s;
     wall_s += record.summary.run.wall_time_s;
     for (const auto& item : record.items) items.Add(item);
+    const RunFigures& run = record.summary.run;
+    for (const auto& [phase, mean_s] : run.cycle_phases_s) phase_s[phase] += mean_s * record.summary.grasp_attempts;
+    saturated += run.torque_saturated_samples;
+    max_error = std::max(max_error, run.tracking_max_error_rad);
   }
 };
 
@@ -43,6 +50,10 @@ struct Tally {
 struct GroupFigures {
   int episodes = 0, episodes_failed = 0, items = 0, sorted = 0, grasp_attempts = 0;
   std::optional<double> correct_sort_rate, recognition_accuracy, grasp_success_rate, mean_cycle_time_s, real_time_factor;
+  std::optional<double> picks_per_hour;
+  std::map<std::string, double> cycle_phases_s;  // Mean simulated seconds per attempt in each phase.
+  int torque_saturated_samples = 0;
+  double tracking_max_error_rad = 0;
   std::pair<double, double> ci95{0, 1};
   OutcomeCounts outcomes;
   double sim_time_s = 0, episode_wall_time_s = 0;
@@ -64,6 +75,12 @@ GroupFigures Figures(const Tally& t) {
   f.sim_time_s = t.sim_s;
   f.episode_wall_time_s = t.wall_s;
   if (t.wall_s > 0) f.real_time_factor = t.sim_s / t.wall_s;
+  f.picks_per_hour = PicksPerHour(f.sorted, t.sim_s);
+  if (t.attempts > 0) {
+    for (const auto& [phase, seconds] : t.phase_s) f.cycle_phases_s[phase] = seconds / t.attempts;
+  }
+  f.torque_saturated_samples = t.saturated;
+  f.tracking_max_error_rad = t.max_error;
   return f;
 }
 
@@ -78,6 +95,10 @@ nlohmann::json FiguresJson(const GroupFigures& f) {
           {"grasp_success_rate", OrNull(f.grasp_success_rate)},
           {"grasp_attempts", f.grasp_attempts},
           {"mean_cycle_time_s", OrNull(f.mean_cycle_time_s)},
+          {"picks_per_hour", OrNull(f.picks_per_hour)},
+          {"cycle_phases_s", f.cycle_phases_s},
+          {"torque_saturated_samples", f.torque_saturated_samples},
+          {"tracking_max_error_rad", f.tracking_max_error_rad},
           {"sim_time_s", f.sim_time_s},
           {"episode_wall_time_s", f.episode_wall_time_s},
           {"real_time_factor", OrNull(f.real_time_factor)}};
@@ -165,16 +186,30 @@ std::string CsvRow(const std::string& axis, const std::string& value, const Grou
 
 std::string Percent(const std::optional<double>& v) { return v ? fmt::format("{:.1f} %", 100 * *v) : "n/a"; }
 
+// The pick cycle by phase, the phases that cost most first.
+std::string MarkdownPhases(const GroupFigures& all) {
+  if (all.cycle_phases_s.empty()) return "";
+  std::vector<std::pair<std::string, double>> phases(all.cycle_phases_s.begin(), all.cycle_phases_s.end());
+  std::stable_sort(phases.begin(), phases.end(), [](const auto& a, const auto& b) { return a.second > b.second; });
+  std::string md = "Cycle by phase, mean simulated seconds per attempt:";
+  for (const auto& [phase, seconds] : phases) md += fmt::format(" {} {:.2f},", phase, seconds);
+  md.back() = '.';
+  return md + fmt::format(" Torque-saturated control periods {}, largest tracking error {:.4f} rad.\n\n",
+                          all.torque_saturated_samples, all.tracking_max_error_rad);
+}
+
 std::string MarkdownOverview(const SweepSpec& spec, const GroupFigures& all) {
   std::string md = fmt::format("# Sweep {}\n\n{} episodes ({} failed to run) of {} in the spec, {} items.\n\n",
                                spec.source.filename().string(), all.episodes, all.episodes_failed, spec.EpisodeCount(),
                                all.items);
-  md += "| items | correct-sort rate (95 % CI) | recognition accuracy | grasp success | mean cycle per item |\n"
-        "|---|---|---|---|---|\n";
-  md += fmt::format("| {} | {} ({:.1f}-{:.1f} %) | {} | {} | {} |\n\n", all.items, Percent(all.correct_sort_rate),
+  md += "| items | correct-sort rate (95 % CI) | recognition accuracy | grasp success | mean cycle per item | picks per hour |\n"
+        "|---|---|---|---|---|---|\n";
+  md += fmt::format("| {} | {} ({:.1f}-{:.1f} %) | {} | {} | {} | {} |\n\n", all.items, Percent(all.correct_sort_rate),
                     100 * all.ci95.first, 100 * all.ci95.second, Percent(all.recognition_accuracy),
                     Percent(all.grasp_success_rate),
-                    all.mean_cycle_time_s ? fmt::format("{:.1f} s", *all.mean_cycle_time_s) : "n/a");
+                    all.mean_cycle_time_s ? fmt::format("{:.1f} s", *all.mean_cycle_time_s) : "n/a",
+                    all.picks_per_hour ? fmt::format("{:.0f}", *all.picks_per_hour) : "n/a");
+  md += MarkdownPhases(all);
   md += "Outcomes: ";
   for (size_t i = 0; i < cell::kItemOutcomes.size(); ++i) {
     const auto o = cell::kItemOutcomes[i];

@@ -143,6 +143,23 @@ TEST(ItemTally, CountsOutcomesRecognitionAndCyclesOfItemsThatReachedABin) {
   EXPECT_DOUBLE_EQ(*s.grasp_success_rate, 0.6);
   EXPECT_DOUBLE_EQ(*s.mean_cycle_time_s, 12.0);  // the dropped item's 30 s does not count
   EXPECT_FALSE(SummarizeEpisode({}, 0, 0, run).correct_sort_rate.has_value());
+  EXPECT_FALSE(s.picks_per_hour.has_value());  // no simulated time
+  run.sim_time_s = 90;
+  EXPECT_DOUBLE_EQ(*SummarizeEpisode(items, 5, 3, run).picks_per_hour, 40.0);  // 1 sorted in 90 s
+}
+
+TEST(EpisodeMetrics, ASummaryWrittenBeforeTheCycleFiguresStillReads) {
+  RunFigures run;
+  run.sim_time_s = 100;
+  ItemResult item;
+  item.outcome = cell::ItemOutcome::kSorted;
+  nlohmann::json old = SummarizeEpisode({item}, 1, 1, run);
+  for (const char* key : {"picks_per_hour", "cycle_phases_s", "tracking_max_error_rad", "torque_saturated_samples"}) {
+    old.erase(key);
+  }
+  const EpisodeSummary s = old.get<EpisodeSummary>();
+  EXPECT_DOUBLE_EQ(*s.picks_per_hour, 36.0);
+  EXPECT_TRUE(s.run.cycle_phases_s.empty());
 }
 
 TEST(EpisodeMetrics, SummaryAndItemsReadBackAsWritten) {
@@ -151,12 +168,16 @@ TEST(EpisodeMetrics, SummaryAndItemsReadBackAsWritten) {
   item.outcome = cell::ItemOutcome::kWrongBin, item.cycle_time_s = 11.5, item.final_xyz = {0.1, 0.2, 0.3};
   RunFigures run;
   run.status = cell::EpisodeStatus::kAttemptLimit, run.frames = 7, run.sim_time_s = 42;
+  run.cycle_phases_s = {{"approach", 1.5}, {"carry", 2.25}};
+  run.torque_saturated_samples = 3, run.tracking_max_error_rad = 0.01;
   const EpisodeSummary summary = SummarizeEpisode({item}, 3, 2, run);
   const ItemResult item_back = nlohmann::json(item).get<ItemResult>();
   EXPECT_EQ(nlohmann::json(item_back), nlohmann::json(item));
   const EpisodeSummary summary_back = nlohmann::json(summary).get<EpisodeSummary>();
   EXPECT_EQ(nlohmann::json(summary_back), nlohmann::json(summary));
   EXPECT_EQ(summary_back.run.status, cell::EpisodeStatus::kAttemptLimit);
+  EXPECT_EQ(summary_back.run.cycle_phases_s, run.cycle_phases_s);
+  EXPECT_EQ(summary_back.run.torque_saturated_samples, 3);
 }
 
 TEST(EpisodeMetrics, AMissingOrMistypedKeyIsAnErrorNamingIt) {

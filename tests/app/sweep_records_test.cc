@@ -139,7 +139,13 @@ TEST(SweepResults, OldResultsReadAndWriteBackTheSameKeys) {
   EXPECT_EQ(r.axes, nlohmann::json({{"objects", 6}}));
   EXPECT_EQ(r.summary.grasp_attempts, 6);
   EXPECT_EQ(r.items[1].name, "cup");
-  EXPECT_EQ(nlohmann::json(r), nlohmann::json::parse(kOldLine));
+  // Written back: the same keys and values, plus the summary figures added since.
+  nlohmann::json back = r;
+  for (const char* key : {"picks_per_hour", "cycle_phases_s", "tracking_max_error_rad", "torque_saturated_samples"}) {
+    ASSERT_TRUE(back["summary"].contains(key)) << key;
+    back["summary"].erase(key);
+  }
+  EXPECT_EQ(back, nlohmann::json::parse(kOldLine));
   EXPECT_EQ(results.complete_bytes, results.file_bytes);
 }
 
@@ -245,6 +251,24 @@ TEST(SweepReport, CsvQuotesAValueWithAComma) {
   EXPECT_EQ(summary["grasp_attempts"], 9);
   EXPECT_EQ(summary["by_axis"]["model"]["a,b.model.json"]["outcomes"]["grasp_failed"], 1);
   EXPECT_NE(Read(dir / "summary.md").find("| a,b.model.json | 1 | 2 | 50.0 % |"), std::string::npos);
+}
+
+TEST(SweepReport, PicksPerHourAndTheCycleByPhasePooledOverEpisodes) {
+  const TempDir dir("report_phases");
+  std::vector<SweepRecord> records{OkRecord(0, {}), OkRecord(1, {})};
+  // Episode 0: 3 attempts, 2 s approach each; episode 1: 3 attempts, 4 s approach each.
+  records[0].summary.run.cycle_phases_s = {{"approach", 2.0}, {"carry", 1.0}};
+  records[1].summary.run.cycle_phases_s = {{"approach", 4.0}};
+  records[1].summary.run.torque_saturated_samples = 5;
+  records[1].summary.run.tracking_max_error_rad = 0.02;
+  const nlohmann::json summary = WriteSweepReport(dir.path(), SweepSpec(), records);
+  EXPECT_DOUBLE_EQ(summary["picks_per_hour"].get<double>(), 3600.0 * 2 / 80);  // 2 sorted in 2 x 40 s
+  EXPECT_DOUBLE_EQ(summary["cycle_phases_s"]["approach"].get<double>(), 3.0);
+  EXPECT_DOUBLE_EQ(summary["cycle_phases_s"]["carry"].get<double>(), 0.5);
+  EXPECT_EQ(summary["torque_saturated_samples"], 5);
+  EXPECT_DOUBLE_EQ(summary["tracking_max_error_rad"].get<double>(), 0.02);
+  EXPECT_NE(Read(dir / "summary.md").find("mean simulated seconds per attempt: approach 3.00, carry 0.50."),
+            std::string::npos) << Read(dir / "summary.md");
 }
 
 TEST(SweepReport, AFailedWriteIsAnErrorNamingTheFile) {

@@ -103,7 +103,16 @@ struct Recorder : PolicyObserver {
     captures_before_attempt.push_back(cell->captures);
     attempted.push_back(r.seen->category.value_or("?"));
   }
-  void AttemptEnded(const AttemptReport& r) override { results.push_back(r.pick.result); }
+  void AttemptEnded(const AttemptReport& r) override {
+    results.push_back(r.pick.result);
+    double phases = 0;
+    for (const auto& p : r.phases) phases += p.end_s - p.start_s;
+    phase_sums_match = phase_sums_match && std::abs(phases - (r.end_s - r.start_s)) < 1e-9 && !r.phases.empty();
+    last_phases.clear();
+    for (const auto& p : r.phases) last_phases.push_back(p.phase);
+  }
+  bool phase_sums_match = true;          // Every attempt's phases add up to its duration.
+  std::vector<std::string> last_phases;  // Of the last attempt.
 };
 
 struct SortRun {
@@ -159,6 +168,10 @@ TEST(SortingPolicy, SortsAnObjectItHoldsAndMovesThroughThePhases) {
   EXPECT_EQ(run.result.status, EpisodeStatus::kAttemptLimit);
   const std::vector<std::string> expected{"approach", "descend", "reach", "lift", "carry", "lower", "retreat", "home"};
   EXPECT_EQ(run.motions, expected);
+  // The attempt's phases, gripper ones included, account for all of its time.
+  EXPECT_TRUE(run.seen.phase_sums_match);
+  EXPECT_EQ(run.seen.last_phases, (std::vector<std::string>{"open", "approach", "descend", "reach", "grasp", "lift",
+                                                            "carry", "lower", "release", "retreat", "home"}));
 }
 
 TEST(SortingPolicy, ReleasesIntoThePredictedBinSlotBySlot) {
