@@ -63,6 +63,17 @@ int main(int argc, char** argv) {
               video["wall_time_s"].get<double>(), video["real_time_factor"].get<double>(),
               video["perception_ms_per_frame"].get<double>(),
               1000 * video["video_render_wall_s"].get<double>() / std::max(1, video["video_frames"].get<int>()));
+  // Where the wall time goes, per stage (metrics.json "profile_wall_s"), headless and with video.
+  std::printf("wall-time profile (s, %% of the episode):\n  %-14s %16s %16s\n", "stage", "headless", "video");
+  for (const auto& [stage, seconds] : headless["profile_wall_s"].items()) {
+    const double v = video["profile_wall_s"][stage].get<double>();
+    std::printf("  %-14s %8.2f (%4.1f %%) %8.2f (%4.1f %%)\n", stage.c_str(), seconds.get<double>(),
+                100 * seconds.get<double>() / headless["wall_time_s"].get<double>(), v,
+                100 * v / video["wall_time_s"].get<double>());
+  }
+  std::printf("pick cycle (mean simulated s per attempt): %.2f over", headless["mean_cycle_time_s"].get<double>());
+  for (const auto& [phase, seconds] : headless["cycle_phases_s"].items()) std::printf(" %s %.2f", phase.c_str(), seconds.get<double>());
+  std::printf("; %.0f picks per hour\n", headless["picks_per_hour"].get<double>());
   std::printf("sweep of %d episodes (4-6 paper objects):\n", episodes);
   const double one = SweepEpisodesPerHour(model, episodes, 1);
   const double two = SweepEpisodesPerHour(model, episodes, 2);

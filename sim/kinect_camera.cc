@@ -1,5 +1,6 @@
 #include "sim/kinect_camera.h"
 
+#include <chrono>
 #include <stdexcept>
 
 namespace sortcell::sim {
@@ -30,10 +31,18 @@ KinectFrame KinectCamera::Capture(const Data& data, const KinectNoiseParams* noi
   const RenderView view{camera_id_, intrinsics_.width, intrinsics_.height};
   KinectFrame frame;
   frame.intrinsics = intrinsics_;
+  auto start = std::chrono::steady_clock::now();
+  const auto lap = [&start](double& total) {
+    const auto now = std::chrono::steady_clock::now();
+    total += std::chrono::duration<double>(now - start).count();
+    start = now;
+  };
   cv::Mat depth_buffer;
   renderer_.Render(data, view, frame.rgb, depth_buffer);
   const cv::Mat clean = LinearizeDepth(depth_buffer, DepthRangeOf(model_));
+  lap(timings_.render_s);
   frame.depth = noise != nullptr ? ApplyKinectNoise(clean, intrinsics_, *noise, *rng) : clean;
+  lap(timings_.noise_s);
   if (truth == nullptr) return frame;
 
   truth->X_WC = CameraPoseInWorld(model_, data, camera_id_);
@@ -45,6 +54,7 @@ KinectFrame KinectCamera::Capture(const Data& data, const KinectNoiseParams* noi
     uint16_t* l = truth->labels.ptr<uint16_t>(r);
     for (int c = 0; c < geom_ids.cols; ++c) l[c] = g[c] >= 0 ? geom_label_[g[c]] : 0;
   }
+  lap(timings_.labels_s);
   return frame;
 }
 

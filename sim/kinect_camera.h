@@ -31,6 +31,13 @@ struct FrameTruth {
   Eigen::Isometry3d X_WC = Eigen::Isometry3d::Identity();  ///< Where the optical frame C truly is.
 };
 
+/// Wall time of the stages of every capture so far (s), for profiles.
+struct CaptureTimings {
+  double render_s = 0;  ///< Colour and depth render, read back, depth linearised.
+  double noise_s = 0;   ///< The Kinect noise model.
+  double labels_s = 0;  ///< The ground-truth label render (only with `truth`).
+};
+
 class KinectCamera {
  public:
   /// @throws std::invalid_argument naming the scene if it has no camera `camera_name` or its
@@ -50,6 +57,7 @@ class KinectCamera {
   /// Names of the objects the label image numbers (the scene's free bodies, in body order).
   const std::vector<std::string>& object_names() const { return object_names_; }
   const CameraIntrinsics& intrinsics() const { return intrinsics_; }
+  const CaptureTimings& timings() const { return timings_; }
 
  private:
   const Model& model_;
@@ -58,6 +66,7 @@ class KinectCamera {
   OffscreenRenderer renderer_;
   std::vector<std::string> object_names_;
   std::vector<uint16_t> geom_label_;  // Per geom: the label of the object it belongs to, or 0.
+  CaptureTimings timings_;
 };
 
 }  // namespace sortcell::sim

@@ -1,5 +1,6 @@
 #include "app/episode/arm_executor.h"
 
+#include <chrono>
 #include <cmath>
 #include <stdexcept>
 
@@ -29,7 +30,9 @@ sim::StepStatus ArmExecutor::ControlStep(const robot::Joints& q_ref, const robot
   io_.ReadArm(data_, q, qd);
   io_.SetArmTorques(data_, controller_.Torque(q, qd, q_ref, qd_ref, io_.BiasTorques(data_)));
   for (int i = 0; i < substeps_; ++i) {
+    const auto start = std::chrono::steady_clock::now();
     sim::StepStatus status = sim::Step(model_, data_);
+    step_wall_s_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (video_) video_->Update(data_);
     if (status.code != sim::StepStatus::kOk) return status;
   }

@@ -45,6 +45,8 @@ class ArmExecutor {
   robot::GripperSensors Gripper() const;
   const robot::TrackingStats& tracking() const { return controller_.stats(); }
   double time() const { return data_->time; }
+  /// Wall time spent in physics steps so far (s), for profiles.
+  double step_wall_s() const { return step_wall_s_; }
   /// Caption for the video (the current phase).
   void SetPhase(const std::string& phase);
 
@@ -58,6 +60,7 @@ class ArmExecutor {
   robot::JointController controller_;
   int substeps_;
   robot::Joints q_hold_ = robot::Joints::Zero();
+  double step_wall_s_ = 0;
 };
 
 }  // namespace sortcell::app

@@ -44,6 +44,7 @@ class EpisodeRun {
   void PlaceObjects();
   cell::PolicyOptions Budget() const;
   EpisodeMetrics Metrics(const cell::PolicyResult& result, double wall_s) const;
+  std::map<std::string, double> WallProfile(double wall_s) const;
 
   const EpisodeOptions& options_;
   const ObjectSet& set_;
@@ -148,6 +149,22 @@ EpisodeMetrics EpisodeRun::Run(const std::vector<std::string>& command_line) {
   return metrics;
 }
 
+// Where the episode's wall time went, by stage.
+std::map<std::string, double> EpisodeRun::WallProfile(double wall_s) const {
+  const sim::CaptureTimings& kinect = kinect_->timings();  // Background capture included.
+  std::map<std::string, double> profile{{"physics", cell_->step_wall_s()},
+                                        {"kinect_render", kinect.render_s},
+                                        {"kinect_noise", kinect.noise_s},
+                                        {"label_render", kinect.labels_s},
+                                        {"cloud", cell_->cloud_wall_s()},
+                                        {"perception", recorder_->perception_wall_s()},
+                                        {"video", video_ ? video_->render_wall_s() : 0.0}};
+  double accounted = 0;
+  for (const auto& [stage, seconds] : profile) accounted += seconds;
+  profile["other"] = wall_s - accounted;
+  return profile;
+}
+
 EpisodeMetrics EpisodeRun::Metrics(const cell::PolicyResult& result, double wall_s) const {
   RunFigures run;
   run.status = result.status;
@@ -161,6 +178,7 @@ EpisodeMetrics EpisodeRun::Metrics(const cell::PolicyResult& result, double wall
   run.video_render_wall_s = video_ ? video_->render_wall_s() : 0.0;
   for (int i = 0; i < mjNWARNING; ++i) run.mujoco_warnings += (*data_)->warning[i].number;
   run.cycle_phases_s = recorder_->CyclePhases();
+  run.profile_wall_s = WallProfile(wall_s);
   run.tracking_max_error_rad = cell_->tracking().max_error;
   run.torque_saturated_samples = cell_->tracking().saturated_samples;
 

@@ -124,6 +124,7 @@ void to_json(nlohmann::json& j, const EpisodeSummary& v) {
        {"video_render_wall_s", v.run.video_render_wall_s},
        {"mujoco_warnings", v.run.mujoco_warnings},
        {"cycle_phases_s", v.run.cycle_phases_s},
+       {"profile_wall_s", v.run.profile_wall_s},
        {"tracking_max_error_rad", v.run.tracking_max_error_rad},
        {"torque_saturated_samples", v.run.torque_saturated_samples}};
 }
@@ -155,6 +156,7 @@ void from_json(const nlohmann::json& j, EpisodeSummary& v) {
   // Added later: records written before them still read.
   v.picks_per_hour = PicksPerHour(v.outcomes.at(cell::ItemOutcome::kSorted), v.run.sim_time_s);
   ReadAddedField(j, path, "cycle_phases_s", v.run.cycle_phases_s);
+  ReadAddedField(j, path, "profile_wall_s", v.run.profile_wall_s);
   ReadAddedField(j, path, "tracking_max_error_rad", v.run.tracking_max_error_rad);
   ReadAddedField(j, path, "torque_saturated_samples", v.run.torque_saturated_samples);
 }

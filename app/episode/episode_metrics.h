@@ -43,6 +43,9 @@ struct RunFigures {
   /// The pick cycle by phase: mean simulated seconds per attempt in each motion phase (approach,
   /// descend, reach, grasp, lift, carry, lower, release, retreat, home, ...).
   std::map<std::string, double> cycle_phases_s;
+  /// Where the wall time went (s): "physics" (steps), "kinect_render", "kinect_noise", "label_render",
+  /// "cloud" (the organized cloud), "perception", "video" (review frames), "other" (the rest).
+  std::map<std::string, double> profile_wall_s;
   double tracking_max_error_rad = 0;  ///< Largest joint tracking error of the arm's controller.
   int torque_saturated_samples = 0;   ///< Control periods with a joint torque at its limit.
 };

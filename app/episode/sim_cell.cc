@@ -19,7 +19,9 @@ perception::Cloud::Ptr SimCell::Capture() {
   const auto start = WallClock::now();
   sim::FrameTruth truth;
   const sim::KinectFrame frame = kinect_->Capture(data_, noise_, rng_, &truth);
+  const auto cloud_start = WallClock::now();
   perception::Cloud::Ptr cloud = sim::ToOrganizedCloud(frame);
+  cloud_wall_s_ += SecondsSince(cloud_start);
   render_wall_s_ += SecondsSince(start);
   ++frames_;
   last_labels_ = truth.labels;

@@ -44,7 +44,12 @@ class SimCell : public cell::CellIo {
   /// object_names()[i - 1].
   const cv::Mat& last_labels() const { return last_labels_; }
   int frames() const { return frames_; }
+  /// Wall time of the captures: render, noise, labels and the organized cloud (s).
   double render_wall_s() const { return render_wall_s_; }
+  /// Wall time of turning the captures into organized clouds (s).
+  double cloud_wall_s() const { return cloud_wall_s_; }
+  /// Wall time of the physics steps (s).
+  double step_wall_s() const { return exec_.step_wall_s(); }
 
  private:
   cell::MotionResult Result(const sim::StepStatus& status) const;
@@ -57,6 +62,7 @@ class SimCell : public cell::CellIo {
   cv::Mat last_labels_;
   int frames_ = 0;
   double render_wall_s_ = 0;
+  double cloud_wall_s_ = 0;
 };
 
 }  // namespace sortcell::app

@@ -67,6 +67,20 @@ TEST(EpisodeScenario, SixPaperObjectsAllSorted) {
   EXPECT_EQ(m["summary"]["mujoco_warnings"], 0);
   EXPECT_GT(m["summary"]["mean_cycle_time_s"].get<double>(), 5.0);
   EXPECT_LT(m["summary"]["mean_cycle_time_s"].get<double>(), 30.0);
+  // The cycle by phase adds up to the mean attempt (every attempt here reached its bin, one each).
+  double phases = 0;
+  for (const auto& [phase, seconds] : m["summary"]["cycle_phases_s"].items()) phases += seconds.get<double>();
+  EXPECT_NEAR(phases, m["summary"]["mean_cycle_time_s"].get<double>(), 1e-6);
+  EXPECT_NEAR(m["summary"]["picks_per_hour"].get<double>(), 3600.0 * 6 / m["summary"]["sim_time_s"].get<double>(), 1e-6);
+  // The wall-time profile accounts for the episode's wall time, most of it in physics and capture.
+  const auto& profile = m["summary"]["profile_wall_s"];
+  double total = 0;
+  for (const auto& [stage, seconds] : profile.items()) total += seconds.get<double>();
+  EXPECT_NEAR(total, m["summary"]["wall_time_s"].get<double>(), 1e-6);
+  EXPECT_GT(profile["physics"].get<double>(), 0.0);
+  EXPECT_GT(profile["kinect_render"].get<double>(), 0.0);
+  EXPECT_GT(profile["label_render"].get<double>(), 0.0);
+  EXPECT_EQ(profile["video"].get<double>(), 0.0);
 }
 
 TEST(EpisodeScenario, SameShapeDifferentColourGoToTheirOwnBins) {
@@ -94,7 +108,7 @@ TEST(EpisodeScenario, OutOfReachObjectIsReportedAndTheRestSorted) {
 // metrics.json without its wall-clock figures.
 nlohmann::json WithoutWallClock(nlohmann::json m) {
   for (const char* key : {"wall_time_s", "real_time_factor", "perception_ms_per_frame", "render_ms_per_frame",
-                          "video_render_wall_s"}) {
+                          "video_render_wall_s", "profile_wall_s"}) {
     m["summary"].erase(key);
   }
   return m;
