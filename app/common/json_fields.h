@@ -3,6 +3,8 @@
 /// Strict reading of JSON records into structs: a missing key or a value of the wrong type is an
 /// error that names the key (with its path, e.g. "summary.grasp_attempts"), never a silent default.
 
+#include <cstdint>
+#include <limits>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -11,6 +13,44 @@
 #include <nlohmann/json.hpp>
 
 namespace sortcell::app {
+
+/// What a JSON value must be to read as a T, for messages; and whether it is (integers in range, no
+/// fractions for integers).
+template <typename T>
+const char* JsonExpectedType() {
+  if constexpr (std::is_same_v<T, std::string>) return "a string";
+  else if constexpr (std::is_unsigned_v<T>) return "a non-negative integer";
+  else if constexpr (std::is_integral_v<T>) return "an integer";
+  else if constexpr (std::is_floating_point_v<T>) return "a number";
+  else return "a value";
+}
+
+template <typename T>
+bool JsonHolds(const nlohmann::json& value) {
+  if constexpr (std::is_same_v<T, std::string>) {
+    return value.is_string();
+  } else if constexpr (std::is_integral_v<T>) {
+    if (value.is_number_unsigned()) {
+      return value.get<uint64_t>() <= static_cast<uint64_t>(std::numeric_limits<T>::max());
+    }
+    if (!value.is_number_integer()) return false;
+    const int64_t v = value.get<int64_t>();
+    return std::is_signed_v<T> && v >= static_cast<int64_t>(std::numeric_limits<T>::min()) &&
+           v <= static_cast<int64_t>(std::numeric_limits<T>::max());
+  } else if constexpr (std::is_floating_point_v<T>) {
+    return value.is_number();
+  } else {
+    return true;
+  }
+}
+
+/// A found value for messages: scalars as written, lists and objects by kind.
+inline std::string JsonFound(const nlohmann::json& value) {
+  if (value.is_array()) return "a list";
+  if (value.is_object()) return "an object";
+  const std::string text = value.dump();
+  return text.size() > 40 ? text.substr(0, 37) + "..." : text;
+}
 
 /// Reads `json[key]` into `out`. `path` is the path of `json` in the record ("" at the top).
 /// @throws std::invalid_argument "<path.key>: missing" or "<path.key>: expected <type>, found <type>"
@@ -25,6 +65,7 @@ void ReadField(const nlohmann::json& json, const std::string& path, const char* 
     if (!it->is_boolean()) throw std::invalid_argument(name + ": expected true or false, found " + it->type_name());
   } else if constexpr (std::is_arithmetic_v<T>) {
     if (!it->is_number()) throw std::invalid_argument(name + ": expected a number, found " + it->type_name());
+    if (!JsonHolds<T>(*it)) throw std::invalid_argument(name + ": expected " + JsonExpectedType<T>() + ", found " + JsonFound(*it));
   } else if constexpr (std::is_same_v<T, std::string>) {
     if (!it->is_string()) throw std::invalid_argument(name + ": expected a string, found " + it->type_name());
   }

@@ -1,7 +1,6 @@
 #include "app/episode/episode.h"
 
 #include <algorithm>
-#include <cmath>
 #include <memory>
 #include <random>
 #include <set>

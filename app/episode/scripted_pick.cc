@@ -8,6 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "app/common/json_fields.h"
 #include "app/common/output_dir.h"
 #include "app/common/wall_clock.h"
 #include "app/episode/sim_cell.h"
@@ -30,6 +31,9 @@ std::string Join(const std::vector<std::string>& names) {
   return text;
 }
 
+// --bin takes "cup" or "bin_cup".
+std::string FullBinName(const std::string& bin) { return bin.rfind(sim::BinName(""), 0) == 0 ? bin : sim::BinName(bin); }
+
 // The scene's object and bin named by the options.
 struct PickTarget {
   int object = -1;
@@ -42,7 +46,7 @@ PickTarget FindTarget(const sim::Model& model, const PickOptions& options) {
     throw std::invalid_argument("scene '" + options.scene.string() + "': no object named '" + options.object +
                                 "' (objects: " + Join(objects) + ")");
   }
-  const std::string bin_name = options.bin.rfind(sim::BinName(""), 0) == 0 ? options.bin : sim::BinName(options.bin);
+  const std::string bin_name = FullBinName(options.bin);
   std::vector<std::string> bin_names;
   PickTarget target;
   target.object = model.Id(mjOBJ_BODY, options.object);
@@ -91,7 +95,7 @@ nlohmann::json ResultJson(const PickOptions& options, const PickResult& result, 
           {"note", "robot-layer check: the object's pose and shape are read from the scene definition"},
           {"scene", options.scene.string()},
           {"object", options.object},
-          {"bin", options.bin.rfind(sim::BinName(""), 0) == 0 ? options.bin : sim::BinName(options.bin)},
+          {"bin", FullBinName(options.bin)},
           {"status", result.status},
           {"detail", detail},
           {"in_bin", result.in_bin},
@@ -108,7 +112,7 @@ nlohmann::json ResultJson(const PickOptions& options, const PickResult& result, 
             {"object_width_m", extent.width},
             {"open_gap_m", grasp.open_gap},
             {"grasp_height_m", grasp.grasp_height},
-            {"held_gap_m", held_gap ? nlohmann::json(*held_gap) : nlohmann::json(nullptr)}}},
+            {"held_gap_m", OrNull(held_gap)}}},
           {"tracking",
            {{"max_error_rad", tracking.max_error},
             {"rms_error_rad", tracking.rms_error()},
@@ -150,8 +154,12 @@ PickResult RunPick(const PickOptions& options, const std::vector<std::string>& c
   // The object's pose in the hand at the sequence's milestones (ground truth, to measure slip).
   const auto object_in_tcp = [&] { return sim::SitePose(data, tcp).inverse() * sim::BodyPose(data, target.object); };
   Eigen::Isometry3d X_TO_grasped = Eigen::Isometry3d::Identity(), X_TO_lifted = X_TO_grasped;
+  std::optional<double> held_gap;  // The finger gap when the grasp closed on the object.
   cell::PickHooks hooks;
-  hooks.grasped = [&] { X_TO_grasped = object_in_tcp(); };
+  hooks.grasped = [&] {
+    X_TO_grasped = object_in_tcp();
+    held_gap = cell.ReadGripper().gap();
+  };
   hooks.lifted = [&] { X_TO_lifted = object_in_tcp(); };
   hooks.carried = [&] {
     result.slip_mm = 1000 * (object_in_tcp().translation() - X_TO_lifted.translation()).norm();
@@ -161,7 +169,6 @@ PickResult RunPick(const PickOptions& options, const std::vector<std::string>& c
     result.held = motions.Hold() == robot::HoldState::kHolding;
     result.slip_total_mm = 1000 * (object_in_tcp().translation() - X_TO_grasped.translation()).norm();
   };
-  std::optional<double> held_gap;  // The finger gap when the grasp closed on the object.
   std::string detail;
   std::optional<cell::AttemptResult> outcome;
   if (grasp.status == robot::GraspStatus::kOk) {
@@ -171,10 +178,6 @@ PickResult RunPick(const PickOptions& options, const std::vector<std::string>& c
     request.place_yaw_step = robot::GraspOptions().place_yaw_step;  // Any yaw: the bin's middle.
     request.q_home = layout.q_observe;
     request.approach_speed = layout.approach_speed;
-    hooks.grasped = [&, grasped = hooks.grasped] {
-      grasped();
-      held_gap = cell.ReadGripper().gap();
-    };
     const cell::PickReport report = cell::PickAndPlace(motions, request, hooks);
     outcome = report.result;
     detail = report.detail;

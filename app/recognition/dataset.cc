@@ -10,6 +10,7 @@
 #include <stdexcept>
 #include <type_traits>
 
+#include "app/common/json_fields.h"
 #include "app/common/output_dir.h"
 
 namespace sortcell::app {
@@ -18,51 +19,15 @@ namespace {
 constexpr const char* kFormat = "sortcell-dataset";
 constexpr int kCsvColumns = 1 + perception::kHsvBins + perception::kCvfhBins;  // id, HSV, CVFH
 
-// What a JSON value must be to read as a T, for messages; and whether it is.
-template <typename T>
-const char* ExpectedType() {
-  if constexpr (std::is_same_v<T, std::string>) return "a string";
-  else if constexpr (std::is_unsigned_v<T>) return "a non-negative integer";
-  else if constexpr (std::is_integral_v<T>) return "an integer";
-  else if constexpr (std::is_floating_point_v<T>) return "a number";
-  else return "a value";
-}
-
-template <typename T>
-bool Holds(const nlohmann::json& value) {
-  if constexpr (std::is_same_v<T, std::string>) {
-    return value.is_string();
-  } else if constexpr (std::is_integral_v<T>) {
-    if (value.is_number_unsigned()) {
-      return value.get<uint64_t>() <= static_cast<uint64_t>(std::numeric_limits<T>::max());
-    }
-    if (!value.is_number_integer()) return false;
-    const int64_t v = value.get<int64_t>();
-    return std::is_signed_v<T> && v >= static_cast<int64_t>(std::numeric_limits<T>::min()) &&
-           v <= static_cast<int64_t>(std::numeric_limits<T>::max());
-  } else if constexpr (std::is_floating_point_v<T>) {
-    return value.is_number();
-  } else {
-    return true;
-  }
-}
-
-// A found value for messages: scalars as written, lists and objects by kind.
-std::string Found(const nlohmann::json& value) {
-  if (value.is_array()) return "a list";
-  if (value.is_object()) return "an object";
-  const std::string text = value.dump();
-  return text.size() > 40 ? text.substr(0, 37) + "..." : text;
-}
-
 // json[key] as a T. @throws std::invalid_argument "<where>: missing key '<key>'" or "... key '<key>' is
 // <found>, expected <a T>".
 template <typename T>
 T Get(const nlohmann::json& json, const std::string& key, const std::string& where) {
   if (!json.is_object() || !json.contains(key)) throw std::invalid_argument(where + ": missing key '" + key + "'");
   const nlohmann::json& value = json.at(key);
-  if (!Holds<T>(value)) {
-    throw std::invalid_argument(where + ": key '" + key + "' is " + Found(value) + ", expected " + ExpectedType<T>());
+  if (!JsonHolds<T>(value)) {
+    throw std::invalid_argument(where + ": key '" + key + "' is " + JsonFound(value) + ", expected " +
+                                JsonExpectedType<T>());
   }
   return value.get<T>();
 }

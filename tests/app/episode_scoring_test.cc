@@ -188,6 +188,9 @@ TEST(EpisodeMetrics, AMissingOrMistypedKeyIsAnErrorNamingIt) {
   summary["grasp_attempts"] = "three";
   EXPECT_EQ(ErrorOf([&] { summary.get<EpisodeSummary>(); }), "summary.grasp_attempts: expected a number, found string");
   summary = SummarizeEpisode({}, 0, 0, {});
+  summary["grasps"] = 2.5;  // A count with a fraction is not read as 2.
+  EXPECT_EQ(ErrorOf([&] { summary.get<EpisodeSummary>(); }), "summary.grasps: expected an integer, found 2.5");
+  summary = SummarizeEpisode({}, 0, 0, {});
   summary["outcomes"].erase("dropped");
   EXPECT_EQ(ErrorOf([&] { summary.get<EpisodeSummary>(); }), "summary.outcomes.dropped: missing");
   nlohmann::json item = ItemResult{};
