@@ -16,6 +16,17 @@
 
 namespace sortcell::cell {
 
+/// Speeds of the arm's straight TCP lines (joint moves run at the UR5's limits: robot::Ur5FastLimits).
+struct LineSpeeds {
+  /// Where the fingers touch nothing (out of a bin, down to above an object, the lift, down into a
+  /// bin): speed (m/s) and peak acceleration (m/s^2).
+  double transit = 0.8;
+  double transit_acceleration = 3.0;
+  /// The last descent onto an object, the fingers passing its sides, and the put-back: slow.
+  double approach = 0.15;
+  double approach_acceleration = 1.0;
+};
+
 struct CellLayout {
   /// The arm's home (= observe) pose: tool down, upper arm leaning back, TCP at (0.281, 0.109, 0.446),
   /// above and behind the workspace's near edge, where no ray from the Kinect to the table or an
@@ -35,15 +46,17 @@ struct CellLayout {
   double place_yaw_step = M_PI / 2;
 
   /// The pick area the camera watches (world box, m): the table in front of the robot up to its far
-  /// edge (objects out of reach there are seen and reported unreachable), between the bins.
+  /// edge (objects out of reach there are seen and reported unreachable), between the bins, up to
+  /// above the tallest objects (0.224 m bottles). The arm must neither hide it nor be in it when the
+  /// camera captures (ArmInView).
   Eigen::Vector3d workspace_min_W{0.28, -0.34, -0.05};
-  Eigen::Vector3d workspace_max_W{0.88, 0.34, 0.40};
+  Eigen::Vector3d workspace_max_W{0.88, 0.34, 0.28};
   /// The table top (z = 0), x and y extent (m).
   Eigen::Vector2d table_min_xy{-0.3, -0.7};
   Eigen::Vector2d table_max_xy{0.9, 0.7};
 
-  /// The last straight descent onto an object (m/s); other straight lines run at robot::kMovelSpeed.
-  double approach_speed = 0.10;
+  /// The straight lines' speeds.
+  LineSpeeds lines;
   /// The arm controller's period (s): 500 Hz.
   double control_period = 0.002;
 };

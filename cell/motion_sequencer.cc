@@ -1,5 +1,8 @@
 #include "cell/motion_sequencer.h"
 
+#include <algorithm>
+#include <stdexcept>
+
 #include "robot/joint_trajectory.h"
 
 namespace sortcell::cell {
@@ -8,6 +11,8 @@ namespace {
 constexpr double kGripperTimeout = 1.5;  // s, for the fingers to stop
 constexpr double kFingersGetGoing = 0.1;  // s, before judging that the fingers stopped
 constexpr double kSqueezeTime = 0.2;      // s, for the squeeze to build up
+constexpr int kSlowerLines = 3;           // Times a line too fast for a joint is halved in speed.
+constexpr int kWatchStride = 10;          // A chain's `when` hook is asked every this many samples (20 ms).
 
 }  // namespace
 
@@ -21,19 +26,103 @@ bool MotionSequencer::Phase(const std::string& name, const std::function<MotionR
   return false;
 }
 
-bool MotionSequencer::MoveJ(const std::string& name, const robot::Joints& q_goal) {
-  const robot::JointTrajectory t = robot::PlanJointMove(io_.CommandedJoints(), q_goal);
-  return Phase(name, [&] { return io_.Follow(name, t); });
+void MotionChain::Add(const std::string& phase, const robot::JointTrajectory& segment) {
+  int seam = 0;
+  trajectory_ = robot::BlendMoves(trajectory_, segment, robot::Ur5FastLimits(), &seam);
+  if (!phase_ends_.empty()) phase_ends_.back().second = std::max(seam, phase_ends_.size() > 1 ? phase_ends_[phase_ends_.size() - 2].second : 0);
+  phase_ends_.emplace_back(phase, trajectory_.size() - 1);
+  q_end_ = trajectory_.q.back();
 }
 
-bool MotionSequencer::MoveL(const std::string& name, const Eigen::Isometry3d& X_WT, double speed) {
-  const robot::CartesianPlan plan =
-      robot::PlanCartesianLine(io_.CommandedJoints(), X_WT, speed, robot::kMovelAcceleration);
+void MotionChain::JointMove(const std::string& phase, const robot::Joints& q_goal) {
+  Add(phase, robot::PlanJointMove(q_end_, q_goal, robot::Ur5FastLimits()));
+}
+
+bool MotionChain::Line(const std::string& phase, const Eigen::Isometry3d& X_WT, double speed, double acceleration) {
+  robot::CartesianPlan plan = robot::PlanCartesianLine(q_end_, X_WT, speed, acceleration);
+  // Near the edge of the reach a fast line may need a joint faster than pi rad/s: slower then.
+  for (int slower = 0; plan.status == robot::CartesianPlanStatus::kTooFast && slower < kSlowerLines; ++slower) {
+    speed *= 0.5;
+    plan = robot::PlanCartesianLine(q_end_, X_WT, speed, acceleration);
+  }
   if (plan.status != robot::CartesianPlanStatus::kOk) {
-    failure_ = name + ": " + plan.detail;
+    failure_ = phase + ": " + plan.detail;
     return false;
   }
-  return Phase(name, [&] { return io_.Follow(name, plan.trajectory); });
+  Add(phase, plan.trajectory);
+  return true;
+}
+
+bool MotionSequencer::MoveJ(const std::string& name, const robot::Joints& q_goal) {
+  MotionChain chain(io_.CommandedJoints());
+  chain.JointMove(name, q_goal);
+  return Run(chain);
+}
+
+bool MotionSequencer::MoveL(const std::string& name, const Eigen::Isometry3d& X_WT, double speed,
+                            double acceleration) {
+  MotionChain chain(io_.CommandedJoints());
+  if (!chain.Line(name, X_WT, speed, acceleration)) {
+    failure_ = chain.failure();
+    return false;
+  }
+  return Run(chain);
+}
+
+namespace {
+
+// Samples [first, last] of `t` as a trajectory of their own.
+robot::JointTrajectory Slice(const robot::JointTrajectory& t, int first, int last) {
+  robot::JointTrajectory part;
+  part.dt = t.dt;
+  part.q.assign(t.q.begin() + first, t.q.begin() + last + 1);
+  part.qd.assign(t.qd.begin() + first, t.qd.begin() + last + 1);
+  part.qdd.assign(t.qdd.begin() + first, t.qdd.begin() + last + 1);
+  return part;
+}
+
+}  // namespace
+
+bool MotionSequencer::Run(const MotionChain& chain, const ChainHooks& hooks) {
+  stopped_ = false;
+  if (!chain.failure().empty()) {
+    failure_ = chain.failure();
+    return false;
+  }
+  const robot::JointTrajectory& t = chain.trajectory();
+  if (!t.q.empty() && (t.q.front() - io_.CommandedJoints()).cwiseAbs().maxCoeff() > 1e-6) {
+    throw std::logic_error("MotionSequencer::Run: the chain does not start where the arm is held");
+  }
+  bool watched = !hooks.when;  // Whether the `when` hook has fired (or there is none).
+  int from = 0;
+  for (const auto& [phase, last] : chain.phase_ends()) {
+    // The first sample of this phase where `when` holds splits it in two, with `then` in between.
+    int split = last;
+    for (int k = from; !watched && k < last; k += kWatchStride) {
+      if (hooks.when(t.q[k])) {
+        split = k;
+        break;
+      }
+    }
+    if (!Phase(phase, [&] { return io_.Follow(phase, Slice(t, from, split)); })) return false;
+    if (split < last) {
+      watched = true;
+      if (hooks.then) hooks.then();
+      if (!Phase(phase, [&] { return io_.Follow(phase, Slice(t, split, last)); })) return false;
+    }
+    from = last;
+    if (hooks.after_phase && !hooks.after_phase(phase)) {
+      stopped_ = true;
+      failure_ = "stopped after " + phase;
+      return false;
+    }
+  }
+  return true;
+}
+
+void MotionSequencer::StartFingers(double gap) {
+  const double half_gap = robot::HalfGapTarget(gap);
+  io_.CommandFingers(half_gap, half_gap);
 }
 
 MotionResult MotionSequencer::MoveFingers(const std::string& name, double half_gap) {

@@ -1,9 +1,10 @@
 #pragma once
 /// @file
 /// Named motion phases of the arm and gripper over a CellIo: joint moves and straight TCP lines
-/// planned by the robot layer from where the controller holds the arm, gripper opening, closing and
-/// squeezing, waiting. Each phase records its time span on the cell's clock; a motion that cannot be
-/// planned or a cell that stops under one is reported as `false` with the reason in failure().
+/// planned by the robot layer from where the controller holds the arm, chains of them run without
+/// stopping in between, gripper opening, closing and squeezing, waiting. Each phase records its time
+/// span on the cell's clock; a motion that cannot be planned or a cell that stops under one is
+/// reported as `false` with the reason in failure().
 
 #include <functional>
 #include <string>
@@ -23,14 +24,57 @@ struct PhaseSpan {
   double start_s = 0, end_s = 0;
 };
 
+/// Motions run as one, each next one starting while the one before slows down (robot::BlendMoves):
+/// joint moves at the UR5's fast limits (robot::Ur5FastLimits) and straight TCP lines. Each keeps its
+/// phase name; the phases meet in the middle of each blend.
+class MotionChain {
+ public:
+  explicit MotionChain(const robot::Joints& q_start) : q_end_(q_start) {}
+
+  void JointMove(const std::string& phase, const robot::Joints& q_goal);
+  /// A straight TCP line to X_WT; false (failure() set, the chain unchanged) if it cannot be planned.
+  bool Line(const std::string& phase, const Eigen::Isometry3d& X_WT, double speed, double acceleration);
+
+  /// Where the chain leaves the arm.
+  const robot::Joints& end() const { return q_end_; }
+  const robot::JointTrajectory& trajectory() const { return trajectory_; }
+  /// Each phase and its last sample in trajectory(), in order.
+  const std::vector<std::pair<std::string, int>>& phase_ends() const { return phase_ends_; }
+  const std::string& failure() const { return failure_; }
+
+ private:
+  void Add(const std::string& phase, const robot::JointTrajectory& segment);
+
+  robot::Joints q_end_;
+  robot::JointTrajectory trajectory_;
+  std::vector<std::pair<std::string, int>> phase_ends_;
+  std::string failure_;
+};
+
+/// What a caller watches while a chain runs.
+struct ChainHooks {
+  /// After each phase of the chain; false stops the arm there (the rest is not run).
+  std::function<bool(const std::string& phase)> after_phase;
+  /// Called once, at the first sample (of any phase) where `when(q_commanded)` holds: e.g. the arm is
+  /// out of the camera's view and a capture can be taken while it moves on.
+  std::function<bool(const robot::Joints& q)> when;
+  std::function<void()> then;
+};
+
 class MotionSequencer {
  public:
   explicit MotionSequencer(CellIo& io) : io_(io) {}
 
-  /// A joint-space move from where the controller holds the arm.
+  /// A joint-space move from where the controller holds the arm, at the UR5's fast limits.
   bool MoveJ(const std::string& name, const robot::Joints& q_goal);
-  /// A straight TCP line at `speed`; false with failure() set if it cannot be planned or run.
-  bool MoveL(const std::string& name, const Eigen::Isometry3d& X_WT, double speed);
+  /// A straight TCP line at `speed` and `acceleration`; false with failure() set if it cannot be
+  /// planned or run.
+  bool MoveL(const std::string& name, const Eigen::Isometry3d& X_WT, double speed, double acceleration);
+  /// A chain planned from where the controller holds the arm now; false with failure() set if the
+  /// chain could not be planned, a hook stopped it (then stopped() is true) or the cell faulted.
+  bool Run(const MotionChain& chain, const ChainHooks& hooks = {});
+  /// Sets the fingers moving to `gap` without waiting for them (they open while the arm moves).
+  void StartFingers(double gap);
   /// Opens or closes both fingers to `gap` and waits until they stop (at most 1.5 s).
   bool Gripper(const std::string& name, double gap);
   /// Closes on an object and, if something is held, squeezes it with robot::kDefaultGripForce per
@@ -48,6 +92,8 @@ class MotionSequencer {
   const std::string& failure() const { return failure_; }
   /// Whether the cell stopped under a motion.
   bool faulted() const { return faulted_; }
+  /// Whether the last Run was stopped by one of its hooks.
+  bool stopped() const { return stopped_; }
 
  private:
   bool Phase(const std::string& name, const std::function<MotionResult()>& action);
@@ -58,6 +104,7 @@ class MotionSequencer {
   std::vector<PhaseSpan> phases_;
   std::string failure_;
   bool faulted_ = false;
+  bool stopped_ = false;
 };
 
 }  // namespace sortcell::cell

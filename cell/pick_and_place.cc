@@ -10,6 +10,12 @@ void Notify(const std::function<void()>& hook) {
   if (hook) hook();
 }
 
+// Home from where the arm is now, after a step failed or the object was lost: straight up to
+// `X_WT_up` first, then the joint move.
+bool Home(MotionSequencer& run, const PickRequest& request, const Eigen::Isometry3d& X_WT_up) {
+  return GoHome(run, X_WT_up, request.q_home, request.lines);
+}
+
 // The sequence after a step failed: a fault ends it; a motion that could not be planned lets go of
 // whatever is held and goes back to observe.
 PickReport Fail(MotionSequencer& run, const PickRequest& request, PickReport report) {
@@ -26,61 +32,95 @@ PickReport Fail(MotionSequencer& run, const PickRequest& request, PickReport rep
 // The lifted object's bin cannot be reached from here: put it back down where it was grasped.
 PickReport PutBack(MotionSequencer& run, const PickRequest& request, PickReport report) {
   const robot::GraspPlan& plan = request.grasp;
-  if (!run.MoveL("put_back", plan.X_WT_grasp, robot::kMovelSpeed)) return Fail(run, request, report);
-  if (!run.Gripper("open", plan.open_gap) || !run.MoveL("retreat", plan.X_WT_lift, robot::kMovelSpeed) ||
-      !run.MoveJ("home", request.q_home)) {
+  if (!run.MoveL("put_back", plan.X_WT_grasp, request.lines.approach, request.lines.approach_acceleration) ||
+      !run.Gripper("open", plan.open_gap) || !Home(run, request, plan.X_WT_lift)) {
     return Fail(run, request, report);
   }
   report.result = AttemptResult::kPutBack;
   return report;
 }
 
+// Where the arm was to the fingers closing: out of the last bin, above the object and down to it.
+bool ApproachAndGrasp(MotionSequencer& run, const PickRequest& request) {
+  const robot::GraspPlan& plan = request.grasp;
+  const LineSpeeds& lines = request.lines;
+  run.StartFingers(plan.open_gap);
+  MotionChain approach(run.io().CommandedJoints());
+  if (request.X_WT_exit && !approach.Line("retreat", *request.X_WT_exit, lines.transit, lines.transit_acceleration)) {
+    return run.Run(approach);  // Reports the planning failure.
+  }
+  approach.JointMove("approach", plan.q_lift);
+  approach.Line("descend", plan.X_WT_pregrasp, lines.transit, lines.transit_acceleration);
+  return run.Run(approach) && run.MoveL("reach", plan.X_WT_grasp, lines.approach, lines.approach_acceleration) &&
+         run.Grasp("grasp");
+}
+
 }  // namespace
+
+bool GoHome(MotionSequencer& run, const std::optional<Eigen::Isometry3d>& X_WT_exit, const robot::Joints& q_home,
+            const LineSpeeds& lines) {
+  MotionChain home(run.io().CommandedJoints());
+  if (X_WT_exit && !home.Line("retreat", *X_WT_exit, lines.transit, lines.transit_acceleration)) return run.Run(home);
+  home.JointMove("home", q_home);
+  return run.Run(home);
+}
 
 PickReport PickAndPlace(MotionSequencer& run, const PickRequest& request, const PickHooks& hooks) {
   const robot::GraspPlan& plan = request.grasp;
+  const LineSpeeds& lines = request.lines;
   PickReport report;
-  if (!run.Gripper("open", plan.open_gap) || !run.MoveJ("approach", plan.q_lift) ||
-      !run.MoveL("descend", plan.X_WT_pregrasp, robot::kMovelSpeed) ||
-      !run.MoveL("reach", plan.X_WT_grasp, request.approach_speed) || !run.Grasp("grasp")) {
-    return Fail(run, request, report);
-  }
+  if (!ApproachAndGrasp(run, request)) return Fail(run, request, report);
   if (run.Hold() != robot::HoldState::kHolding) {
-    if (!run.Gripper("open", plan.open_gap) || !run.MoveL("retreat", plan.X_WT_lift, robot::kMovelSpeed) ||
-        !run.MoveJ("home", request.q_home)) {
-      return Fail(run, request, report);
-    }
+    if (!run.Gripper("open", plan.open_gap) || !Home(run, request, plan.X_WT_lift)) return Fail(run, request, report);
     report.result = AttemptResult::kMissed;
     return report;
   }
   report.grasped = true;
   Notify(hooks.grasped);
-  if (!run.MoveL("lift", plan.X_WT_lift, robot::kMovelSpeed)) return Fail(run, request, report);
-  Notify(hooks.lifted);
-  if (run.Hold() == robot::HoldState::kEmpty) {
-    const bool home = run.Gripper("open", robot::kMaxGap) && run.MoveJ("home", request.q_home);
-    report.result = home ? AttemptResult::kDropped : AttemptResult::kSimDiverged;
-    return report;
-  }
-  report.lifted = true;
 
-  robot::GraspOptions place_options;
-  place_options.place_yaw_step = request.place_yaw_step;
-  const robot::PlacePlan place =
-      robot::PlanPlacement(request.p_W_release, plan.grasp_height, run.io().CommandedJoints(), place_options);
-  if (!place.ok) return PutBack(run, request, report);
-  if (!run.MoveJ("carry", place.q_above)) return Fail(run, request, report);
-  Notify(hooks.carried);
-  // Judged above the bin: lowering into it may touch what is already there and move the fingers.
-  const bool held = run.Hold() != robot::HoldState::kEmpty;
-  if (!run.MoveL("lower", place.X_WT_release, robot::kMovelSpeed)) return Fail(run, request, report);
-  Notify(hooks.lowered);
-  if (!run.Gripper("release", plan.open_gap) || !run.MoveL("retreat", place.X_WT_above, robot::kMovelSpeed) ||
-      !run.MoveJ("home", request.q_home)) {
+  // Lift, carry and lower as one motion; the placement is planned from where the lift ends.
+  MotionChain transfer(run.io().CommandedJoints());
+  if (!transfer.Line("lift", plan.X_WT_lift, lines.transit, lines.transit_acceleration)) {
     return Fail(run, request, report);
   }
+  robot::GraspOptions place_options;
+  place_options.place_yaw_step = request.place_yaw_step;
+  const robot::PlacePlan place = robot::PlanPlacement(request.p_W_release, plan.grasp_height, transfer.end(), place_options);
+  if (place.ok) {
+    transfer.JointMove("carry", place.q_above);
+    transfer.Line("lower", place.X_WT_release, lines.transit, lines.transit_acceleration);
+  }
+  bool held_above_bin = false;
+  ChainHooks watch;
+  watch.after_phase = [&](const std::string& phase) {
+    if (phase == "lift") {
+      Notify(hooks.lifted);
+      report.lifted = run.Hold() != robot::HoldState::kEmpty;
+      return report.lifted;
+    }
+    if (phase == "carry") {
+      Notify(hooks.carried);
+      // Judged above the bin: lowering into it may touch what is already there and move the fingers.
+      held_above_bin = run.Hold() != robot::HoldState::kEmpty;
+    }
+    if (phase == "lower") Notify(hooks.lowered);
+    return true;
+  };
+  watch.when = hooks.out_of_view;
+  watch.then = hooks.left_view;
+  if (!run.Run(transfer, watch)) {
+    if (run.faulted() || !run.stopped()) return Fail(run, request, report);
+    // Lost during the lift: let go of nothing and go home.
+    report.result = run.Gripper("open", robot::kMaxGap) && run.MoveJ("home", request.q_home)
+                        ? AttemptResult::kDropped
+                        : AttemptResult::kSimDiverged;
+    return report;
+  }
+  if (!place.ok) return PutBack(run, request, report);
+  if (!run.Gripper("release", plan.open_gap)) return Fail(run, request, report);
   report.reached_bin = true;
-  report.result = held ? AttemptResult::kReleased : AttemptResult::kDropped;
+  report.X_WT_exit = place.X_WT_above;
+  report.result = held_above_bin ? AttemptResult::kReleased : AttemptResult::kDropped;
   return report;
 }
 

@@ -1,12 +1,16 @@
 #pragma once
 /// @file
-/// The pick-and-place sequence of the cell, one attempt: open, approach above the object, descend
-/// and reach in straight lines, close and squeeze, check the hold, lift, check again, carry above
-/// the bin, lower, release, retreat, home. The episode's policy and the scripted `sortcell pick` run
-/// this same sequence; they differ in where the grasp (a footprint perceived or read from the scene,
-/// its finger clearance) and the release point (a bin slot or the bin's middle, its yaw step) come from.
+/// The pick-and-place sequence of the cell, one attempt, from wherever the last one left the arm:
+/// [retreat straight up out of the last bin] -> approach above the object -> descend, one motion
+/// without stops, the fingers opening on the way; reach slowly in a straight line; close and squeeze;
+/// lift -> carry above the bin -> lower into it, again one motion, the hold checked after the lift and
+/// above the bin; release. The arm stays in the bin: the next attempt (or GoHome) leaves from there.
+/// The episode's policy and the scripted `sortcell pick` run this same sequence; they differ in where
+/// the grasp (a footprint perceived or read from the scene, its finger clearance) and the release point
+/// (a bin slot or the bin's middle, its yaw step) come from.
 
 #include <functional>
+#include <optional>
 #include <string>
 
 #include <Eigen/Core>
@@ -22,8 +26,11 @@ struct PickRequest {
   robot::GraspPlan grasp;  ///< A plan with status kOk.
   Eigen::Vector3d p_W_release = Eigen::Vector3d::Zero();  ///< The floor point the object is released over.
   double place_yaw_step = CellLayout().place_yaw_step;    ///< Yaws tried for the placement (robot::PlanPlacement).
-  robot::Joints q_home = CellLayout().q_observe;          ///< Where the arm returns afterwards.
-  double approach_speed = CellLayout().approach_speed;    ///< The last straight descent onto the object (m/s).
+  robot::Joints q_home = CellLayout().q_observe;          ///< Where the arm goes after a miss or a failure.
+  /// Where the last attempt left the arm: it first goes straight up to here (out of a bin); empty:
+  /// the arm is free to move (at home).
+  std::optional<Eigen::Isometry3d> X_WT_exit;
+  LineSpeeds lines = CellLayout().lines;
 };
 
 /// Called at the sequence's milestones, for callers that measure (the scripted pick's slip); the
@@ -33,6 +40,10 @@ struct PickHooks {
   std::function<void()> lifted;   ///< The lift is done.
   std::function<void()> carried;  ///< Above the bin.
   std::function<void()> lowered;  ///< Lowered into the bin, before the release.
+  /// Called once during the carry, as soon as `out_of_view(q_commanded)` says the arm and what it
+  /// holds no longer hide the workspace from the camera (the policy captures the next view then).
+  std::function<bool(const robot::Joints& q)> out_of_view;
+  std::function<void()> left_view;
 };
 
 struct PickReport {
@@ -41,11 +52,18 @@ struct PickReport {
   bool lifted = false;   ///< Still held after the lift.
   bool reached_bin = false;  ///< Carried to the bin and opened there (the slot is used, held or not).
   std::string detail;    ///< Why a motion failed (MotionSequencer::failure()), else empty.
+  /// Where the arm is to leave to first (straight up out of the bin); empty when it ended at home.
+  std::optional<Eigen::Isometry3d> X_WT_exit;
 };
 
 /// Runs one attempt. A motion that cannot be planned on the way lets go of whatever is held and
-/// goes home (kMotionFailed); a bin that cannot be reached sends the object back to where it was
-/// grasped (kPutBack); a fault of the cell ends it at once (kSimDiverged).
+/// goes home (kMotionFailed); a missed grasp or a drop goes home too; a bin that cannot be reached
+/// sends the object back to where it was grasped (kPutBack); a fault of the cell ends it at once
+/// (kSimDiverged).
 PickReport PickAndPlace(MotionSequencer& motions, const PickRequest& request, const PickHooks& hooks = {});
+
+/// From where an attempt left the arm: straight up to `X_WT_exit` (if any), then home, one motion.
+bool GoHome(MotionSequencer& motions, const std::optional<Eigen::Isometry3d>& X_WT_exit, const robot::Joints& q_home,
+            const LineSpeeds& lines);
 
 }  // namespace sortcell::cell

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <stdexcept>
 
+#include "cell/arm_view.h"
 #include "robot/gripper_geometry.h"
 
 namespace sortcell::cell {
@@ -60,7 +61,8 @@ int SortingPolicy::Choose(const std::vector<Detection>& detections, robot::PickM
     robot::GraspOptions grasp_options;
     grasp_options.finger_clearance =
         std::max(kMinClearance, std::min(kPerceivedClearance, 0.5 * (robot::kMaxGap - footprints[i].width)));
-    plan = robot::PlanTopDownGrasp(footprints[i], io_.CommandedJoints(), grasp_options);
+    // The IK branch nearest to the observe pose (the natural one for picking), wherever the arm is now.
+    plan = robot::PlanTopDownGrasp(footprints[i], layout_.q_observe, grasp_options);
     if (plan.status == robot::GraspStatus::kOk) return i;
     memory.Skip(footprints[i].centre_xy, robot::SkipReason::kUnreachable);
     view.Skip(footprints[i].centre_xy, robot::SkipReason::kUnreachable);
@@ -68,7 +70,9 @@ int SortingPolicy::Choose(const std::vector<Detection>& detections, robot::PickM
   }
 }
 
-AttemptReport SortingPolicy::Attempt(const Detection& seen, int index, int attempt, const robot::GraspPlan& plan) {
+AttemptReport SortingPolicy::Attempt(const Detection& seen, int index, int attempt, const robot::GraspPlan& plan,
+                                     const std::optional<Eigen::Isometry3d>& X_WT_exit,
+                                     std::optional<Observation>& next_view) {
   AttemptReport report;
   report.detection = index;
   report.seen = &seen;
@@ -81,9 +85,21 @@ AttemptReport SortingPolicy::Attempt(const Detection& seen, int index, int attem
   request.p_W_release = BinSlot(layout_, *seen.category, filled);
   request.place_yaw_step = layout_.place_yaw_step;
   request.q_home = layout_.q_observe;
-  request.approach_speed = layout_.approach_speed;
+  request.X_WT_exit = X_WT_exit;
+  request.lines = layout_.lines;
+  PickHooks hooks;
+  // What it holds hangs down to the object's bottom; across, it is at most as wide as the open fingers
+  // (or it would not have fitted between them) in the pinch direction: a long box may reach further
+  // the other way, by up to the largest gap.
+  const HeldObject held{plan.grasp_height, 0.5 * robot::kMaxGap};
+  hooks.out_of_view = [&](const robot::Joints& q) {
+    return !ArmInView(q, held, calibration_, layout_.workspace_min_W, layout_.workspace_max_W);
+  };
+  hooks.left_view = [&] { next_view = Observe(); };
+  hooks.grasped = [&] { observer_.Grasped(); };
+  hooks.lowered = [&] { observer_.Lowered(); };
   const size_t first_phase = motions_.phases().size();
-  report.pick = PickAndPlace(motions_, request);
+  report.pick = PickAndPlace(motions_, request, hooks);
   report.phases.assign(motions_.phases().begin() + first_phase, motions_.phases().end());
   if (report.pick.reached_bin) ++filled;
   report.end_s = io_.Now();
@@ -95,6 +111,8 @@ PolicyResult SortingPolicy::Run() {
   PolicyResult result;
   const double start = io_.Now();
   robot::PickMemory memory(options_.same_object_radius, options_.max_attempts_per_position);
+  std::optional<Observation> during_carry;     // The view captured during the last carry.
+  std::optional<Eigen::Isometry3d> X_WT_exit;  // Where the arm is to leave to first (out of a bin).
   while (!motions_.faulted()) {
     if (io_.Now() - start >= options_.time_limit_s) {
       result.status = EpisodeStatus::kTimeLimit;
@@ -104,7 +122,16 @@ PolicyResult SortingPolicy::Run() {
       result.status = EpisodeStatus::kAttemptLimit;
       break;
     }
-    const Observation observation = Observe();
+    Observation observation;
+    if (during_carry) {
+      observation = std::move(*during_carry);
+      during_carry.reset();
+    } else {
+      // The arm may hide the view: home first.
+      if (X_WT_exit && !GoHome(motions_, X_WT_exit, layout_.q_observe, layout_.lines)) break;
+      X_WT_exit.reset();
+      observation = Observe();
+    }
     ++result.frames;
     robot::GraspPlan plan;
     const int chosen = Choose(observation.detections, memory, plan);
@@ -112,13 +139,18 @@ PolicyResult SortingPolicy::Run() {
     const Detection& seen = observation.detections[chosen];
     const int attempt = memory.RecordAttempt(seen.footprint.centre_xy);
     ++result.attempts;
-    const AttemptReport report = Attempt(seen, chosen, attempt, plan);
+    const AttemptReport report = Attempt(seen, chosen, attempt, plan, X_WT_exit, during_carry);
+    X_WT_exit = report.pick.X_WT_exit;
     const AttemptResult r = report.pick.result;
+    // Only a release into the bin leaves the view captured during the carry as it was.
+    if (r != AttemptResult::kReleased) during_carry.reset();
     if (r == AttemptResult::kMotionFailed || r == AttemptResult::kPutBack) {
       memory.Skip(seen.footprint.centre_xy, robot::SkipReason::kUnreachable);
     }
     if (r == AttemptResult::kSimDiverged) break;
   }
+  // Home at the end, out of the bin the last object went into.
+  if (!motions_.faulted() && X_WT_exit) GoHome(motions_, X_WT_exit, layout_.q_observe, layout_.lines);
   if (motions_.faulted()) result.status = EpisodeStatus::kSimDiverged;
   return result;
 }

@@ -3,12 +3,18 @@
 /// The sorting cell's policy (paper section 2.3), over any CellIo: capture, describe and classify
 /// every cluster, choose the one with the most room around it, plan a top-down grasp from its
 /// footprint, pick it and put it into its category's bin, and again, until nothing pickable is left
-/// in view or a budget runs out. A missed grasp is retried from a fresh capture, at most
+/// in view or a budget runs out. The arm does not go home between items: the next view is captured
+/// during the carry, as soon as the arm and the held object are out of the camera's view of the
+/// workspace (ArmInView, from the arm's kinematics and the calibrated camera), and the next pick is
+/// planned from it while the carry goes on, and starts from the bin. Nothing in view changes after
+/// that capture unless the object is lost on the way; then (and after a miss) the arm goes home and
+/// captures again. A missed grasp is retried from a fresh capture, at most
 /// max_attempts_per_position times at one table position; a cluster with no grasp plan is skipped
 /// as unreachable; a cluster too small to describe is never picked. It decides from the camera's
 /// clouds, the encoders and the gripper's sensors only.
 
 #include <map>
+#include <optional>
 #include <string>
 
 #include "cell/cell_io.h"
@@ -54,6 +60,9 @@ class PolicyObserver {
   virtual void Skipped(int /*detection*/, const Detection& /*seen*/, robot::GraspStatus /*why*/) {}
   /// About to attempt detection `report.detection` (report.pick not yet filled).
   virtual void AttemptStarting(const AttemptReport& /*report*/) {}
+  /// The fingers closed on the object and hold it / it was lowered into the bin, before the release.
+  virtual void Grasped() {}
+  virtual void Lowered() {}
   virtual void AttemptEnded(const AttemptReport& /*report*/) {}
 };
 
@@ -83,7 +92,8 @@ class SortingPolicy {
   // The detection to pick next and its grasp plan, or -1. Detections without a plan are given up in
   // `memory` (and reported); undescribed ones are never chosen.
   int Choose(const std::vector<Detection>& detections, robot::PickMemory& memory, robot::GraspPlan& plan);
-  AttemptReport Attempt(const Detection& seen, int index, int attempt, const robot::GraspPlan& plan);
+  AttemptReport Attempt(const Detection& seen, int index, int attempt, const robot::GraspPlan& plan,
+                        const std::optional<Eigen::Isometry3d>& X_WT_exit, std::optional<Observation>& next_view);
 
   CellIo& io_;
   const CellLayout& layout_;

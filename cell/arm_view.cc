@@ -1,0 +1,82 @@
+#include "cell/arm_view.h"
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "robot/gripper_geometry.h"
+
+namespace sortcell::cell {
+namespace {
+
+constexpr double kMargin = 0.02;         // Added to every capsule's radius (m).
+// Workspace surface samples this far apart (m): closer than the thinnest capsule's radius, so no
+// capsule's shadow slips between them.
+constexpr double kSurfaceSpacing = 0.03;
+
+// Points on the surface of the box [lo, hi], at most `spacing` apart. A sphere that hides any point of
+// the box hides one of its surface (the one where the ray enters it, or leaves it behind the sphere).
+std::vector<Eigen::Vector3d> BoxSurface(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, double spacing) {
+  std::vector<Eigen::Vector3d> points;
+  Eigen::Vector3i n;
+  for (int i = 0; i < 3; ++i) n[i] = 1 + static_cast<int>(std::ceil((hi[i] - lo[i]) / spacing));
+  for (int i = 0; i <= n.x(); ++i) {
+    for (int j = 0; j <= n.y(); ++j) {
+      for (int k = 0; k <= n.z(); ++k) {
+        if (i != 0 && i != n.x() && j != 0 && j != n.y() && k != 0 && k != n.z()) continue;  // Inside.
+        const Eigen::Vector3d f(double(i) / n.x(), double(j) / n.y(), double(k) / n.z());
+        points.push_back(lo + (hi - lo).cwiseProduct(f));
+      }
+    }
+  }
+  return points;
+}
+
+}  // namespace
+
+// The arm's capsules at q (world frame). Link geometry in each D-H frame as models/ur5 draws it: the
+// upper arm lies 0.136 m along the joint axes from the D-H line, the forearm 0.016 m.
+std::vector<Capsule> ArmCapsules(const robot::Joints& q, const std::optional<HeldObject>& held) {
+  const robot::LinkFrames X = robot::ForwardKinematicsAll(q);
+  auto at = [&](int frame, double x, double y, double z) { return Eigen::Vector3d(X[frame] * Eigen::Vector3d(x, y, z)); };
+  std::vector<Capsule> capsules{
+      {at(0, 0, 0, 0), at(0, 0, 0, 0.12), 0.075},           // base and shoulder
+      {at(2, 0.425, 0, 0.136), at(2, 0, 0, 0.136), 0.06},  // upper arm
+      {at(2, 0, 0, 0.02), at(2, 0, 0, 0.18), 0.06},        // elbow
+      {at(3, 0.392, 0, 0.016), at(3, 0, 0, 0.016), 0.045},  // forearm
+      {at(3, 0, 0, -0.03), at(4, 0, 0, 0), 0.045},         // wrist 1
+      {at(4, 0, 0, 0), at(5, 0, 0, 0), 0.045},             // wrist 2
+      {at(5, 0, 0, 0), at(6, 0, 0, 0), 0.045},             // wrist 3
+      {at(6, 0, 0, 0), at(6, 0, 0, robot::kTcpOffsetZ + robot::kFingerTipBeyondTcp), 0.075},  // gripper
+  };
+  if (held) {
+    capsules.push_back({at(6, 0, 0, robot::kTcpOffsetZ), at(6, 0, 0, robot::kTcpOffsetZ + held->below_tcp), held->radius});
+  }
+  for (auto& c : capsules) c.radius += kMargin;
+  return capsules;
+}
+
+bool ArmInView(const robot::Joints& q, const std::optional<HeldObject>& held, const CameraCalibration& camera,
+               const Eigen::Vector3d& workspace_min_W, const Eigen::Vector3d& workspace_max_W) {
+  const Eigen::Vector3d o = camera.X_WC.translation();
+  const std::vector<Eigen::Vector3d> workspace = BoxSurface(workspace_min_W, workspace_max_W, kSurfaceSpacing);
+  for (const Capsule& capsule : ArmCapsules(q, held)) {
+    // Spheres along the capsule, at most half a radius apart. A sphere at distance D with radius r
+    // hides the cone of rays within asin(r / D) of its centre's, beyond D - r.
+    const int n = 1 + static_cast<int>((capsule.b - capsule.a).norm() / (0.5 * capsule.radius));
+    for (int i = 0; i <= n; ++i) {
+      const Eigen::Vector3d p = capsule.a + (capsule.b - capsule.a) * (double(i) / n);
+      const double distance = (p - o).norm();
+      if (distance <= capsule.radius) return true;  // At the lens: it hides everything.
+      const Eigen::Vector3d axis = (p - o) / distance;
+      const double cos_cone = std::sqrt(1.0 - std::pow(capsule.radius / distance, 2));
+      for (const Eigen::Vector3d& b : workspace) {
+        const double range = (b - o).norm();
+        if (range > distance - capsule.radius && axis.dot(b - o) >= cos_cone * range) return true;
+      }
+    }
+  }
+  return false;
+}
+
+}  // namespace sortcell::cell

@@ -1,0 +1,37 @@
+#pragma once
+/// @file
+/// Whether the arm hides any of the workspace from the camera, decided from the robot's own
+/// kinematics and the camera's calibrated pose: the arm's links, the gripper and what it may hold are
+/// capsules along the D-H chain (sizes of models/ur5 and models/gripper, with a margin), and a capsule
+/// hides the workspace when the shadow it casts from the camera (the cone of rays it blocks) reaches
+/// the workspace box. Conservative: the box is grown by the shadow's widest radius.
+
+#include <optional>
+#include <vector>
+
+#include <Eigen/Geometry>
+
+#include "cell/scene_observation.h"
+#include "robot/ur5_kinematics.h"
+
+namespace sortcell::cell {
+
+/// An object between the fingers, as the robot knows it: a capsule from the TCP down.
+struct HeldObject {
+  double below_tcp = 0;  ///< How far it reaches below the TCP (its grasp height) (m).
+  double radius = 0;     ///< Its horizontal reach from the TCP's axis (m).
+};
+
+/// The capsules (world frame, m) that stand for the arm, the gripper and `held` at joints q.
+struct Capsule {
+  Eigen::Vector3d a, b;
+  double radius = 0;
+};
+std::vector<Capsule> ArmCapsules(const robot::Joints& q, const std::optional<HeldObject>& held);
+
+/// True if at joints q the arm (with `held` between the fingers, if any) hides part of the world box
+/// [workspace_min_W, workspace_max_W] from the camera at camera.X_WC, or lies in it.
+bool ArmInView(const robot::Joints& q, const std::optional<HeldObject>& held, const CameraCalibration& camera,
+               const Eigen::Vector3d& workspace_min_W, const Eigen::Vector3d& workspace_max_W);
+
+}  // namespace sortcell::cell
