@@ -180,6 +180,9 @@ EpisodeMetrics EpisodeRun::Metrics(const cell::PolicyResult& result, double wall
   run.profile_wall_s = WallProfile(wall_s);
   run.tracking_max_error_rad = cell_->tracking().max_error;
   run.torque_saturated_samples = cell_->tracking().saturated_samples;
+  run.carry_slip_max_mm = recorder_->slip().max_mm;
+  run.carry_slip_sum_mm = recorder_->slip().sum_mm;
+  run.carries = recorder_->slip().carries;
 
   EpisodeMetrics m;
   m.seed = options_.seed;

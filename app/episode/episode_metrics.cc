@@ -126,7 +126,10 @@ void to_json(nlohmann::json& j, const EpisodeSummary& v) {
        {"cycle_phases_s", v.run.cycle_phases_s},
        {"profile_wall_s", v.run.profile_wall_s},
        {"tracking_max_error_rad", v.run.tracking_max_error_rad},
-       {"torque_saturated_samples", v.run.torque_saturated_samples}};
+       {"torque_saturated_samples", v.run.torque_saturated_samples},
+       {"carry_slip_max_mm", v.run.carry_slip_max_mm},
+       {"carry_slip_mean_mm", v.run.carries > 0 ? v.run.carry_slip_sum_mm / v.run.carries : 0.0},
+       {"carries", v.run.carries}};
 }
 
 void from_json(const nlohmann::json& j, EpisodeSummary& v) {
@@ -159,6 +162,11 @@ void from_json(const nlohmann::json& j, EpisodeSummary& v) {
   ReadAddedField(j, path, "profile_wall_s", v.run.profile_wall_s);
   ReadAddedField(j, path, "tracking_max_error_rad", v.run.tracking_max_error_rad);
   ReadAddedField(j, path, "torque_saturated_samples", v.run.torque_saturated_samples);
+  ReadAddedField(j, path, "carry_slip_max_mm", v.run.carry_slip_max_mm);
+  ReadAddedField(j, path, "carries", v.run.carries);
+  double mean_mm = 0;
+  ReadAddedField(j, path, "carry_slip_mean_mm", mean_mm);
+  v.run.carry_slip_sum_mm = mean_mm * v.run.carries;
 }
 
 void to_json(nlohmann::json& j, const EpisodeVariation& v) {

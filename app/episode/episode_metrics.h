@@ -48,6 +48,10 @@ struct RunFigures {
   std::map<std::string, double> profile_wall_s;
   double tracking_max_error_rad = 0;  ///< Largest joint tracking error of the arm's controller.
   int torque_saturated_samples = 0;   ///< Control periods with a joint torque at its limit.
+  /// How far held objects moved in the gripper from the grasp closing to the bin, before the release
+  /// (truth, mm): the largest and the sum over the carries measured, and their number.
+  double carry_slip_max_mm = 0, carry_slip_sum_mm = 0;
+  int carries = 0;
 };
 
 struct EpisodeSummary {

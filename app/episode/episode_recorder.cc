@@ -6,6 +6,7 @@
 #include <algorithm>
 
 #include "perception/segment_overlay.h"
+#include "sim/ground_truth.h"
 
 namespace sortcell::app {
 
@@ -13,7 +14,7 @@ EpisodeRecorder::EpisodeRecorder(EpisodeScorer& scorer, const SimCell& cell, con
                                  const sim::Data& data, sim::VideoRecorder* video, uint64_t seed,
                                  int max_attempts_per_object)
     : scorer_(scorer), cell_(cell), model_(model), data_(data), video_(video), seed_(seed),
-      max_attempts_per_object_(max_attempts_per_object) {}
+      max_attempts_per_object_(max_attempts_per_object), tcp_site_(model.Id(mjOBJ_SITE, "tcp")) {}
 
 void EpisodeRecorder::ShowStatus(const std::string& current) {
   if (!video_) return;
@@ -68,18 +69,40 @@ void EpisodeRecorder::Skipped(int detection, const cell::Detection& seen, robot:
 }
 
 void EpisodeRecorder::AttemptStarting(const cell::AttemptReport& report) {
+  p_TO_grasped_.reset();
   const cell::Detection& d = *report.seen;
   ShowStatus(fmt::format("object {}: {} ({:.2f})  attempt {}/{}", report.detection, *d.category, d.confidence,
                          report.attempt, max_attempts_per_object_));
-  // Measured before the pick moves the object.
+  // Measured before the pick moves the object, and before the next capture (during the carry).
   truth_errors_ = scorer_.GraspErrors(report.detection, d.footprint.centre_xy, d.footprint.width, model_, data_);
+  attempted_object_ = scorer_.ObjectOf(report.detection);
+}
+
+// The attempted object's position in the TCP frame now (truth), if the attempt went for one.
+static std::optional<Eigen::Vector3d> ObjectInTcp(const EpisodeScorer& scorer, int object, const sim::Data& data,
+                                                  int tcp_site) {
+  if (object < 0) return std::nullopt;
+  const int body = scorer.objects()[object].body;
+  return (sim::SitePose(data, tcp_site).inverse() * sim::BodyPose(data, body)).translation();
+}
+
+void EpisodeRecorder::Grasped() { p_TO_grasped_ = ObjectInTcp(scorer_, attempted_object_, data_, tcp_site_); }
+
+void EpisodeRecorder::Lowered() {
+  const std::optional<Eigen::Vector3d> p_TO = ObjectInTcp(scorer_, attempted_object_, data_, tcp_site_);
+  if (!p_TO || !p_TO_grasped_) return;
+  const double slip_mm = 1000 * (*p_TO - *p_TO_grasped_).norm();
+  slip_.max_mm = std::max(slip_.max_mm, slip_mm);
+  slip_.sum_mm += slip_mm;
+  ++slip_.carries;
+  p_TO_grasped_.reset();
 }
 
 void EpisodeRecorder::AttemptEnded(const cell::AttemptReport& report) {
   const cell::Detection& d = *report.seen;
   const cell::AttemptResult result = report.pick.result;
   AttemptRecord record;
-  record.detection = report.detection;
+  record.object = attempted_object_;
   record.predicted = *d.category;
   record.confidence = d.confidence;
   record.start_s = report.start_s;
@@ -104,8 +127,7 @@ void EpisodeRecorder::AttemptEnded(const cell::AttemptReport& report) {
   entry.width_m = d.footprint.width;
   entry.top_z_m = d.footprint.top_z;
   entry.result = cell::ToString(result);
-  const int object = scorer_.ObjectOf(report.detection);
-  if (object >= 0) entry.truth_object = scorer_.objects()[object].name;
+  if (attempted_object_ >= 0) entry.truth_object = scorer_.objects()[attempted_object_].name;
   if (truth_errors_) {
     entry.truth_centre_error_m = truth_errors_->first;
     entry.truth_width_error_m = truth_errors_->second;

@@ -30,6 +30,15 @@ class EpisodeRecorder : public cell::PolicyObserver {
   void Skipped(int detection, const cell::Detection& seen, robot::GraspStatus why) override;
   void AttemptStarting(const cell::AttemptReport& report) override;
   void AttemptEnded(const cell::AttemptReport& report) override;
+  void Grasped() override;
+  void Lowered() override;
+
+  /// Slip of held objects in the gripper from the grasp closing to the bin (truth).
+  struct Slip {
+    double max_mm = 0, sum_mm = 0;
+    int carries = 0;
+  };
+  const Slip& slip() const { return slip_; }
 
   /// The video overlay's middle line (the current activity); no-op without a video.
   void ShowStatus(const std::string& current);
@@ -50,6 +59,10 @@ class EpisodeRecorder : public cell::PolicyObserver {
   int max_attempts_per_object_;
   std::vector<AttemptLogEntry> log_;
   std::optional<std::pair<double, double>> truth_errors_;  // Of the attempt in progress.
+  int attempted_object_ = -1;  // The placed object the attempt in progress went for (-1: none).
+  int tcp_site_;
+  std::optional<Eigen::Vector3d> p_TO_grasped_;  // Where the held object sat in the gripper at the grasp.
+  Slip slip_;
   double perception_wall_s_ = 0;
   std::map<std::string, double> phase_s_;  // Simulated seconds in each phase, over every attempt.
   int attempts_ = 0;

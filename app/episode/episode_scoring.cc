@@ -45,7 +45,7 @@ void EpisodeScorer::Unreachable(int detection) {
 void EpisodeScorer::Attempt(const AttemptRecord& attempt) {
   ++attempts_;
   if (attempt.grasped) ++grasps_;
-  const int o = ObjectOf(attempt.detection);
+  const int o = attempt.object;
   if (o < 0) return;  // A detection of no placed object (a fragment, a merged pair's background).
   Track& t = tracks_[o];
   ++t.attempts;

@@ -35,7 +35,9 @@ struct DetectionRecord {
 
 /// One grasp attempt as it ended.
 struct AttemptRecord {
-  int detection = -1;  ///< Index into the last observation's detections.
+  /// The placed object its detection showed when the attempt started (ObjectOf), -1: none. Resolved
+  /// then: the next view may be captured during the attempt's carry.
+  int object = -1;
   std::string predicted;
   double confidence = 0;
   double start_s = 0, end_s = 0;  ///< Simulated time from leaving the observe pose to being back.

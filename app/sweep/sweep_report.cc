@@ -27,6 +27,8 @@ struct Tally {
   std::map<std::string, double> phase_s;  // Simulated seconds in each pick phase, over every attempt.
   int saturated = 0;
   double max_error = 0;
+  double slip_max_mm = 0, slip_sum_mm = 0;
+  int carries = 0;
 
   void Add(const SweepRecord& record) {
     ++episodes;
@@ -43,6 +45,9 @@ struct Tally {
     for (const auto& [phase, mean_s] : run.cycle_phases_s) phase_s[phase] += mean_s * record.summary.grasp_attempts;
     saturated += run.torque_saturated_samples;
     max_error = std::max(max_error, run.tracking_max_error_rad);
+    slip_max_mm = std::max(slip_max_mm, run.carry_slip_max_mm);
+    slip_sum_mm += run.carry_slip_sum_mm;
+    carries += run.carries;
   }
 };
 
@@ -54,6 +59,8 @@ struct GroupFigures {
   std::map<std::string, double> cycle_phases_s;  // Mean simulated seconds per attempt in each phase.
   int torque_saturated_samples = 0;
   double tracking_max_error_rad = 0;
+  double carry_slip_max_mm = 0;
+  std::optional<double> carry_slip_mean_mm;
   std::pair<double, double> ci95{0, 1};
   OutcomeCounts outcomes;
   double sim_time_s = 0, episode_wall_time_s = 0;
@@ -81,6 +88,8 @@ GroupFigures Figures(const Tally& t) {
   }
   f.torque_saturated_samples = t.saturated;
   f.tracking_max_error_rad = t.max_error;
+  f.carry_slip_max_mm = t.slip_max_mm;
+  f.carry_slip_mean_mm = Ratio(t.slip_sum_mm, t.carries);
   return f;
 }
 
@@ -99,6 +108,8 @@ nlohmann::json FiguresJson(const GroupFigures& f) {
           {"cycle_phases_s", f.cycle_phases_s},
           {"torque_saturated_samples", f.torque_saturated_samples},
           {"tracking_max_error_rad", f.tracking_max_error_rad},
+          {"carry_slip_max_mm", f.carry_slip_max_mm},
+          {"carry_slip_mean_mm", OrNull(f.carry_slip_mean_mm)},
           {"sim_time_s", f.sim_time_s},
           {"episode_wall_time_s", f.episode_wall_time_s},
           {"real_time_factor", OrNull(f.real_time_factor)}};
@@ -194,8 +205,13 @@ std::string MarkdownPhases(const GroupFigures& all) {
   std::string md = "Cycle by phase, mean simulated seconds per attempt:";
   for (const auto& [phase, seconds] : phases) md += fmt::format(" {} {:.2f},", phase, seconds);
   md.back() = '.';
-  return md + fmt::format(" Torque-saturated control periods {}, largest tracking error {:.4f} rad.\n\n",
-                          all.torque_saturated_samples, all.tracking_max_error_rad);
+  md += fmt::format(" Torque-saturated control periods {}, largest tracking error {:.4f} rad.",
+                   all.torque_saturated_samples, all.tracking_max_error_rad);
+  if (all.carry_slip_mean_mm) {
+    md += fmt::format(" Held objects slipped {:.2f} mm on average from grasp to bin (largest {:.1f} mm).",
+                      *all.carry_slip_mean_mm, all.carry_slip_max_mm);
+  }
+  return md + "\n\n";
 }
 
 std::string MarkdownOverview(const SweepSpec& spec, const GroupFigures& all) {

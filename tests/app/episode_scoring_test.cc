@@ -77,9 +77,9 @@ TEST_F(ScorerTest, EveryOutcomeFromWhereObjectsEndedAndWhatWasTried) {
   EpisodeScorer scorer = Scorer();
   const std::vector<int> p0{0}, p1{1}, p2{2};
   scorer.Observe(Labels(), {{&p0, std::string("cup"), 0.9}, {&p1, std::string("cup"), 0.8}, {&p2, std::nullopt, 0}});
-  AttemptRecord sorted{0, "cup", 0.9, 0, 10, true, true, cell::AttemptResult::kReleased};
+  AttemptRecord sorted{scorer.ObjectOf(0), "cup", 0.9, 0, 10, true, true, cell::AttemptResult::kReleased};
   scorer.Attempt(sorted);
-  AttemptRecord missed{1, "cup", 0.8, 10, 15, false, false, cell::AttemptResult::kMissed};
+  AttemptRecord missed{scorer.ObjectOf(1), "cup", 0.8, 10, 15, false, false, cell::AttemptResult::kMissed};
   scorer.Attempt(missed);
   Move("a", 0.45, 0.48, 0.03);  // in its bin
   Move("c", 2.0, 0.0, 0.03);    // off the table
@@ -112,13 +112,13 @@ TEST_F(ScorerTest, AnObjectPutBackBecauseItsBinIsOutOfReachIsUnreachableNotDropp
   EpisodeScorer scorer = Scorer();
   const std::vector<int> p0{0};
   scorer.Observe(Labels(), {{&p0, std::string("cup"), 0.9}});
-  scorer.Attempt({0, "cup", 0.9, 0, 12, true, true, cell::AttemptResult::kPutBack});
+  scorer.Attempt({scorer.ObjectOf(0), "cup", 0.9, 0, 12, true, true, cell::AttemptResult::kPutBack});
   EXPECT_EQ(scorer.Items(data_, sim::Bins(model_))[0].outcome, cell::ItemOutcome::kUnreachable);
   // Lifted and then lost on the way, standing on the table: dropped.
-  scorer.Attempt({0, "cup", 0.9, 12, 20, true, true, cell::AttemptResult::kDropped});
+  scorer.Attempt({scorer.ObjectOf(0), "cup", 0.9, 12, 20, true, true, cell::AttemptResult::kDropped});
   EXPECT_EQ(scorer.Items(data_, sim::Bins(model_))[0].outcome, cell::ItemOutcome::kDropped);
   // Then picked up again and put back: it stands on the table, its bin out of reach.
-  scorer.Attempt({0, "cup", 0.9, 20, 32, true, true, cell::AttemptResult::kPutBack});
+  scorer.Attempt({scorer.ObjectOf(0), "cup", 0.9, 20, 32, true, true, cell::AttemptResult::kPutBack});
   EXPECT_EQ(scorer.Items(data_, sim::Bins(model_))[0].outcome, cell::ItemOutcome::kUnreachable);
 }
 
