@@ -58,9 +58,10 @@ GraspPlan PlanTopDownGrasp(const ObjectFootprint& object, const Joints& q_curren
       const Eigen::Isometry3d pregrasp = TopDownTcpPose(p + Eigen::Vector3d(0, 0, z_pregrasp), yaw);
       const Eigen::Isometry3d grasp = TopDownTcpPose(p + Eigen::Vector3d(0, 0, z_grasp), yaw);
       const auto q_lift = SelectNearest(SolveTcpIk(lift, q_current[5]), q_current, options.selection);
-      if (!q_lift) continue;
+      if (!q_lift || std::abs(q_lift->q[2]) < options.min_elbow_bend) continue;
       const auto q_pre = SelectNearest(SolveTcpIk(pregrasp, q_lift->q[5]), q_lift->q, options.selection);
-      if (!q_pre || !SelectNearest(SolveTcpIk(grasp, q_pre->q[5]), q_pre->q, options.selection)) continue;
+      if (!q_pre || std::abs(q_pre->q[2]) < options.min_elbow_bend) continue;
+      if (!SelectNearest(SolveTcpIk(grasp, q_pre->q[5]), q_pre->q, options.selection)) continue;
       const double distance = (q_lift->q - q_current).norm();
       if (plan.status == GraspStatus::kOk && distance >= best_distance) continue;
       plan.status = GraspStatus::kOk;

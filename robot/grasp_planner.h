@@ -32,6 +32,9 @@ struct GraspOptions {
   /// Where the arm cannot reach that high (the workspace's far corners), the lift is lowered in
   /// 2 cm steps down to this clearance, still above the bins' walls (m).
   double min_lift_clearance = 0.15;
+  /// The elbow bent at least this much (|q3|, rad) at the lift and pre-grasp poses: near a straight
+  /// elbow (a singularity) the straight lines through them need joints faster than pi rad/s.
+  double min_elbow_bend = 0.15;
   /// At release, the object's bottom this high above the bin floor (m).
   double release_clearance = 0.03;
   /// Yaws tried for the placement, in steps of this (rad); pi/2 keeps a held box square to the bin.

@@ -93,6 +93,8 @@ struct OffscreenRenderer::Impl {
     camera.fixedcamid = view.camera_id;
     scene.flags[mjRND_SEGMENT] = segmentation ? 1 : 0;
     scene.flags[mjRND_IDCOLOR] = segmentation ? 1 : 0;
+    scene.flags[mjRND_SHADOW] = view.shadows ? 1 : 0;
+    scene.flags[mjRND_REFLECTION] = view.reflections ? 1 : 0;
     // mjv_updateScene only reads the simulation state, but its signature is not const-correct.
     mjv_updateScene(model->get(), const_cast<mjData*>(data.get()), &option, nullptr, &camera, mjCAT_ALL,
                     &scene);
@@ -150,6 +152,15 @@ void OffscreenRenderer::Render(const Data& data, const RenderView& view, cv::Mat
     std::memcpy(rgb.ptr<unsigned char>(r), impl_->rgb_buffer.data() + src * row_rgb, row_rgb);
     std::memcpy(depth_buffer.ptr<float>(r), impl_->depth_buffer.data() + static_cast<size_t>(src) * view.width,
                 sizeof(float) * view.width);
+  }
+}
+
+void OffscreenRenderer::RenderRgb(const Data& data, const RenderView& view, cv::Mat& rgb) {
+  impl_->Draw(data, view, /*segmentation=*/false, /*want_depth=*/false);
+  rgb.create(view.height, view.width, CV_8UC3);
+  const size_t row_rgb = 3 * static_cast<size_t>(view.width);
+  for (int r = 0; r < view.height; ++r) {
+    std::memcpy(rgb.ptr<unsigned char>(r), impl_->rgb_buffer.data() + (view.height - 1 - r) * row_rgb, row_rgb);
   }
 }
 

@@ -17,6 +17,10 @@ struct RenderView {
   int camera_id = -1;  ///< A fixed camera of the model.
   int width = 640;
   int height = 480;
+  /// Shadows (a depth pass per shadow-casting light) and the floor's reflection (the scene drawn
+  /// twice): on for the Kinect, whose images the recognition model was trained on.
+  bool shadows = true;
+  bool reflections = true;
 };
 
 /// Lighting variation applied to every light of the scene (headlight included) at render time,
@@ -41,6 +45,9 @@ class OffscreenRenderer {
   /// @throws std::invalid_argument naming the model's <visual><global offwidth/offheight> if the view
   ///         is larger than the off-screen buffer, or the camera id is not a camera of the model.
   void Render(const Data& data, const RenderView& view, cv::Mat& rgb, cv::Mat& depth_buffer);
+
+  /// Colour only, no depth read back (review video).
+  void RenderRgb(const Data& data, const RenderView& view, cv::Mat& rgb);
 
   /// Per-pixel geom id (CV_32SC1, top row first), -1 where no geom is seen: MuJoCo's
   /// segmentation render (mjRND_SEGMENT + mjRND_IDCOLOR), decoded through the scene's segids.

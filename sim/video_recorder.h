@@ -2,11 +2,17 @@
 /// @file
 /// Off-screen video of a simulation for review: H.264 MP4 at a fixed number of frames per simulated
 /// second from one of the model's cameras, with a caption line drawn on every frame. Rendering reads
-/// the state only, so recording never changes what the simulation does.
+/// the state only, so recording never changes what the simulation does. Only colour is rendered, only
+/// at frame times; the text, the inset and the H.264 encoding run on a thread of their own, so the
+/// simulation goes on while a frame is encoded.
 
+#include <condition_variable>
+#include <deque>
 #include <filesystem>
 #include <memory>
+#include <mutex>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include <opencv2/core/mat.hpp>
@@ -22,6 +28,9 @@ struct VideoOptions {
   int width = 1280;
   int height = 720;
   double fps = 30;  ///< Frames per simulated second.
+  /// Shadows and the floor's reflection: they cost 60 % of a frame's rendering on the CPU (software
+  /// GL), so the review video leaves them out unless asked.
+  bool shadows = false;
 };
 
 class VideoRecorder {
@@ -40,26 +49,46 @@ class VideoRecorder {
   /// A BGR image drawn in the top-right corner of the following frames, scaled to a third of the
   /// frame's width (empty: none), e.g. the robot's latest camera view.
   void SetInset(const cv::Mat& bgr) { inset_ = bgr.clone(); }
-  /// Finishes the file. Also done by the destructor.
+  /// Finishes the file, once the frames queued are written. Also done by the destructor.
   void Close();
+  ~VideoRecorder();
+  VideoRecorder(const VideoRecorder&) = delete;
+  VideoRecorder& operator=(const VideoRecorder&) = delete;
 
   int frames() const { return frames_; }
+  /// Wall time of the simulation's thread spent on the video (rendering, and waiting when the encoder
+  /// is behind) (s).
   double render_wall_s() const { return render_wall_s_; }
 
  private:
+  // A rendered frame and what to draw on it, for the encoder thread.
+  struct Frame {
+    cv::Mat rgb;
+    double time = 0;
+    std::string caption;
+    std::vector<std::string> overlay;
+    cv::Mat inset;
+  };
   void WriteFrame(const Data& data);
+  void Encode();  // The encoder thread: draws and writes the queued frames in order.
+  void Compose(Frame& frame);
 
   std::filesystem::path path_;
   VideoOptions options_;
   OffscreenRenderer renderer_;
   RenderView view_;
   cv::VideoWriter writer_;
-  cv::Mat rgb_, depth_, bgr_;
+  cv::Mat bgr_, inset_scaled_;  // The encoder thread's.
   std::string caption_;
   std::vector<std::string> overlay_;
-  cv::Mat inset_, inset_scaled_;
+  cv::Mat inset_;
   int frames_ = 0;
   double render_wall_s_ = 0;
+  std::mutex mutex_;
+  std::condition_variable changed_;
+  std::deque<Frame> queue_;  // At most kQueued frames: the simulation waits when the encoder is behind.
+  bool closing_ = false;
+  std::thread encoder_;
 };
 
 }  // namespace sortcell::sim

@@ -4,8 +4,10 @@
 
 #include <CLI/CLI.hpp>
 
+#include <cstdio>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 namespace sortcell::app {
 
@@ -18,6 +20,26 @@ inline const CLI::Validator kUnsignedInteger(
       return "";
     },
     "UINT", "non-negative integer");
+
+/// "WxH" for the review video: positive and even (H.264's 4:2:0 chroma halves both).
+inline const CLI::Validator kVideoSize(
+    [](std::string& value) -> std::string {
+      int w = 0, h = 0;
+      char x = 0, extra = 0;
+      if (std::sscanf(value.c_str(), "%d%c%d%c", &w, &x, &h, &extra) != 3 || x != 'x' || w <= 0 || h <= 0 ||
+          w % 2 != 0 || h % 2 != 0 || value.find_first_not_of("0123456789x") != std::string::npos) {
+        return "expected WIDTHxHEIGHT with even positive numbers, e.g. 1280x720, found '" + value + "'";
+      }
+      return "";
+    },
+    "WxH", "video size");
+
+/// The width and height of a "WxH" that kVideoSize accepted.
+inline std::pair<int, int> ParseVideoSize(const std::string& value) {
+  int w = 0, h = 0;
+  std::sscanf(value.c_str(), "%dx%d", &w, &h);
+  return {w, h};
+}
 
 /// `parse(value)` for an option whose spelling names an enum value (e.g. ParseGrouping). Call it when
 /// the command runs, not in a CLI11 callback, so that an unknown spelling is a one-line error.

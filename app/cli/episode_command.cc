@@ -4,6 +4,7 @@
 #include <iostream>
 #include <memory>
 #include <sstream>
+#include <tuple>
 
 #include "app/cli/cli_validators.h"
 #include "app/common/data_dir.h"
@@ -45,6 +46,7 @@ ObjectPlacement ParsePlacement(const std::string& text) {
 struct EpisodeCli {
   EpisodeOptions options;
   std::vector<std::string> placements;
+  std::string video_size = "1280x720";
   bool train_if_missing = false;
   std::vector<std::string> sets;  ///< Empty: ExpandEpisodeSets turned them into options before parsing.
 };
@@ -117,6 +119,11 @@ void AddEpisodeCommand(CLI::App& app, std::function<int()>& run, const std::vect
   cmd->add_flag("--train-if-missing", cli->train_if_missing,
                 "Without --model: train and cache the default model first if it is not there (about 20 s)");
   cmd->add_option("--video", o.video, "Also write an H.264 MP4 from the review camera (30 fps, with overlay)");
+  cmd->add_option("--video-size", cli->video_size, "The video's WIDTHxHEIGHT (at most 1280x960)")
+      ->check(kVideoSize)
+      ->capture_default_str();
+  cmd->add_flag("--video-shadows", o.video_options.shadows,
+                "Draw the video with shadows and the floor's reflection (about 2.5x the rendering time)");
   cmd->add_option("--out", o.out, "Output folder (created if missing)")->required();
   cmd->add_option("--place", cli->placements, "Put an object at NAME=x,y[,yaw] (world, m, rad) instead of at random");
   cmd->add_option("--light-intensity", o.light_intensity, "Scale of the scene's lights")->capture_default_str();
@@ -146,6 +153,7 @@ void AddEpisodeCommand(CLI::App& app, std::function<int()>& run, const std::vect
       if (!cli->sets.empty()) throw std::logic_error("episode: --set reached the parser (ExpandEpisodeSets not applied)");
       EpisodeOptions options = cli->options;
       for (const auto& p : cli->placements) options.placements.push_back(ParsePlacement(p));
+      std::tie(options.video_options.width, options.video_options.height) = ParseVideoSize(cli->video_size);
       if (options.model.empty()) {
         const ObjectSet set = LoadObjectSet(options.object_set);
         options.model = DefaultModelPath(set);

@@ -2,7 +2,9 @@
 
 #include <iostream>
 #include <memory>
+#include <tuple>
 
+#include "app/cli/cli_validators.h"
 #include "app/episode/scripted_pick.h"
 
 namespace sortcell::app {
@@ -19,9 +21,16 @@ void AddPickCommand(CLI::App& app, std::function<int()>& run, const std::vector<
   cmd->add_option("--bin", options->bin, "Bin to place it in: bottle, cup, ball or others (or bin_<name>)")
       ->required();
   cmd->add_option("--video", options->video, "Also write an H.264 MP4 from the review camera (30 fps)");
+  auto video_size = std::make_shared<std::string>("1280x720");
+  cmd->add_option("--video-size", *video_size, "The video's WIDTHxHEIGHT (at most 1280x960)")
+      ->check(kVideoSize)
+      ->capture_default_str();
+  cmd->add_flag("--video-shadows", options->video_options.shadows,
+                "Draw the video with shadows and the floor's reflection (about 2.5x the rendering time)");
   options->out = "out/pick";
   cmd->add_option("--out", options->out, "Output folder (created if missing)")->capture_default_str();
-  cmd->callback([&run, options, command_line] {
+  cmd->callback([&run, options, video_size, command_line] {
+    std::tie(options->video_options.width, options->video_options.height) = ParseVideoSize(*video_size);
     run = [options, command_line] {
       const PickResult r = RunPick(*options, command_line);
       std::cout << "Pick " << options->object << " -> " << options->bin << " (scripted pose): " << r.status

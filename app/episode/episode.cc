@@ -87,7 +87,7 @@ void EpisodeRun::BuildCell() {
   for (size_t i = 0; i < bodies.size(); ++i) sim::StowObject(model_, *data_, model_.Id(mjOBJ_BODY, bodies[i]), static_cast<int>(i));
   if (!options_.video.empty()) {
     if (options_.video.has_parent_path()) std::filesystem::create_directories(options_.video.parent_path());
-    video_ = std::make_unique<sim::VideoRecorder>(model_, options_.video);
+    video_ = std::make_unique<sim::VideoRecorder>(model_, options_.video, options_.video_options);
   }
   cell_ = std::make_unique<SimCell>(model_, *data_, kinect_.get(), &noise_, &rng_, video_.get(), layout_.control_period);
   cell_->Reset(layout_.q_observe, layout_.observe_half_gap);

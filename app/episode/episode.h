@@ -12,6 +12,7 @@
 
 #include "app/episode/episode_metrics.h"
 #include "sim/scene_variation.h"
+#include "sim/video_recorder.h"
 
 namespace sortcell::app {
 
@@ -26,6 +27,7 @@ struct EpisodeOptions {
   std::filesystem::path object_set;  ///< Which objects exist and their categories.
   std::filesystem::path model;       ///< Trained recognition model (sortcell train).
   std::filesystem::path video;       ///< Empty: no video.
+  sim::VideoOptions video_options;   ///< Its camera, size and frame rate.
   std::filesystem::path out;
   uint64_t seed = 0;
   int objects = 0;  ///< How many of the set's objects to place (0: all of them, at most 6).

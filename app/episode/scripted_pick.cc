@@ -139,7 +139,7 @@ PickResult RunPick(const PickOptions& options, const std::vector<std::string>& c
   std::unique_ptr<sim::VideoRecorder> video;
   if (!options.video.empty()) {
     if (options.video.has_parent_path()) std::filesystem::create_directories(options.video.parent_path());
-    video = std::make_unique<sim::VideoRecorder>(model, options.video);
+    video = std::make_unique<sim::VideoRecorder>(model, options.video, options.video_options);
   }
   SimCell cell(model, data, nullptr, nullptr, nullptr, video.get(), layout.control_period);
   cell.Reset(layout.q_observe, layout.observe_half_gap);

@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "sim/video_recorder.h"
+
 namespace sortcell::app {
 
 struct PickOptions {
@@ -16,6 +18,7 @@ struct PickOptions {
   std::string object;
   std::string bin;  ///< "cup" or "bin_cup"
   std::filesystem::path video;  ///< Empty: no video.
+  sim::VideoOptions video_options;
   std::filesystem::path out;
 };
 

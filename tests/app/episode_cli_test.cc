@@ -58,6 +58,13 @@ TEST(EpisodeCli, BadSceneCountAndPlacement) {
   ExpectOneLineError(RunSortcell("episode --scene " + kScene + " --seed -1 --out " + Temp("f")), "--seed");
 }
 
+TEST(EpisodeCli, BadVideoSize) {
+  for (const char* size : {"1281x720", "1280", "0x720", "1280x720x2", "-640x360"}) {
+    ExpectOneLineError(RunSortcell("episode --scene " + kScene + " --video-size " + size + " --out " + Temp("g")),
+                       "--video-size: expected WIDTHxHEIGHT with even positive numbers");
+  }
+}
+
 class SweepBadInput : public ::testing::Test {
  protected:
   std::string Spec(const std::string& name, const std::string& body) {
