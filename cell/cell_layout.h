@@ -24,7 +24,7 @@ struct LineSpeeds {
   double transit_acceleration = 3.0;
   /// The last descent onto an object, the fingers passing its sides, and the put-back: slow.
   double approach = 0.15;
-  double approach_acceleration = 1.0;
+  double approach_acceleration = 2.0;
 };
 
 struct CellLayout {

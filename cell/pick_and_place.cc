@@ -6,6 +6,11 @@
 namespace sortcell::cell {
 namespace {
 
+// The last part of lowering an object into its bin, slowly (m).
+constexpr double kSlowPlacing = 0.05;
+// How much wider than the held gap the fingers open to let go (m): 5 mm per side.
+constexpr double kReleaseOpening = 0.010;
+
 void Notify(const std::function<void()>& hook) {
   if (hook) hook();
 }
@@ -44,6 +49,12 @@ PickReport PutBack(MotionSequencer& run, const PickRequest& request, PickReport 
 bool ApproachAndGrasp(MotionSequencer& run, const PickRequest& request) {
   const robot::GraspPlan& plan = request.grasp;
   const LineSpeeds& lines = request.lines;
+  // Out of the bin: the first centimetres slowly, the fingers passing what was just released.
+  if (request.X_WT_exit) {
+    Eigen::Isometry3d X_WT_clear = robot::TcpPose(run.io().CommandedJoints());
+    X_WT_clear.translation().z() += kSlowPlacing;
+    if (!run.MoveL("retreat", X_WT_clear, lines.approach, lines.approach_acceleration)) return false;
+  }
   run.StartFingers(plan.open_gap);
   MotionChain approach(run.io().CommandedJoints());
   if (request.X_WT_exit && !approach.Line("retreat", *request.X_WT_exit, lines.transit, lines.transit_acceleration)) {
@@ -76,6 +87,9 @@ PickReport PickAndPlace(MotionSequencer& run, const PickRequest& request, const 
     return report;
   }
   report.grasped = true;
+  // Released by opening a little beyond the gap it was held at: in a bin slot near the walls, opening
+  // to the approach's wider gap may press a finger against a wall and keep the object.
+  const double release_gap = std::fmin(plan.open_gap, run.io().ReadGripper().gap() + kReleaseOpening);
   Notify(hooks.grasped);
 
   // Lift, carry and lower as one motion; the placement is planned from where the lift ends.
@@ -88,7 +102,10 @@ PickReport PickAndPlace(MotionSequencer& run, const PickRequest& request, const 
   const robot::PlacePlan place = robot::PlanPlacement(request.p_W_release, plan.grasp_height, transfer.end(), place_options);
   if (place.ok) {
     transfer.JointMove("carry", place.q_above);
-    transfer.Line("lower", place.X_WT_release, lines.transit, lines.transit_acceleration);
+    // Fast down to just above the release point; the last centimetres (below) are slow.
+    Eigen::Isometry3d X_WT_above_release = place.X_WT_release;
+    X_WT_above_release.translation().z() += kSlowPlacing;
+    transfer.Line("lower", X_WT_above_release, lines.transit, lines.transit_acceleration);
   }
   bool held_above_bin = false;
   ChainHooks watch;
@@ -103,7 +120,6 @@ PickReport PickAndPlace(MotionSequencer& run, const PickRequest& request, const 
       // Judged above the bin: lowering into it may touch what is already there and move the fingers.
       held_above_bin = run.Hold() != robot::HoldState::kEmpty;
     }
-    if (phase == "lower") Notify(hooks.lowered);
     return true;
   };
   watch.when = hooks.out_of_view;
@@ -117,7 +133,15 @@ PickReport PickAndPlace(MotionSequencer& run, const PickRequest& request, const 
     return report;
   }
   if (!place.ok) return PutBack(run, request, report);
-  if (!run.Gripper("release", plan.open_gap)) return Fail(run, request, report);
+  if (!run.MoveL("place", place.X_WT_release, lines.approach, lines.approach_acceleration)) {
+    return Fail(run, request, report);
+  }
+  Notify(hooks.lowered);
+  if (!run.Gripper("release", release_gap)) return Fail(run, request, report);
+  // Still caught by the fingers: open as wide as for the approach, or the next motion takes it along.
+  if (robot::CaughtAfterOpening(run.io().ReadGripper(), release_gap) && !run.Gripper("release", plan.open_gap)) {
+    return Fail(run, request, report);
+  }
   report.reached_bin = true;
   report.X_WT_exit = place.X_WT_above;
   report.result = held_above_bin ? AttemptResult::kReleased : AttemptResult::kDropped;

@@ -25,7 +25,7 @@ struct GraspOptions {
   double finger_clearance = 0.0045;  ///< Per side, between open pads and the object (m).
   double palm_clearance = 0.015;     ///< Between the object's top and the palm (m).
   double table_clearance = 0.010;    ///< Between finger tips and the table (m).
-  double approach_height = 0.06;     ///< Finger tips above the object's top before descending (m).
+  double approach_height = 0.03;     ///< Finger tips above the object's top where the slow descent starts (m).
   /// Lift the object's bottom this high above the table before carrying it anywhere (m): above the
   /// tallest objects of the sets (0.224 m bottles) and the bins' 0.10 m walls.
   double lift_clearance = 0.30;

@@ -20,6 +20,10 @@ const char* ToString(HoldState state) {
   return "?";
 }
 
+bool CaughtAfterOpening(const GripperSensors& s, double gap, double tolerance, double min_force) {
+  return s.gap() < std::fmin(gap, kMaxGap) - tolerance || s.left_pad_force >= min_force || s.right_pad_force >= min_force;
+}
+
 double SqueezeTarget(double half_gap_at_contact, double grip_force) {
   return half_gap_at_contact - grip_force / kFingerServoKp;
 }

@@ -36,6 +36,10 @@ HoldState DetectHold(const GripperSensors& sensors, const HoldDetection& detecti
 
 const char* ToString(HoldState state);
 
+/// After opening to `gap`: whether the fingers stopped more than `tolerance` short of it or anything
+/// presses on a pad with at least `min_force` (N), i.e. something is still caught by the fingers.
+bool CaughtAfterOpening(const GripperSensors& sensors, double gap, double tolerance = 0.002, double min_force = 0.5);
+
 /// Half-gap target (m) for opening to `gap` (m), clamped to the stroke.
 double HalfGapTarget(double gap);
 

@@ -183,6 +183,7 @@ EpisodeMetrics EpisodeRun::Metrics(const cell::PolicyResult& result, double wall
   run.carry_slip_max_mm = recorder_->slip().max_mm;
   run.carry_slip_sum_mm = recorder_->slip().sum_mm;
   run.carries = recorder_->slip().carries;
+  run.carry_turn_max_deg = recorder_->slip().max_deg;
 
   EpisodeMetrics m;
   m.seed = options_.seed;

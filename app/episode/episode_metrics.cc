@@ -129,6 +129,7 @@ void to_json(nlohmann::json& j, const EpisodeSummary& v) {
        {"torque_saturated_samples", v.run.torque_saturated_samples},
        {"carry_slip_max_mm", v.run.carry_slip_max_mm},
        {"carry_slip_mean_mm", v.run.carries > 0 ? v.run.carry_slip_sum_mm / v.run.carries : 0.0},
+       {"carry_turn_max_deg", v.run.carry_turn_max_deg},
        {"carries", v.run.carries}};
 }
 
@@ -164,6 +165,7 @@ void from_json(const nlohmann::json& j, EpisodeSummary& v) {
   ReadAddedField(j, path, "torque_saturated_samples", v.run.torque_saturated_samples);
   ReadAddedField(j, path, "carry_slip_max_mm", v.run.carry_slip_max_mm);
   ReadAddedField(j, path, "carries", v.run.carries);
+  ReadAddedField(j, path, "carry_turn_max_deg", v.run.carry_turn_max_deg);
   double mean_mm = 0;
   ReadAddedField(j, path, "carry_slip_mean_mm", mean_mm);
   v.run.carry_slip_sum_mm = mean_mm * v.run.carries;

@@ -51,6 +51,7 @@ struct RunFigures {
   /// How far held objects moved in the gripper from the grasp closing to the bin, before the release
   /// (truth, mm): the largest and the sum over the carries measured, and their number.
   double carry_slip_max_mm = 0, carry_slip_sum_mm = 0;
+  double carry_turn_max_deg = 0;  ///< The largest turn of a held object in the gripper, same span (truth).
   int carries = 0;
 };
 

@@ -69,7 +69,7 @@ void EpisodeRecorder::Skipped(int detection, const cell::Detection& seen, robot:
 }
 
 void EpisodeRecorder::AttemptStarting(const cell::AttemptReport& report) {
-  p_TO_grasped_.reset();
+  X_TO_grasped_.reset();
   const cell::Detection& d = *report.seen;
   ShowStatus(fmt::format("object {}: {} ({:.2f})  attempt {}/{}", report.detection, *d.category, d.confidence,
                          report.attempt, max_attempts_per_object_));
@@ -79,23 +79,25 @@ void EpisodeRecorder::AttemptStarting(const cell::AttemptReport& report) {
 }
 
 // The attempted object's position in the TCP frame now (truth), if the attempt went for one.
-static std::optional<Eigen::Vector3d> ObjectInTcp(const EpisodeScorer& scorer, int object, const sim::Data& data,
+static std::optional<Eigen::Isometry3d> ObjectInTcp(const EpisodeScorer& scorer, int object, const sim::Data& data,
                                                   int tcp_site) {
   if (object < 0) return std::nullopt;
   const int body = scorer.objects()[object].body;
-  return (sim::SitePose(data, tcp_site).inverse() * sim::BodyPose(data, body)).translation();
+  return sim::SitePose(data, tcp_site).inverse() * sim::BodyPose(data, body);
 }
 
-void EpisodeRecorder::Grasped() { p_TO_grasped_ = ObjectInTcp(scorer_, attempted_object_, data_, tcp_site_); }
+void EpisodeRecorder::Grasped() { X_TO_grasped_ = ObjectInTcp(scorer_, attempted_object_, data_, tcp_site_); }
 
 void EpisodeRecorder::Lowered() {
-  const std::optional<Eigen::Vector3d> p_TO = ObjectInTcp(scorer_, attempted_object_, data_, tcp_site_);
-  if (!p_TO || !p_TO_grasped_) return;
-  const double slip_mm = 1000 * (*p_TO - *p_TO_grasped_).norm();
+  const std::optional<Eigen::Isometry3d> X_TO = ObjectInTcp(scorer_, attempted_object_, data_, tcp_site_);
+  if (!X_TO || !X_TO_grasped_) return;
+  const double slip_mm = 1000 * (X_TO->translation() - X_TO_grasped_->translation()).norm();
+  const double turn_deg = Eigen::AngleAxisd(X_TO_grasped_->linear().transpose() * X_TO->linear()).angle() * 180 / M_PI;
   slip_.max_mm = std::max(slip_.max_mm, slip_mm);
   slip_.sum_mm += slip_mm;
+  slip_.max_deg = std::max(slip_.max_deg, turn_deg);
   ++slip_.carries;
-  p_TO_grasped_.reset();
+  X_TO_grasped_.reset();
 }
 
 void EpisodeRecorder::AttemptEnded(const cell::AttemptReport& report) {

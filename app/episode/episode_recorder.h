@@ -36,6 +36,7 @@ class EpisodeRecorder : public cell::PolicyObserver {
   /// Slip of held objects in the gripper from the grasp closing to the bin (truth).
   struct Slip {
     double max_mm = 0, sum_mm = 0;
+    double max_deg = 0;  ///< Largest turn in the gripper.
     int carries = 0;
   };
   const Slip& slip() const { return slip_; }
@@ -61,7 +62,7 @@ class EpisodeRecorder : public cell::PolicyObserver {
   std::optional<std::pair<double, double>> truth_errors_;  // Of the attempt in progress.
   int attempted_object_ = -1;  // The placed object the attempt in progress went for (-1: none).
   int tcp_site_;
-  std::optional<Eigen::Vector3d> p_TO_grasped_;  // Where the held object sat in the gripper at the grasp.
+  std::optional<Eigen::Isometry3d> X_TO_grasped_;  // How the held object sat in the gripper at the grasp.
   Slip slip_;
   double perception_wall_s_ = 0;
   std::map<std::string, double> phase_s_;  // Simulated seconds in each phase, over every attempt.

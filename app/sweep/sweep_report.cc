@@ -27,7 +27,7 @@ struct Tally {
   std::map<std::string, double> phase_s;  // Simulated seconds in each pick phase, over every attempt.
   int saturated = 0;
   double max_error = 0;
-  double slip_max_mm = 0, slip_sum_mm = 0;
+  double slip_max_mm = 0, slip_sum_mm = 0, turn_max_deg = 0;
   int carries = 0;
 
   void Add(const SweepRecord& record) {
@@ -47,6 +47,7 @@ struct Tally {
     max_error = std::max(max_error, run.tracking_max_error_rad);
     slip_max_mm = std::max(slip_max_mm, run.carry_slip_max_mm);
     slip_sum_mm += run.carry_slip_sum_mm;
+    turn_max_deg = std::max(turn_max_deg, run.carry_turn_max_deg);
     carries += run.carries;
   }
 };
@@ -59,7 +60,7 @@ struct GroupFigures {
   std::map<std::string, double> cycle_phases_s;  // Mean simulated seconds per attempt in each phase.
   int torque_saturated_samples = 0;
   double tracking_max_error_rad = 0;
-  double carry_slip_max_mm = 0;
+  double carry_slip_max_mm = 0, carry_turn_max_deg = 0;
   std::optional<double> carry_slip_mean_mm;
   std::pair<double, double> ci95{0, 1};
   OutcomeCounts outcomes;
@@ -90,6 +91,7 @@ GroupFigures Figures(const Tally& t) {
   f.tracking_max_error_rad = t.max_error;
   f.carry_slip_max_mm = t.slip_max_mm;
   f.carry_slip_mean_mm = Ratio(t.slip_sum_mm, t.carries);
+  f.carry_turn_max_deg = t.turn_max_deg;
   return f;
 }
 
@@ -110,6 +112,7 @@ nlohmann::json FiguresJson(const GroupFigures& f) {
           {"tracking_max_error_rad", f.tracking_max_error_rad},
           {"carry_slip_max_mm", f.carry_slip_max_mm},
           {"carry_slip_mean_mm", OrNull(f.carry_slip_mean_mm)},
+          {"carry_turn_max_deg", f.carry_turn_max_deg},
           {"sim_time_s", f.sim_time_s},
           {"episode_wall_time_s", f.episode_wall_time_s},
           {"real_time_factor", OrNull(f.real_time_factor)}};
@@ -208,8 +211,9 @@ std::string MarkdownPhases(const GroupFigures& all) {
   md += fmt::format(" Torque-saturated control periods {}, largest tracking error {:.4f} rad.",
                    all.torque_saturated_samples, all.tracking_max_error_rad);
   if (all.carry_slip_mean_mm) {
-    md += fmt::format(" Held objects slipped {:.2f} mm on average from grasp to bin (largest {:.1f} mm).",
-                      *all.carry_slip_mean_mm, all.carry_slip_max_mm);
+    md += fmt::format(" Held objects slipped {:.2f} mm on average from grasp to bin (largest {:.1f} mm, largest turn"
+                      " {:.1f} deg).",
+                      *all.carry_slip_mean_mm, all.carry_slip_max_mm, all.carry_turn_max_deg);
   }
   return md + "\n\n";
 }
