@@ -168,13 +168,14 @@ TEST(SortingPolicy, SortsAnObjectItHoldsAndMovesThroughThePhases) {
   EXPECT_EQ(run.result.status, EpisodeStatus::kAttemptLimit);
   // The carry is split where the arm leaves the camera's view: the next view is captured there. The
   // arm stays in the bin after the release and goes home, straight up first, when the episode ends.
-  const std::vector<std::string> expected{"approach", "descend", "reach", "lift", "carry", "carry", "lower", "retreat", "home"};
+  const std::vector<std::string> expected{"approach", "descend", "reach", "lift", "carry", "carry", "lower", "place",
+                                          "retreat", "home"};
   EXPECT_EQ(run.motions, expected);
   EXPECT_EQ(run.captures, 2);
   // The attempt's phases, gripper ones included, account for all of its time.
   EXPECT_TRUE(run.seen.phase_sums_match);
   EXPECT_EQ(run.seen.last_phases, (std::vector<std::string>{"approach", "descend", "reach", "grasp", "lift", "carry",
-                                                            "carry", "lower", "release"}));
+                                                            "carry", "lower", "place", "release"}));
 }
 
 TEST(SortingPolicy, ReleasesIntoThePredictedBinSlotBySlot) {
