@@ -29,7 +29,11 @@ bool MotionSequencer::Phase(const std::string& name, const std::function<MotionR
 void MotionChain::Add(const std::string& phase, const robot::JointTrajectory& segment) {
   int seam = 0;
   trajectory_ = robot::BlendMoves(trajectory_, segment, robot::Ur5FastLimits(), &seam);
-  if (!phase_ends_.empty()) phase_ends_.back().second = std::max(seam, phase_ends_.size() > 1 ? phase_ends_[phase_ends_.size() - 2].second : 0);
+  // The phase before now ends in the middle of the blend (never before the one before it ends).
+  if (!phase_ends_.empty()) {
+    const int earliest = phase_ends_.size() > 1 ? phase_ends_[phase_ends_.size() - 2].second : 0;
+    phase_ends_.back().second = std::max(seam, earliest);
+  }
   phase_ends_.emplace_back(phase, trajectory_.size() - 1);
   q_end_ = trajectory_.q.back();
 }
