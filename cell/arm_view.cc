@@ -56,10 +56,12 @@ std::vector<Capsule> ArmCapsules(const robot::Joints& q, const std::optional<Hel
   return capsules;
 }
 
-bool ArmInView(const robot::Joints& q, const std::optional<HeldObject>& held, const CameraCalibration& camera,
-               const Eigen::Vector3d& workspace_min_W, const Eigen::Vector3d& workspace_max_W) {
-  const Eigen::Vector3d o = camera.X_WC.translation();
-  const std::vector<Eigen::Vector3d> workspace = BoxSurface(workspace_min_W, workspace_max_W, kSurfaceSpacing);
+WorkspaceView::WorkspaceView(const CameraCalibration& camera, const Eigen::Vector3d& workspace_min_W,
+                             const Eigen::Vector3d& workspace_max_W)
+    : p_WC_(camera.X_WC.translation()), surface_W_(BoxSurface(workspace_min_W, workspace_max_W, kSurfaceSpacing)) {}
+
+bool WorkspaceView::ArmInView(const robot::Joints& q, const std::optional<HeldObject>& held) const {
+  const Eigen::Vector3d& o = p_WC_;
   for (const Capsule& capsule : ArmCapsules(q, held)) {
     // Spheres along the capsule, at most half a radius apart. A sphere at distance D with radius r
     // hides the cone of rays within asin(r / D) of its centre's, beyond D - r.
@@ -70,7 +72,7 @@ bool ArmInView(const robot::Joints& q, const std::optional<HeldObject>& held, co
       if (distance <= capsule.radius) return true;  // At the lens: it hides everything.
       const Eigen::Vector3d axis = (p - o) / distance;
       const double cos_cone = std::sqrt(1.0 - std::pow(capsule.radius / distance, 2));
-      for (const Eigen::Vector3d& b : workspace) {
+      for (const Eigen::Vector3d& b : surface_W_) {
         const double range = (b - o).norm();
         if (range > distance - capsule.radius && axis.dot(b - o) >= cos_cone * range) return true;
       }

@@ -4,7 +4,7 @@
 /// kinematics and the camera's calibrated pose: the arm's links, the gripper and what it may hold are
 /// capsules along the D-H chain (sizes of models/ur5 and models/gripper, with a margin), and a capsule
 /// hides the workspace when the shadow it casts from the camera (the cone of rays it blocks) reaches
-/// the workspace box. Conservative: the box is grown by the shadow's widest radius.
+/// a point of the workspace box's surface (sampled closer than the thinnest capsule).
 
 #include <optional>
 #include <vector>
@@ -29,9 +29,19 @@ struct Capsule {
 };
 std::vector<Capsule> ArmCapsules(const robot::Joints& q, const std::optional<HeldObject>& held);
 
-/// True if at joints q the arm (with `held` between the fingers, if any) hides part of the world box
-/// [workspace_min_W, workspace_max_W] from the camera at camera.X_WC, or lies in it.
-bool ArmInView(const robot::Joints& q, const std::optional<HeldObject>& held, const CameraCalibration& camera,
-               const Eigen::Vector3d& workspace_min_W, const Eigen::Vector3d& workspace_max_W);
+/// The calibrated camera's view of the workspace box [workspace_min_W, workspace_max_W].
+class WorkspaceView {
+ public:
+  WorkspaceView(const CameraCalibration& camera, const Eigen::Vector3d& workspace_min_W,
+                const Eigen::Vector3d& workspace_max_W);
+
+  /// True if at joints q the arm (with `held` between the fingers, if any) hides part of the box from
+  /// the camera, or lies in it.
+  bool ArmInView(const robot::Joints& q, const std::optional<HeldObject>& held) const;
+
+ private:
+  Eigen::Vector3d p_WC_;                    // The camera.
+  std::vector<Eigen::Vector3d> surface_W_;  // Points on the box's surface.
+};
 
 }  // namespace sortcell::cell

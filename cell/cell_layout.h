@@ -48,7 +48,7 @@ struct CellLayout {
   /// The pick area the camera watches (world box, m): the table in front of the robot up to its far
   /// edge (objects out of reach there are seen and reported unreachable), between the bins, up to
   /// above the tallest objects (0.224 m bottles). The arm must neither hide it nor be in it when the
-  /// camera captures (ArmInView).
+  /// camera captures (WorkspaceView).
   Eigen::Vector3d workspace_min_W{0.28, -0.34, -0.05};
   Eigen::Vector3d workspace_max_W{0.88, 0.34, 0.28};
   /// The table top (z = 0), x and y extent (m).

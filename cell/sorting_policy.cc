@@ -4,7 +4,6 @@
 #include <chrono>
 #include <stdexcept>
 
-#include "cell/arm_view.h"
 #include "robot/gripper_geometry.h"
 
 namespace sortcell::cell {
@@ -25,7 +24,8 @@ SortingPolicy::SortingPolicy(CellIo& io, const CellLayout& layout, const CameraC
                              const perception::RecognitionModel& model, const PolicyOptions& options,
                              PolicyObserver* observer)
     : io_(io), layout_(layout), calibration_(calibration), model_(model), options_(options),
-      observer_(observer ? *observer : no_observer_), motions_(io) {
+      observer_(observer ? *observer : no_observer_), motions_(io),
+      view_(calibration, layout.workspace_min_W, layout.workspace_max_W) {
   if (options.max_attempts_per_position < 1 || options.max_attempts < 1) {
     throw std::invalid_argument("policy options: attempt limits must be at least 1");
   }
@@ -93,7 +93,7 @@ AttemptReport SortingPolicy::Attempt(const Detection& seen, int index, int attem
   // the other way, by up to the largest gap.
   const HeldObject held{plan.grasp_height, 0.5 * robot::kMaxGap};
   hooks.out_of_view = [&](const robot::Joints& q) {
-    return !ArmInView(q, held, calibration_, layout_.workspace_min_W, layout_.workspace_max_W);
+    return !view_.ArmInView(q, held);
   };
   hooks.left_view = [&] { next_view = Observe(); };
   hooks.grasped = [&] { observer_.Grasped(); };

@@ -5,7 +5,7 @@
 /// footprint, pick it and put it into its category's bin, and again, until nothing pickable is left
 /// in view or a budget runs out. The arm does not go home between items: the next view is captured
 /// during the carry, as soon as the arm and the held object are out of the camera's view of the
-/// workspace (ArmInView, from the arm's kinematics and the calibrated camera), and the next pick is
+/// workspace (WorkspaceView, from the arm's kinematics and the calibrated camera), and the next pick is
 /// planned from it while the carry goes on, and starts from the bin. Nothing in view changes after
 /// that capture unless the object is lost on the way; then (and after a miss) the arm goes home and
 /// captures again. A missed grasp is retried from a fresh capture, at most
@@ -17,6 +17,7 @@
 #include <optional>
 #include <string>
 
+#include "cell/arm_view.h"
 #include "cell/cell_io.h"
 #include "cell/cell_layout.h"
 #include "cell/motion_sequencer.h"
@@ -104,6 +105,7 @@ class SortingPolicy {
   PolicyObserver& observer_;
   MotionSequencer motions_;
   perception::SegmentationParams segmentation_;
+  WorkspaceView view_;  // Whether the arm hides the workspace from the camera.
   std::map<std::string, int> released_into_;  // Objects released into each category's bin so far.
 };
 

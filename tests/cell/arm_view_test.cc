@@ -29,11 +29,12 @@ robot::Joints TopDownAt(const Eigen::Vector3d& p_W) {
   return q;
 }
 
-TEST(ArmInView, ObservePoseAndBinsAreOutAndTheWorkspaceIsIn) {
+TEST(WorkspaceView, ObservePoseAndBinsAreOutAndTheWorkspaceIsIn) {
   const CellLayout layout;
   const CameraCalibration camera = CellCamera();
+  const WorkspaceView view(camera, layout.workspace_min_W, layout.workspace_max_W);
   auto in_view = [&](const robot::Joints& q, bool holding) {
-    return ArmInView(q, holding ? std::optional<HeldObject>(HeldObject{0.11, 0.055}) : std::nullopt, camera, layout.workspace_min_W, layout.workspace_max_W);
+    return view.ArmInView(q, holding ? std::optional<HeldObject>(HeldObject{0.11, 0.055}) : std::nullopt);
   };
   EXPECT_FALSE(in_view(layout.q_observe, false));
   for (const double y : {0.48, -0.48}) {  // Above the bins, holding an object.
