@@ -66,11 +66,8 @@ bool MotionSequencer::MoveJ(const std::string& name, const robot::Joints& q_goal
 bool MotionSequencer::MoveL(const std::string& name, const Eigen::Isometry3d& X_WT, double speed,
                             double acceleration) {
   MotionChain chain(io_.CommandedJoints());
-  if (!chain.Line(name, X_WT, speed, acceleration)) {
-    failure_ = chain.failure();
-    return false;
-  }
-  return Run(chain);
+  chain.Line(name, X_WT, speed, acceleration);
+  return Run(chain);  // Reports a line that could not be planned.
 }
 
 namespace {

@@ -1,10 +1,11 @@
 #pragma once
 /// @file
 /// The pick-and-place sequence of the cell, one attempt, from wherever the last one left the arm:
-/// [retreat straight up out of the last bin] -> approach above the object -> descend, one motion
-/// without stops, the fingers opening on the way; reach slowly in a straight line; close and squeeze;
-/// lift -> carry above the bin -> lower into it, again one motion, the hold checked after the lift and
-/// above the bin; release. The arm stays in the bin: the next attempt (or GoHome) leaves from there.
+/// [the first 5 cm out of the last bin slowly, then retreat straight up] -> approach above the object ->
+/// descend, one motion without stops, the fingers opening on the way; reach slowly in a straight line;
+/// close and squeeze; lift -> carry above the bin -> lower to 5 cm above the release point, again one
+/// motion, the hold checked after the lift and above the bin; place slowly; release (wider if something
+/// is still caught). The arm stays in the bin: the next attempt (or GoHome) leaves from there.
 /// The episode's policy and the scripted `sortcell pick` run this same sequence; they differ in where
 /// the grasp (a footprint perceived or read from the scene, its finger clearance) and the release point
 /// (a bin slot or the bin's middle, its yaw step) come from.

@@ -88,9 +88,8 @@ AttemptReport SortingPolicy::Attempt(const Detection& seen, int index, int attem
   request.X_WT_exit = X_WT_exit;
   request.lines = layout_.lines;
   PickHooks hooks;
-  // What it holds hangs down to the object's bottom; across, it is at most as wide as the open fingers
-  // (or it would not have fitted between them) in the pinch direction: a long box may reach further
-  // the other way, by up to the largest gap.
+  // What it holds hangs down to the object's bottom; across, it reaches half the largest finger gap
+  // from the TCP's axis: whatever fitted between the fingers, and the sets' 0.09 m boxes along them.
   const HeldObject held{plan.grasp_height, 0.5 * robot::kMaxGap};
   hooks.out_of_view = [&](const robot::Joints& q) {
     return !view_.ArmInView(q, held);

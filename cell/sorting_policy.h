@@ -42,7 +42,8 @@ struct AttemptReport {
   int detection = -1;      ///< Index into the last observation's detections.
   const Detection* seen = nullptr;  ///< That detection (valid during the callback).
   int attempt = 0;         ///< 1 for the first attempt at this position.
-  double start_s = 0, end_s = 0;  ///< The cell's clock from leaving the observe pose to being back.
+  double start_s = 0, end_s = 0;  ///< The cell's clock from leaving where the arm was (home or the last
+                                  ///< bin) to the release into the bin (or back home after a miss).
   PickReport pick;
   std::vector<PhaseSpan> phases;  ///< The attempt's motion phases, in order (filled when it ended).
 };
