@@ -139,17 +139,17 @@ JointTrajectory Superpose(const JointTrajectory& first, const JointTrajectory& s
 // Whether the blended samples from `start` to `end` keep every joint within the limits, or within what
 // one of the segments alone already asks there (a Cartesian line's own accelerations).
 bool WithinLimits(const JointTrajectory& sum, const JointTrajectory& first, const JointTrajectory& second, int start,
-                  const JointMotionLimits& limits) {
+                  const JointMotionLimits& limits, const SampleCheck& fits) {
   for (int i = start; i < first.size(); ++i) {
     const int k = i - start;
     for (int j = 0; j < 6; ++j) {
       const double speed = std::fmax(limits.speed[j], std::fmax(std::abs(first.qd[i][j]), std::abs(second.qd[k][j])));
       const double acceleration =
           std::fmax(limits.acceleration[j], std::fmax(std::abs(first.qdd[i][j]), std::abs(second.qdd[k][j])));
-      if (std::abs(sum.qd[i][j]) > speed * (1 + 1e-9) || std::abs(sum.qdd[i][j]) > acceleration * (1 + 1e-9)) {
-        return false;
-      }
+      if (std::abs(sum.qd[i][j]) > speed * (1 + 1e-9)) return false;
+      if (!fits && std::abs(sum.qdd[i][j]) > acceleration * (1 + 1e-9)) return false;
     }
+    if (fits && !fits(sum.q[i], sum.qd[i], sum.qdd[i])) return false;
   }
   return true;
 }
@@ -157,7 +157,7 @@ bool WithinLimits(const JointTrajectory& sum, const JointTrajectory& first, cons
 }  // namespace
 
 JointTrajectory BlendMoves(const JointTrajectory& first, const JointTrajectory& second,
-                           const JointMotionLimits& limits, int* seam) {
+                           const JointMotionLimits& limits, int* seam, const SampleCheck& fits) {
   if (first.q.empty() || second.q.empty()) {
     JointTrajectory t = first.q.empty() ? second : first;
     if (seam) *seam = first.q.empty() ? 0 : first.size() - 1;
@@ -174,7 +174,7 @@ JointTrajectory BlendMoves(const JointTrajectory& first, const JointTrajectory& 
   for (; overlap > 0; overlap /= 2) {
     const int start = first.size() - 1 - overlap;
     JointTrajectory sum = Superpose(first, second, start);
-    if (!WithinLimits(sum, first, second, start, limits)) continue;
+    if (!WithinLimits(sum, first, second, start, limits, fits)) continue;
     sum.accel_s = first.accel_s;
     sum.decel_s = second.decel_s;
     if (seam) *seam = start + overlap / 2;

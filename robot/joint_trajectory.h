@@ -7,6 +7,7 @@
 /// sees no jolt). Every segment starts and ends at rest; BlendMoves joins two of them without stopping
 /// by starting the second while the first slows down.
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -72,16 +73,21 @@ JointTrajectory PlanJointMove(const Joints& q_start, const Joints& q_goal, doubl
 JointTrajectory PlanJointMove(const Joints& q_start, const Joints& q_goal, const JointMotionLimits& limits,
                               double dt = 0.002);
 
+/// Whether the arm can follow one sample (q, qd, qdd): e.g. TorqueBudget::Fits.
+using SampleCheck = std::function<bool(const Joints& q, const Joints& qd, const Joints& qdd)>;
+
 /// `first` then `second` without stopping in between: `second` starts while `first` is still slowing
 /// down, for half the shorter of first.decel_s and second.accel_s, and the two motions add up over
 /// that window (so the path cuts the corner at the seam by the little distance covered in it, about
 /// 15 % of the ramps'). Where the sum
 /// would break a limit (a joint faster or accelerating harder than both segments and `limits` allow),
 /// the overlap is halved until it does not, down to a plain Append. `seam` (optional) receives the
-/// sample index in the middle of the overlap, where a caller may split the result by phase.
+/// sample index in the middle of the overlap, where a caller may split the result by phase. With
+/// `fits` given, a blended sample's accelerations are judged by it (the torques they need) instead of
+/// by limits.acceleration.
 /// @throws std::invalid_argument if dt differs or the segments do not join.
 JointTrajectory BlendMoves(const JointTrajectory& first, const JointTrajectory& second,
-                           const JointMotionLimits& limits, int* seam = nullptr);
+                           const JointMotionLimits& limits, int* seam = nullptr, const SampleCheck& fits = {});
 
 enum class CartesianPlanStatus { kOk, kUnreachable, kTooFast };
 
