@@ -23,9 +23,9 @@ JointController::JointController(const PdGains& gains, const Joints& torque_limi
 }
 
 Joints JointController::Torque(const Joints& q, const Joints& qd, const Joints& q_ref, const Joints& qd_ref,
-                               const Joints& bias) {
+                               const Joints& feed_forward) {
   const Joints error = q_ref - q;
-  Joints tau = gains_.kp.cwiseProduct(error) + gains_.kd.cwiseProduct(qd_ref - qd) + bias;
+  Joints tau = gains_.kp.cwiseProduct(error) + gains_.kd.cwiseProduct(qd_ref - qd) + feed_forward;
   const Joints clamped = tau.cwiseMax(-limits_).cwiseMin(limits_);
   stats_.max_error = std::fmax(stats_.max_error, error.cwiseAbs().maxCoeff());
   stats_.sum_sq_error += error.squaredNorm();

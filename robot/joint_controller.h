@@ -1,8 +1,9 @@
 #pragma once
 /// @file
-/// The arm's joint controller: PD on the tracking error plus a feed-forward of the arm's own bias
-/// torques (gravity and Coriolis, supplied by the caller from its dynamics model), saturated at the
-/// UR5's joint torque limits. Allocation-free, for the fixed-rate control loop.
+/// The arm's joint controller: PD on the tracking error plus a feed-forward torque (supplied by the
+/// caller from its dynamics model: gravity, Coriolis and the reference's inertia, e.g.
+/// Ur5Dynamics::InverseDynamics), saturated at the UR5's joint torque limits. Allocation-free, for
+/// the fixed-rate control loop.
 
 #include "robot/ur5_kinematics.h"
 #include "robot/ur5_limits.h"
@@ -32,9 +33,10 @@ class JointController {
   /// @throws std::invalid_argument for negative or non-finite gains or limits.
   explicit JointController(const PdGains& gains = DefaultUr5Gains(), const Joints& torque_limits = Ur5TorqueLimits());
 
-  /// tau = clamp(kp (q_ref - q) + kd (qd_ref - qd) + bias, +-limit), with `bias` the torques that
-  /// hold the arm against gravity and Coriolis forces at (q, qd). Updates the tracking statistics.
-  Joints Torque(const Joints& q, const Joints& qd, const Joints& q_ref, const Joints& qd_ref, const Joints& bias);
+  /// tau = clamp(kp (q_ref - q) + kd (qd_ref - qd) + feed_forward, +-limit). Updates the tracking
+  /// statistics.
+  Joints Torque(const Joints& q, const Joints& qd, const Joints& q_ref, const Joints& qd_ref,
+                const Joints& feed_forward);
 
   const TrackingStats& stats() const { return stats_; }
   void ResetStats() { stats_ = {}; }

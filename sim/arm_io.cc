@@ -36,12 +36,6 @@ void ArmIo::ReadArm(const Data& data, Vector6& q, Vector6& qd) const {
   }
 }
 
-Vector6 ArmIo::BiasTorques(const Data& data) const {
-  Vector6 bias;
-  for (int i = 0; i < 6; ++i) bias[i] = data->qfrc_bias[dof_[i]];
-  return bias;
-}
-
 void ArmIo::SetArmTorques(Data& data, const Vector6& tau) const {
   for (int i = 0; i < 6; ++i) data->ctrl[motor_[i]] = tau[i];
 }

@@ -28,9 +28,6 @@ class ArmIo {
   explicit ArmIo(const Model& model);
 
   void ReadArm(const Data& data, Vector6& q, Vector6& qd) const;
-  /// Gravity, Coriolis and centrifugal torques on the arm joints at the current state (qfrc_bias):
-  /// the feed-forward a model-based controller adds.
-  Vector6 BiasTorques(const Data& data) const;
   /// Motor torques (N m); the model clamps them to its ctrlrange as well.
   void SetArmTorques(Data& data, const Vector6& tau) const;
   /// Puts the arm at q at rest (for resets, before the first step).

@@ -25,10 +25,14 @@ void ArmExecutor::Reset(const robot::Joints& q, double half_gap) {
   mj_forward(model_.get(), data_.get());
 }
 
-sim::StepStatus ArmExecutor::ControlStep(const robot::Joints& q_ref, const robot::Joints& qd_ref) {
+sim::StepStatus ArmExecutor::ControlStep(const robot::Joints& q_ref, const robot::Joints& qd_ref,
+                                         const robot::Joints& qdd_ref) {
   robot::Joints q, qd;
   io_.ReadArm(data_, q, qd);
-  io_.SetArmTorques(data_, controller_.Torque(q, qd, q_ref, qd_ref, io_.BiasTorques(data_)));
+  // Computed-torque feed-forward: gravity and Coriolis where the arm is, and the inertia of the
+  // reference acceleration, so the feedback only corrects what the model does not know.
+  const robot::Joints feed_forward = arm_model_.InverseDynamics(q, qd, qdd_ref);
+  io_.SetArmTorques(data_, controller_.Torque(q, qd, q_ref, qd_ref, feed_forward));
   for (int i = 0; i < substeps_; ++i) {
     const auto start = std::chrono::steady_clock::now();
     sim::StepStatus status = sim::Step(model_, data_);
@@ -51,7 +55,8 @@ sim::StepStatus ArmExecutor::Follow(const robot::JointTrajectory& trajectory) {
     const double f = u - i;
     const robot::Joints q_ref = (1 - f) * trajectory.q[i] + f * trajectory.q[j];
     const robot::Joints qd_ref = (1 - f) * trajectory.qd[i] + f * trajectory.qd[j];
-    sim::StepStatus status = ControlStep(q_ref, qd_ref);
+    const robot::Joints qdd_ref = (1 - f) * trajectory.qdd[i] + f * trajectory.qdd[j];
+    sim::StepStatus status = ControlStep(q_ref, qd_ref, qdd_ref);
     if (status.code != sim::StepStatus::kOk) return status;
   }
   if (trajectory.size() > 0) q_hold_ = trajectory.q.back();
@@ -62,7 +67,7 @@ sim::StepStatus ArmExecutor::Wait(double seconds) {
   const double period = substeps_ * model_.get()->opt.timestep;
   const int n = static_cast<int>(std::lround(seconds / period));
   for (int k = 0; k < n; ++k) {
-    sim::StepStatus status = ControlStep(q_hold_, robot::Joints::Zero());
+    sim::StepStatus status = ControlStep(q_hold_, robot::Joints::Zero(), robot::Joints::Zero());
     if (status.code != sim::StepStatus::kOk) return status;
   }
   return {};
@@ -71,7 +76,7 @@ sim::StepStatus ArmExecutor::Wait(double seconds) {
 sim::StepStatus ArmExecutor::HoldUntil(double max_seconds, const std::function<bool()>& done) {
   const double start = data_->time;
   while (data_->time - start < max_seconds) {
-    sim::StepStatus status = ControlStep(q_hold_, robot::Joints::Zero());
+    sim::StepStatus status = ControlStep(q_hold_, robot::Joints::Zero(), robot::Joints::Zero());
     if (status.code != sim::StepStatus::kOk) return status;
     if (done()) break;
   }

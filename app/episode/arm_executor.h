@@ -11,6 +11,7 @@
 #include "robot/gripper_control.h"
 #include "robot/joint_controller.h"
 #include "robot/joint_trajectory.h"
+#include "robot/ur5_dynamics.h"
 #include "sim/arm_io.h"
 #include "sim/model.h"
 #include "sim/video_recorder.h"
@@ -51,13 +52,16 @@ class ArmExecutor {
   void SetPhase(const std::string& phase);
 
  private:
-  sim::StepStatus ControlStep(const robot::Joints& q_ref, const robot::Joints& qd_ref);
+  sim::StepStatus ControlStep(const robot::Joints& q_ref, const robot::Joints& qd_ref, const robot::Joints& qdd_ref);
 
   const sim::Model& model_;
   sim::Data& data_;
   sim::VideoRecorder* video_;
   sim::ArmIo io_;
   robot::JointController controller_;
+  /// The controller's model of the arm and its gripper (not of what the gripper holds: the feedback
+  /// takes that), for the feed-forward.
+  robot::Ur5Dynamics arm_model_{robot::GripperMassProperties()};
   int substeps_;
   robot::Joints q_hold_ = robot::Joints::Zero();
   double step_wall_s_ = 0;
