@@ -12,19 +12,31 @@
 #include <Eigen/Core>
 
 #include "robot/gripper_geometry.h"
+#include "robot/joint_trajectory.h"
 #include "robot/ur5_kinematics.h"
 
 namespace sortcell::cell {
 
-/// Speeds of the arm's straight TCP lines (joint moves run at the UR5's limits: robot::Ur5FastLimits).
-struct LineSpeeds {
-  /// Where the fingers touch nothing (out of a bin, down to above an object, the lift, down into a
-  /// bin): speed (m/s) and peak acceleration (m/s^2).
+/// How fast the arm moves. Holding an object it keeps to the accelerations that are safe in every
+/// pose (robot::Ur5FastLimits) and moderate lines, so the grasp holds; with empty fingers only the
+/// joint torques limit it: lines and joint moves are planned at the `empty` caps and slowed down
+/// where the pose needs it (robot/torque_limited_motion.h). Every motion is torque-checked.
+struct ArmSpeeds {
+  /// Holding an object, where the fingers touch nothing else (the lift, down into a bin): speed (m/s)
+  /// and peak acceleration (m/s^2).
   double transit = 0.8;
   double transit_acceleration = 3.0;
-  /// The last descent onto an object, the fingers passing its sides, and the put-back: slow.
-  double approach = 0.15;
-  double approach_acceleration = 2.0;
+  /// With empty fingers: to above the next object and down to it, and home.
+  double empty_transit = 1.0;
+  double empty_transit_acceleration = 8.0;
+  robot::JointMotionLimits empty_joints{robot::Joints::Constant(robot::kUr5MaxJointSpeed),
+                                        (robot::Joints() << 25, 25, 25, 40, 40, 40).finished()};
+  /// The last descent onto an object, the fingers passing its sides.
+  double reach = 0.25;
+  double reach_acceleration = 2.0;
+  /// Slow: the last centimetres into a bin and the first out of it, and the put-back.
+  double slow = 0.15;
+  double slow_acceleration = 2.0;
 };
 
 struct CellLayout {
@@ -55,8 +67,8 @@ struct CellLayout {
   Eigen::Vector2d table_min_xy{-0.3, -0.7};
   Eigen::Vector2d table_max_xy{0.9, 0.7};
 
-  /// The straight lines' speeds.
-  LineSpeeds lines;
+  /// The arm's speeds.
+  ArmSpeeds speeds;
   /// The arm controller's period (s): 500 Hz.
   double control_period = 0.002;
 };

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <stdexcept>
 
-#include "robot/joint_trajectory.h"
+#include "robot/torque_limited_motion.h"
 
 namespace sortcell::cell {
 namespace {
@@ -28,7 +28,11 @@ bool MotionSequencer::Phase(const std::string& name, const std::function<MotionR
 
 void MotionChain::Add(const std::string& phase, const robot::JointTrajectory& segment) {
   int seam = 0;
-  trajectory_ = robot::BlendMoves(trajectory_, segment, robot::Ur5FastLimits(), &seam);
+  const robot::TorqueBudget budget;
+  const auto fits = [&budget](const robot::Joints& q, const robot::Joints& qd, const robot::Joints& qdd) {
+    return budget.Fits(q, qd, qdd);
+  };
+  trajectory_ = robot::BlendMoves(trajectory_, segment, joint_limits_, &seam, fits);
   // The phase before now ends in the middle of the blend (never before the one before it ends).
   if (!phase_ends_.empty()) {
     const int earliest = phase_ends_.size() > 1 ? phase_ends_[phase_ends_.size() - 2].second : 0;
@@ -39,15 +43,15 @@ void MotionChain::Add(const std::string& phase, const robot::JointTrajectory& se
 }
 
 void MotionChain::JointMove(const std::string& phase, const robot::Joints& q_goal) {
-  Add(phase, robot::PlanJointMove(q_end_, q_goal, robot::Ur5FastLimits()));
+  Add(phase, robot::PlanTorqueLimitedJointMove(q_end_, q_goal, joint_limits_));
 }
 
 bool MotionChain::Line(const std::string& phase, const Eigen::Isometry3d& X_WT, double speed, double acceleration) {
-  robot::CartesianPlan plan = robot::PlanCartesianLine(q_end_, X_WT, speed, acceleration);
+  robot::CartesianPlan plan = robot::PlanTorqueLimitedLine(q_end_, X_WT, speed, acceleration);
   // Near the edge of the reach a fast line may need a joint faster than pi rad/s: slower then.
   for (int slower = 0; plan.status == robot::CartesianPlanStatus::kTooFast && slower < kSlowerLines; ++slower) {
     speed *= 0.5;
-    plan = robot::PlanCartesianLine(q_end_, X_WT, speed, acceleration);
+    plan = robot::PlanTorqueLimitedLine(q_end_, X_WT, speed, acceleration);
   }
   if (plan.status != robot::CartesianPlanStatus::kOk) {
     failure_ = phase + ": " + plan.detail;

@@ -14,6 +14,7 @@
 
 #include "cell/cell_io.h"
 #include "robot/gripper_control.h"
+#include "robot/joint_trajectory.h"
 #include "robot/ur5_kinematics.h"
 
 namespace sortcell::cell {
@@ -25,11 +26,14 @@ struct PhaseSpan {
 };
 
 /// Motions run as one, each next one starting while the one before slows down (robot::BlendMoves):
-/// joint moves at the UR5's fast limits (robot::Ur5FastLimits) and straight TCP lines. Each keeps its
-/// phase name; the phases meet in the middle of each blend.
+/// joint moves within `joint_limits` and straight TCP lines, every motion and blend also slowed where
+/// the arm's torques need it (robot/torque_limited_motion.h). Each keeps its phase name; the phases
+/// meet in the middle of each blend.
 class MotionChain {
  public:
-  explicit MotionChain(const robot::Joints& q_start) : q_end_(q_start) {}
+  explicit MotionChain(const robot::Joints& q_start,
+                       const robot::JointMotionLimits& joint_limits = robot::Ur5FastLimits())
+      : q_end_(q_start), joint_limits_(joint_limits) {}
 
   void JointMove(const std::string& phase, const robot::Joints& q_goal);
   /// A straight TCP line to X_WT; false (failure() set, the chain unchanged) if it cannot be planned.
@@ -46,6 +50,7 @@ class MotionChain {
   void Add(const std::string& phase, const robot::JointTrajectory& segment);
 
   robot::Joints q_end_;
+  robot::JointMotionLimits joint_limits_;
   robot::JointTrajectory trajectory_;
   std::vector<std::pair<std::string, int>> phase_ends_;
   std::string failure_;

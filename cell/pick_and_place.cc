@@ -18,7 +18,7 @@ void Notify(const std::function<void()>& hook) {
 // Home from where the arm is now, after a step failed or the object was lost: straight up to
 // `X_WT_up` first, then the joint move.
 bool Home(MotionSequencer& run, const PickRequest& request, const Eigen::Isometry3d& X_WT_up) {
-  return GoHome(run, X_WT_up, request.q_home, request.lines);
+  return GoHome(run, X_WT_up, request.q_home, request.speeds);
 }
 
 // The sequence after a step failed: a fault ends it; a motion that could not be planned lets go of
@@ -37,7 +37,7 @@ PickReport Fail(MotionSequencer& run, const PickRequest& request, PickReport rep
 // The lifted object's bin cannot be reached from here: put it back down where it was grasped.
 PickReport PutBack(MotionSequencer& run, const PickRequest& request, PickReport report) {
   const robot::GraspPlan& plan = request.grasp;
-  if (!run.MoveL("put_back", plan.X_WT_grasp, request.lines.approach, request.lines.approach_acceleration) ||
+  if (!run.MoveL("put_back", plan.X_WT_grasp, request.speeds.slow, request.speeds.slow_acceleration) ||
       !run.Gripper("open", plan.open_gap) || !Home(run, request, plan.X_WT_lift)) {
     return Fail(run, request, report);
   }
@@ -48,29 +48,31 @@ PickReport PutBack(MotionSequencer& run, const PickRequest& request, PickReport 
 // Where the arm was to the fingers closing: out of the last bin, above the object and down to it.
 bool ApproachAndGrasp(MotionSequencer& run, const PickRequest& request) {
   const robot::GraspPlan& plan = request.grasp;
-  const LineSpeeds& lines = request.lines;
+  const ArmSpeeds& lines = request.speeds;
   // Out of the bin: the first centimetres slowly, the fingers passing what was just released.
   if (request.X_WT_exit) {
     Eigen::Isometry3d X_WT_clear = robot::TcpPose(run.io().CommandedJoints());
     X_WT_clear.translation().z() += kSlowPlacing;
-    if (!run.MoveL("retreat", X_WT_clear, lines.approach, lines.approach_acceleration)) return false;
+    if (!run.MoveL("retreat", X_WT_clear, lines.slow, lines.slow_acceleration)) return false;
   }
   run.StartFingers(plan.open_gap);
-  MotionChain approach(run.io().CommandedJoints());
+  MotionChain approach(run.io().CommandedJoints(), lines.empty_joints);
+  // Up out of the bin as if still holding: what was just released may still touch a finger, and a
+  // fast pull flings it out of the bin.
   if (request.X_WT_exit && !approach.Line("retreat", *request.X_WT_exit, lines.transit, lines.transit_acceleration)) {
     return run.Run(approach);  // Reports the planning failure.
   }
   approach.JointMove("approach", plan.q_lift);
-  approach.Line("descend", plan.X_WT_pregrasp, lines.transit, lines.transit_acceleration);
-  return run.Run(approach) && run.MoveL("reach", plan.X_WT_grasp, lines.approach, lines.approach_acceleration) &&
+  approach.Line("descend", plan.X_WT_pregrasp, lines.empty_transit, lines.empty_transit_acceleration);
+  return run.Run(approach) && run.MoveL("reach", plan.X_WT_grasp, lines.reach, lines.reach_acceleration) &&
          run.Grasp("grasp");
 }
 
 }  // namespace
 
 bool GoHome(MotionSequencer& run, const std::optional<Eigen::Isometry3d>& X_WT_exit, const robot::Joints& q_home,
-            const LineSpeeds& lines) {
-  MotionChain home(run.io().CommandedJoints());
+            const ArmSpeeds& lines) {
+  MotionChain home(run.io().CommandedJoints(), lines.empty_joints);
   if (X_WT_exit && !home.Line("retreat", *X_WT_exit, lines.transit, lines.transit_acceleration)) return run.Run(home);
   home.JointMove("home", q_home);
   return run.Run(home);
@@ -78,7 +80,7 @@ bool GoHome(MotionSequencer& run, const std::optional<Eigen::Isometry3d>& X_WT_e
 
 PickReport PickAndPlace(MotionSequencer& run, const PickRequest& request, const PickHooks& hooks) {
   const robot::GraspPlan& plan = request.grasp;
-  const LineSpeeds& lines = request.lines;
+  const ArmSpeeds& lines = request.speeds;
   PickReport report;
   if (!ApproachAndGrasp(run, request)) return Fail(run, request, report);
   if (run.Hold() != robot::HoldState::kHolding) {
@@ -133,7 +135,7 @@ PickReport PickAndPlace(MotionSequencer& run, const PickRequest& request, const 
     return report;
   }
   if (!place.ok) return PutBack(run, request, report);
-  if (!run.MoveL("place", place.X_WT_release, lines.approach, lines.approach_acceleration)) {
+  if (!run.MoveL("place", place.X_WT_release, lines.slow, lines.slow_acceleration)) {
     return Fail(run, request, report);
   }
   Notify(hooks.lowered);

@@ -31,7 +31,7 @@ struct PickRequest {
   /// Where the last attempt left the arm: it first goes straight up to here (out of a bin); empty:
   /// the arm is free to move (at home).
   std::optional<Eigen::Isometry3d> X_WT_exit;
-  LineSpeeds lines = CellLayout().lines;
+  ArmSpeeds speeds = CellLayout().speeds;
 };
 
 /// Called at the sequence's milestones, for callers that measure (the scripted pick's slip); the
@@ -65,6 +65,6 @@ PickReport PickAndPlace(MotionSequencer& motions, const PickRequest& request, co
 
 /// From where an attempt left the arm: straight up to `X_WT_exit` (if any), then home, one motion.
 bool GoHome(MotionSequencer& motions, const std::optional<Eigen::Isometry3d>& X_WT_exit, const robot::Joints& q_home,
-            const LineSpeeds& lines);
+            const ArmSpeeds& lines);
 
 }  // namespace sortcell::cell

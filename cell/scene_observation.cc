@@ -3,12 +3,16 @@
 #include <cmath>
 
 #include "perception/descriptor.h"
+#include "perception/occlusion.h"
 #include "robot/footprint_estimation.h"
 
 namespace sortcell::cell {
 namespace {
 
 constexpr size_t kMinFootprintPoints = 10;  // robot::EstimateFootprint's minimum
+constexpr size_t kOutlineStride = 4;        // Every 4th point (a few mm apart) outlines a neighbour.
+// Edge pixels behind a nearer object that make a segment occluded: a few are noise at a contact.
+constexpr int kOccludedEdgePixels = 8;
 
 // The table's height under `p_W`, from the fitted plane n.p + d = 0 in the camera frame.
 double TableHeightAt(const Eigen::Vector3d& p_W, const Eigen::Vector4d& plane_C, const Eigen::Isometry3d& X_WC) {
@@ -27,14 +31,20 @@ Observation ObserveScene(const perception::Cloud& cloud, const CameraCalibration
   observation.status = segmented.status;
   if (segmented.status != perception::SegmentationStatus::kOk) return observation;
   const Eigen::Isometry3d& X_WC = calibration.X_WC;
-  for (auto& segment : segmented.segments) {
+  const std::vector<int> occluded_edge = perception::OccludedEdgePixels(cloud, segmented.segments);
+  for (size_t s = 0; s < segmented.segments.size(); ++s) {
+    perception::Segment& segment = segmented.segments[s];
     std::vector<Eigen::Vector3d> p_W;
     p_W.reserve(segment.cloud_C->size());
     for (const auto& p : segment.cloud_C->points) p_W.push_back(X_WC * Eigen::Vector3d(p.x, p.y, p.z));
     if (p_W.size() < kMinFootprintPoints) continue;
     Detection d;
     const double table_z = TableHeightAt(segment.centroid, segmented.plane_C, X_WC);
-    d.footprint = robot::EstimateFootprint(p_W, X_WC.translation(), table_z).footprint;
+    const robot::FootprintEstimate estimate = robot::EstimateFootprint(p_W, X_WC.translation(), table_z);
+    d.footprint = estimate.footprint;
+    d.round = !estimate.prism;
+    d.occluded = occluded_edge[s] >= kOccludedEdgePixels;
+    for (size_t k = 0; k < p_W.size(); k += kOutlineStride) d.p_W_xy.push_back(p_W[k].head<2>());
     const perception::DescriptorParts parts = perception::ComputeDescriptorParts(*segment.cloud_C, model.params);
     if (parts.status == perception::DescriptorStatus::kOk) {
       const auto result = model.Classify(parts);

@@ -27,6 +27,14 @@ struct CameraCalibration {
 struct Detection {
   perception::Segment segment;
   robot::ObjectFootprint footprint;
+  /// Round (not a prism): the fingers may close on it from any side (robot::FootprintEstimate).
+  bool round = false;
+  /// Partly hidden behind something nearer the camera: what shows is less than the object, and its
+  /// footprint is not to be trusted (perception::OccludedEdgePixels).
+  bool occluded = false;
+  /// Where its points are, seen from above (world xy, m; every few points): what a neighbour's
+  /// fingers must keep clear of.
+  std::vector<Eigen::Vector2d> p_W_xy;
   std::optional<std::string> category;  ///< Empty when it could not be described (a fragment).
   double confidence = 0;
 };

@@ -18,6 +18,18 @@ double WallSecondsSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
+// Everything seen but detection `target`, as the fingers' obstacles.
+robot::Neighbours NeighboursOf(const std::vector<Detection>& detections, size_t target) {
+  robot::Neighbours neighbours;
+  for (size_t j = 0; j < detections.size(); ++j) {
+    if (j == target) continue;
+    const Detection& d = detections[j];
+    neighbours.p_xy.insert(neighbours.p_xy.end(), d.p_W_xy.begin(), d.p_W_xy.end());
+    neighbours.discs.emplace_back(d.footprint.centre_xy, 0.5 * d.footprint.width);
+  }
+  return neighbours;
+}
+
 }  // namespace
 
 SortingPolicy::SortingPolicy(CellIo& io, const CellLayout& layout, const CameraCalibration& calibration,
@@ -55,17 +67,29 @@ int SortingPolicy::Choose(const std::vector<Detection>& detections, robot::PickM
   for (const auto& d : detections) {
     if (!d.category) view.Skip(d.footprint.centre_xy, robot::SkipReason::kUnreachable);
   }
+  // An object partly hidden behind another waits until that one has gone; when nothing else is left,
+  // what shows of it is the best there is.
+  robot::PickMemory unhidden = view;
+  for (const auto& d : detections) {
+    if (d.occluded) unhidden.Skip(d.footprint.centre_xy, robot::SkipReason::kUnreachable);
+  }
   while (true) {
-    const int i = robot::ChooseNextPick(footprints, view);
+    int i = robot::ChooseNextPick(footprints, unhidden);
+    if (i < 0) i = robot::ChooseNextPick(footprints, view);
     if (i < 0) return -1;
     robot::GraspOptions grasp_options;
     grasp_options.finger_clearance =
         std::max(kMinClearance, std::min(kPerceivedClearance, 0.5 * (robot::kMaxGap - footprints[i].width)));
+    // A round object is pinched from the side where the open fingers clear its neighbours.
+    robot::ObjectFootprint target = footprints[i];
+    if (detections[i].round) {
+      target.pinch_yaw = robot::ClearestPinchYaw(target, target.width + 2 * grasp_options.finger_clearance,
+                                                 NeighboursOf(detections, i));
+    }
     // The IK branch nearest to the observe pose (the natural one for picking), wherever the arm is now.
-    plan = robot::PlanTopDownGrasp(footprints[i], layout_.q_observe, grasp_options);
+    plan = robot::PlanTopDownGrasp(target, layout_.q_observe, grasp_options);
     if (plan.status == robot::GraspStatus::kOk) return i;
-    memory.Skip(footprints[i].centre_xy, robot::SkipReason::kUnreachable);
-    view.Skip(footprints[i].centre_xy, robot::SkipReason::kUnreachable);
+    for (robot::PickMemory* m : {&memory, &view, &unhidden}) m->Skip(footprints[i].centre_xy, robot::SkipReason::kUnreachable);
     observer_.Skipped(i, detections[i], plan.status);
   }
 }
@@ -86,7 +110,7 @@ AttemptReport SortingPolicy::Attempt(const Detection& seen, int index, int attem
   request.place_yaw_step = layout_.place_yaw_step;
   request.q_home = layout_.q_observe;
   request.X_WT_exit = X_WT_exit;
-  request.lines = layout_.lines;
+  request.speeds = layout_.speeds;
   PickHooks hooks;
   // What it holds hangs down to the object's bottom; across, it reaches half the largest finger gap
   // from the TCP's axis: whatever fitted between the fingers, and the sets' 0.09 m boxes along them.
@@ -127,7 +151,7 @@ PolicyResult SortingPolicy::Run() {
       during_carry.reset();
     } else {
       // The arm may hide the view: home first.
-      if (X_WT_exit && !GoHome(motions_, X_WT_exit, layout_.q_observe, layout_.lines)) break;
+      if (X_WT_exit && !GoHome(motions_, X_WT_exit, layout_.q_observe, layout_.speeds)) break;
       X_WT_exit.reset();
       observation = Observe();
     }
@@ -149,7 +173,7 @@ PolicyResult SortingPolicy::Run() {
     if (r == AttemptResult::kSimDiverged) break;
   }
   // Home at the end, out of the bin the last object went into.
-  if (!motions_.faulted() && X_WT_exit) GoHome(motions_, X_WT_exit, layout_.q_observe, layout_.lines);
+  if (!motions_.faulted() && X_WT_exit) GoHome(motions_, X_WT_exit, layout_.q_observe, layout_.speeds);
   if (motions_.faulted()) result.status = EpisodeStatus::kSimDiverged;
   return result;
 }

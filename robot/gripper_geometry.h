@@ -15,6 +15,10 @@ inline constexpr double kFingerTipBeyondTcp = 0.018;
 /// The palm's lowest point lies this far before the TCP along z_F (m): an object may reach this far
 /// up between the fingers.
 inline constexpr double kPalmBeforeTcp = 0.082;
+/// Each finger seen from above: from its pad's face it reaches this far outwards along the closing
+/// direction (the stem behind the pad) and this far to either side across it (m).
+inline constexpr double kFingerDepth = 0.030;
+inline constexpr double kFingerHalfWidth = 0.020;
 /// Each finger is a position servo with this stiffness (N/m), its force limited to kFingerForceLimit (N).
 inline constexpr double kFingerServoKp = 2000;
 inline constexpr double kFingerForceLimit = 60;

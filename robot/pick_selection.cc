@@ -3,6 +3,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "robot/gripper_geometry.h"
+
 namespace sortcell::robot {
 
 const char* ToString(SkipReason reason) {
@@ -59,6 +61,47 @@ void PickMemory::Skip(const Eigen::Vector2d& xy, SkipReason reason) { FindOrAdd(
 SkipReason PickMemory::Skipped(const Eigen::Vector2d& xy) const {
   const int i = Find(xy);
   return i < 0 ? SkipReason::kNone : entries_[i].skipped;
+}
+
+namespace {
+
+// Distance (m) from a point, in the grasp's frame (u along the closing direction, v across), to the
+// finger on the +u side; the other finger is its mirror image.
+double DistanceToFinger(double u, double v, double open_gap) {
+  const double near = 0.5 * open_gap, far = near + kFingerDepth;
+  const double du = std::fmax(0.0, std::fmax(near - std::abs(u), std::abs(u) - far));
+  const double dv = std::fmax(0.0, std::abs(v) - kFingerHalfWidth);
+  return std::hypot(du, dv);
+}
+
+}  // namespace
+
+double FingerClearance(const Eigen::Vector2d& centre_xy, double yaw, double open_gap, const Neighbours& neighbours) {
+  const Eigen::Vector2d along(std::cos(yaw), std::sin(yaw)), across(-along.y(), along.x());
+  double clearance = INFINITY;
+  const auto distance = [&](const Eigen::Vector2d& p) {
+    const Eigen::Vector2d r = p - centre_xy;
+    return DistanceToFinger(r.dot(along), r.dot(across), open_gap);
+  };
+  for (const Eigen::Vector2d& p : neighbours.p_xy) clearance = std::fmin(clearance, distance(p));
+  for (const auto& [centre, radius] : neighbours.discs) clearance = std::fmin(clearance, distance(centre) - radius);
+  return clearance;
+}
+
+double ClearestPinchYaw(const ObjectFootprint& object, double open_gap, const Neighbours& neighbours, double enough) {
+  constexpr int kDirections = 12;  // Over half a turn: the other half is the same pair of fingers.
+  double best_yaw = object.pinch_yaw;
+  double best = FingerClearance(object.centre_xy, best_yaw, open_gap, neighbours);
+  if (best >= enough) return best_yaw;
+  for (int k = 1; k < kDirections; ++k) {
+    const double yaw = object.pinch_yaw + k * M_PI / kDirections;
+    const double clearance = FingerClearance(object.centre_xy, yaw, open_gap, neighbours);
+    if (clearance > best + 1e-4) {
+      best = clearance;
+      best_yaw = yaw;
+    }
+  }
+  return best_yaw;
 }
 
 int ChooseNextPick(const std::vector<ObjectFootprint>& candidates, const PickMemory& memory) {

@@ -6,6 +6,7 @@
 
 #include <Eigen/Core>
 
+#include <utility>
 #include <vector>
 
 #include "robot/grasp_planner.h"
@@ -45,6 +46,24 @@ class PickMemory {
   int max_attempts_;
   std::vector<Entry> entries_;
 };
+
+/// What stands around the object to pick, seen from above: the other objects' points, and their
+/// footprints as discs (centre, half their width) for the backs the camera does not see.
+struct Neighbours {
+  std::vector<Eigen::Vector2d> p_xy;
+  std::vector<std::pair<Eigen::Vector2d, double>> discs;
+};
+
+/// How far the open fingers of a top-down grasp at centre_xy, closing along `yaw` and opened to
+/// `open_gap`, stay from the neighbours (m; negative where a neighbour is in a finger's way).
+double FingerClearance(const Eigen::Vector2d& centre_xy, double yaw, double open_gap, const Neighbours& neighbours);
+
+/// For a round object (the fingers may close on it from any side), the direction to close along:
+/// its own pinch_yaw while the open fingers clear the neighbours by `enough` there, else the one of
+/// twelve (15 degree steps) with the most clearance. A neighbour standing where a finger comes down
+/// is knocked over or keeps the finger from closing.
+double ClearestPinchYaw(const ObjectFootprint& object, double open_gap, const Neighbours& neighbours,
+                        double enough = 0.015);
 
 /// The candidate to pick next: of those not given up, the one with the most free room around it
 /// (distance from its centre to the nearest other object's centre, less both half-widths), so the

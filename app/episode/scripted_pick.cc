@@ -177,11 +177,11 @@ PickResult RunPick(const PickOptions& options, const std::vector<std::string>& c
     request.p_W_release = layout.p_W_bin.at(target.bin.category);  // The bin's middle.
     request.place_yaw_step = robot::GraspOptions().place_yaw_step;  // Any yaw: the bin's middle.
     request.q_home = layout.q_observe;
-    request.lines = layout.lines;
+    request.speeds = layout.speeds;
     const cell::PickReport report = cell::PickAndPlace(motions, request, hooks);
     outcome = report.result;
     detail = report.detail;
-    if (report.X_WT_exit && !cell::GoHome(motions, report.X_WT_exit, layout.q_observe, layout.lines)) {
+    if (report.X_WT_exit && !cell::GoHome(motions, report.X_WT_exit, layout.q_observe, layout.speeds)) {
       outcome = motions.faulted() ? cell::AttemptResult::kSimDiverged : cell::AttemptResult::kMotionFailed;
       detail = motions.failure();
     }

@@ -44,6 +44,38 @@ TEST(PickSelection, GivesUpAPositionAfterMaxAttempts) {
   EXPECT_EQ(memory.Attempts(Eigen::Vector2d(0.3, 0.2)), 0);
 }
 
+// Two bottles side by side along x, 7 cm apart (touching gaps of 1 cm): closing along x puts a finger
+// on the neighbour, closing along y keeps both fingers clear.
+TEST(PickSelection, ARoundObjectIsPinchedFromTheSideItsNeighbourLeavesFree) {
+  ObjectFootprint bottle = At(0.5, 0.0);
+  bottle.width = 0.062;
+  bottle.pinch_yaw = 0.0;
+  Neighbours neighbours;
+  const Eigen::Vector2d other(0.57, 0.0);
+  neighbours.discs.emplace_back(other, 0.031);
+  for (int k = 0; k < 36; ++k) {
+    const double a = k * M_PI / 18;
+    neighbours.p_xy.push_back(other + 0.031 * Eigen::Vector2d(std::cos(a), std::sin(a)));
+  }
+  const double open_gap = 0.062 + 2 * 0.008;
+  EXPECT_LT(FingerClearance(bottle.centre_xy, 0.0, open_gap, neighbours), 0.0);
+  const double yaw = ClearestPinchYaw(bottle, open_gap, neighbours);
+  EXPECT_NEAR(std::abs(std::cos(yaw)), 0.0, 1e-9) << yaw;
+  EXPECT_GT(FingerClearance(bottle.centre_xy, yaw, open_gap, neighbours), 0.0);
+}
+
+TEST(PickSelection, APinchThatIsClearAlreadyIsKept) {
+  ObjectFootprint bottle = At(0.5, 0.0);
+  bottle.width = 0.062;
+  bottle.pinch_yaw = 0.3;
+  EXPECT_DOUBLE_EQ(ClearestPinchYaw(bottle, 0.078, Neighbours{}), 0.3);
+  Neighbours far;
+  far.discs.emplace_back(Eigen::Vector2d(0.7, 0.0), 0.03);
+  EXPECT_DOUBLE_EQ(ClearestPinchYaw(bottle, 0.078, far), 0.3);
+  // The finger reaches 3 cm beyond its pad and 2 cm to either side.
+  EXPECT_NEAR(FingerClearance(bottle.centre_xy, 0.0, 0.078, far), 0.2 - 0.03 - 0.039 - 0.03, 1e-9);
+}
+
 TEST(PickSelection, RejectsBadMemoryParameters) {
   EXPECT_NE(sortcell_test::ErrorOf([] { PickMemory(0.0, 3); }).find("radius > 0"), std::string::npos);
   EXPECT_NE(sortcell_test::ErrorOf([] { PickMemory(0.04, 0); }).find("max_attempts >= 1"), std::string::npos);
