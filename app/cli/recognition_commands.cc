@@ -8,13 +8,14 @@
 #include "app/common/object_set.h"
 #include "app/common/output_dir.h"
 #include "app/recognition/recognition.h"
+#include "app/recognition/rgbd_objects.h"
 #include "app/common/wall_clock.h"
 
 namespace sortcell::app {
 namespace {
 
 struct DatasetOptions {
-  std::filesystem::path objects, out;
+  std::filesystem::path objects, rgbd_objects, out;
   int views = 36;
   int scenes = 0;
   uint64_t seed = 0;
@@ -31,6 +32,24 @@ struct EvalOptions {
   std::filesystem::path dataset, model, out;
 };
 
+// `sortcell dataset --from-rgbd-objects DIR --out OUT`.
+int ImportRgbdObjectsCommand(const DatasetOptions& o, const std::vector<std::string>& command_line) {
+  const auto start = WallClock::now();
+  const Dataset d = ImportRgbdObjects(o.rgbd_objects, o.out);
+  SaveDataset(o.out, d);
+  const double wall = SecondsSince(start);
+  WriteJson(o.out / "run.json", RunRecord(command_line, 0, {{"command", "dataset"},
+                                                            {"from_rgbd_objects", o.rgbd_objects.string()},
+                                                            {"capture", d.capture},
+                                                            {"dataset_wall_s", wall}}));
+  std::cout << "Dataset from the RGB-D Object Dataset views in " << o.rgbd_objects.string() << ": "
+            << d.samples.size() << " samples (" << d.Labels(perception::LabelKind::kCategory).size()
+            << " categories, " << d.Labels(perception::LabelKind::kInstance).size() << " instances), "
+            << d.capture["skipped"].size() << " views skipped, in " << o.out.string() << "/, " << std::lround(wall)
+            << " s\n";
+  return 0;
+}
+
 }  // namespace
 
 void AddDatasetCommand(CLI::App& app, std::function<int()>& run, const std::vector<std::string>& command_line) {
@@ -42,16 +61,26 @@ void AddDatasetCommand(CLI::App& app, std::function<int()>& run, const std::vect
       "randomised, Kinect noise on; each capture segmented and described. With --scenes N: N random cell "
       "scenes of the set's objects instead (a test set like the paper's real scenes). Writes manifest.json "
       "(labels: category, instance, elevation, frame), descriptors.csv (raw HSV 192 + CVFH 308 per sample), "
-      "clouds/*.pcd and run.json.");
-  cmd->add_option("--objects", o->objects, "Object set YAML, e.g. scenes/objects/paper.yaml")->required();
+      "clouds/*.pcd and run.json. With --from-rgbd-objects DIR: the real views of the RGB-D Object Dataset "
+      "(Lai et al. 2011) in DIR instead, as it is published (<category>/<instance>/"
+      "<instance>_<video>_<frame>_crop.png, _depthcrop.png, _maskcrop.png, _loc.txt).");
+  CLI::Option* objects = cmd->add_option("--objects", o->objects, "Object set YAML, e.g. scenes/objects/paper.yaml");
+  CLI::Option* rgbd = cmd->add_option("--from-rgbd-objects", o->rgbd_objects,
+                                      "A folder of the RGB-D Object Dataset's views (instead of --objects)");
+  objects->excludes(rgbd);
   cmd->add_option("--out", o->out, "Dataset folder (created if missing)")->required();
-  cmd->add_option("--views", o->views, "Views per revolution and elevation")->check(CLI::Range(3, 3600))
-      ->capture_default_str();
-  cmd->add_option("--scenes", o->scenes, "Random cell scenes instead of turntable views (0: turntable)")
-      ->check(CLI::Range(0, 100000))->capture_default_str();
-  cmd->add_option("--seed", o->seed, "Seed (uint64)")->check(kUnsignedInteger)->capture_default_str();
+  CLI::Option* views = cmd->add_option("--views", o->views, "Views per revolution and elevation")
+                           ->check(CLI::Range(3, 3600))->capture_default_str();
+  CLI::Option* scenes = cmd->add_option("--scenes", o->scenes, "Random cell scenes instead of turntable views (0: turntable)")
+                            ->check(CLI::Range(0, 100000))->capture_default_str();
+  CLI::Option* seed = cmd->add_option("--seed", o->seed, "Seed (uint64)")->check(kUnsignedInteger)->capture_default_str();
+  for (CLI::Option* simulated : {views, scenes, seed}) rgbd->excludes(simulated);
   cmd->callback([&run, o, command_line] {
     run = [o, command_line] {
+      if (!o->rgbd_objects.empty()) return ImportRgbdObjectsCommand(*o, command_line);
+      if (o->objects.empty()) {
+        throw std::invalid_argument("dataset: give --objects SET.yaml (a simulated capture) or --from-rgbd-objects DIR");
+      }
       const ObjectSet set = LoadObjectSet(o->objects);
       const auto start = WallClock::now();
       Dataset d;

@@ -1,0 +1,184 @@
+// Reading the RGB-D Object Dataset's published views (app/recognition/rgbd_objects.h): the
+// back-projection, bad files named and skipped, and dataset -> train -> eval on views written in its
+// format; and, where the shared sample is there, the real banana views.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
+
+#include "app/recognition/dataset.h"
+#include "app/recognition/rgbd_objects.h"
+#include "tests/app/run_sortcell.h"
+
+namespace fs = std::filesystem;
+using namespace sortcell;
+
+namespace {
+
+constexpr int kCrop = 64;
+constexpr double kFocal = 570.3;
+
+enum class Shape { kSphere, kCylinder };
+
+// One view in the dataset's format: a sphere or an upright cylinder `radius` m across, 0.8 m away,
+// seen in a 64x64 crop whose top-left is the frame's (x0, y0), 1-based.
+void WriteView(const fs::path& folder, const std::string& instance, int video, int frame, Shape shape, double radius,
+               const cv::Vec3b& bgr, int x0 = 289, int y0 = 209) {
+  fs::create_directories(folder);
+  cv::Mat colour(kCrop, kCrop, CV_8UC3, cv::Scalar(40, 40, 40)), depth(kCrop, kCrop, CV_16UC1, cv::Scalar(0)),
+      mask(kCrop, kCrop, CV_8UC1, cv::Scalar(0));
+  const double z0 = 0.8, pixel = z0 / kFocal;
+  for (int v = 0; v < kCrop; ++v) {
+    for (int u = 0; u < kCrop; ++u) {
+      const double dx = (u - kCrop / 2) * pixel, dy = (v - kCrop / 2) * pixel;
+      const double r2 = shape == Shape::kSphere ? dx * dx + dy * dy : dx * dx;
+      if (r2 >= radius * radius || (shape == Shape::kCylinder && std::abs(dy) > 1.5 * radius)) continue;
+      depth.at<uint16_t>(v, u) = static_cast<uint16_t>(std::lround(1000 * (z0 - std::sqrt(radius * radius - r2))));
+      mask.at<uint8_t>(v, u) = 255;
+      colour.at<cv::Vec3b>(v, u) = bgr;
+    }
+  }
+  const std::string stem = (folder / (instance + "_" + std::to_string(video) + "_" + std::to_string(frame) + "_")).string();
+  cv::imwrite(stem + "crop.png", colour);
+  cv::imwrite(stem + "depthcrop.png", depth);
+  cv::imwrite(stem + "maskcrop.png", mask);
+  std::ofstream(stem + "loc.txt") << x0 << "," << y0 << "\n";
+}
+
+TEST(RgbdObjects, BackProjectsTheMaskedPixelsWithTheDatasetsCamera) {
+  const fs::path root = fs::path(sortcell_test::TestTempDir()) / "rgbd_one";
+  WriteView(root / "ball" / "ball_1", "ball_1", 1, 7, Shape::kSphere, 0.03, {10, 20, 200}, 101, 51);
+  const auto views = app::FindRgbdObjectsViews(root);
+  ASSERT_EQ(views.size(), 1u);
+  EXPECT_EQ(views[0].category, "ball");
+  EXPECT_EQ(views[0].instance, "ball_1");
+  EXPECT_EQ(views[0].video, 1);
+  EXPECT_EQ(views[0].frame, 7);
+  const perception::Cloud::Ptr cloud = app::ReadRgbdObjectsView(views[0]);
+  const cv::Mat mask = cv::imread((root / "ball/ball_1/ball_1_1_7_maskcrop.png").string(), cv::IMREAD_GRAYSCALE);
+  EXPECT_EQ(static_cast<int>(cloud->size()), cv::countNonZero(mask));
+  // Every point lies on the ray of a frame pixel inside the crop (columns 100-163, rows 50-113); the
+  // crop's centre pixel (32, 32) is frame pixel (132, 82), in front of the sphere's centre, 0.77 m away.
+  int centre = 0;
+  for (const auto& p : cloud->points) {
+    const double col = p.x * kFocal / p.z + 320, row = p.y * kFocal / p.z + 240;
+    EXPECT_NEAR(col, std::round(col), 1e-3);
+    EXPECT_NEAR(row, std::round(row), 1e-3);
+    EXPECT_GE(col, 99.5);
+    EXPECT_LE(col, 163.5);
+    EXPECT_GE(row, 49.5);
+    EXPECT_LE(row, 113.5);
+    if (std::lround(col) == 132 && std::lround(row) == 82) {
+      ++centre;
+      EXPECT_NEAR(p.z, 0.770, 0.0006);
+      EXPECT_EQ(p.r, 200);
+      EXPECT_EQ(p.b, 10);
+    }
+  }
+  EXPECT_EQ(centre, 1);
+}
+
+TEST(RgbdObjects, BadFilesAreNamed) {
+  const fs::path root = fs::path(sortcell_test::TestTempDir()) / "rgbd_bad";
+  const fs::path folder = root / "cup" / "cup_1";
+  WriteView(folder, "cup_1", 1, 1, Shape::kCylinder, 0.03, {0, 200, 0});
+  const auto view = app::FindRgbdObjectsViews(root).at(0);
+  const auto error = [&] {
+    try {
+      app::ReadRgbdObjectsView(view);
+    } catch (const std::invalid_argument& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  std::ofstream(folder / "cup_1_1_1_loc.txt") << "x=3";
+  EXPECT_NE(error().find("cup_1_1_1_loc.txt': expected \"X,Y\""), std::string::npos) << error();
+  std::ofstream(folder / "cup_1_1_1_loc.txt") << "600,10";
+  EXPECT_NE(error().find("does not fit the 640x480 frame"), std::string::npos) << error();
+  cv::imwrite((folder / "cup_1_1_1_maskcrop.png").string(), cv::Mat(10, 10, CV_8UC1, cv::Scalar(255)));
+  EXPECT_NE(error().find("cup_1_1_1_maskcrop.png': 10x10, but the colour crop is 64x64"), std::string::npos) << error();
+  fs::remove(folder / "cup_1_1_1_depthcrop.png");
+  EXPECT_NE(error().find("cup_1_1_1_depthcrop.png': missing"), std::string::npos) << error();
+  std::ofstream(folder / "cup_1_1_1_depthcrop.png") << "not a png";
+  EXPECT_NE(error().find("not a readable image"), std::string::npos) << error();
+  EXPECT_THROW(app::FindRgbdObjectsViews(root / "nowhere"), std::invalid_argument);
+}
+
+// Two categories, two instances each, in the dataset's layout; one view damaged.
+fs::path WriteSmallDataset(const std::string& name) {
+  const fs::path root = fs::path(sortcell_test::TestTempDir()) / name;
+  for (int instance = 1; instance <= 2; ++instance) {
+    for (int frame = 1; frame <= 8; ++frame) {
+      const double scale = 1 + 0.1 * instance + 0.01 * frame;
+      const std::string ball = "ball_" + std::to_string(instance), can = "can_" + std::to_string(instance);
+      WriteView(root / "ball" / ball, ball, 1, frame, Shape::kSphere, 0.03 * scale, {20, 30, 190});
+      WriteView(root / "can" / can, can, 1, frame, Shape::kCylinder, 0.025 * scale, {30, 180, 40});
+    }
+  }
+  fs::remove(root / "can" / "can_2" / "can_2_1_8_maskcrop.png");
+  return root;
+}
+
+TEST(RgbdObjects, ImportTrainAndEvalRunOnTheDatasetsFormat) {
+  const fs::path root = WriteSmallDataset("rgbd_small");
+  const fs::path out = fs::path(sortcell_test::TestTempDir()) / "rgbd_small_out";
+  const auto r = sortcell_test::RunSortcell("dataset --from-rgbd-objects " + root.string() + " --out " +
+                                            (out / "data").string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const app::Dataset d = app::LoadDataset(out / "data");
+  EXPECT_EQ(d.samples.size(), 31u);
+  ASSERT_EQ(d.capture["skipped"].size(), 1u);
+  EXPECT_NE(d.capture["skipped"][0]["reason"].get<std::string>().find("can_2_1_8_maskcrop.png': missing"),
+            std::string::npos);
+  EXPECT_EQ(d.Labels(perception::LabelKind::kCategory), (std::vector<std::string>{"ball", "can"}));
+  EXPECT_EQ(d.samples[0].source, "rgbd-objects");
+  EXPECT_EQ(d.samples[0].elevation_deg, 30);
+  const fs::path model = out / "model.json";
+  ASSERT_EQ(sortcell_test::RunSortcell("train --dataset " + (out / "data").string() +
+                                       " --descriptor color-cvfh-norm --out " + model.string()).exit_code, 0);
+  const auto eval = sortcell_test::RunSortcell("eval --dataset " + (out / "data").string() + " --model " +
+                                               model.string() + " --out " + (out / "eval").string());
+  ASSERT_EQ(eval.exit_code, 0) << eval.err;
+  const nlohmann::json results = nlohmann::json::parse(std::ifstream(out / "eval" / "results.json"));
+  EXPECT_EQ(results["test_samples"], 31);
+  // A red ball and a green can, seen in training: the model tells them apart.
+  EXPECT_GE(results["accuracy"].get<double>(), 0.95);
+}
+
+TEST(RgbdObjects, TheCommandRefusesAMixOfSourcesAndAnEmptyFolder) {
+  const fs::path empty = fs::path(sortcell_test::TestTempDir()) / "rgbd_empty";
+  fs::create_directories(empty);
+  const std::string out = (fs::path(sortcell_test::TestTempDir()) / "rgbd_refused").string();
+  sortcell_test::ExpectOneLineError(
+      sortcell_test::RunSortcell("dataset --from-rgbd-objects " + empty.string() + " --out " + out),
+      "no <instance>_<video>_<frame>_crop.png view in it");
+  EXPECT_EQ(sortcell_test::RunSortcell("dataset --from-rgbd-objects " + empty.string() +
+                                       " --objects scenes/objects/paper.yaml --out " + out).exit_code, 2);
+  EXPECT_EQ(sortcell_test::RunSortcell("dataset --from-rgbd-objects " + empty.string() + " --views 5 --out " + out)
+                .exit_code, 2);
+  sortcell_test::ExpectOneLineError(sortcell_test::RunSortcell("dataset --out " + out), "--from-rgbd-objects DIR");
+}
+
+// The shared real sample (one banana, 100 views), where this checkout has it beside it.
+TEST(RgbdObjects, ReadsTheRealSample) {
+  const fs::path sample = fs::path(SORTCELL_SOURCE_DIR) / ".." / "shared" / "real" / "rgbd-object";
+  if (!fs::is_directory(sample)) GTEST_SKIP() << "no " << sample << " beside this checkout";
+  const fs::path out = fs::path(sortcell_test::TestTempDir()) / "rgbd_banana";
+  const auto r = sortcell_test::RunSortcell("dataset --from-rgbd-objects " + sample.string() + " --out " + out.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const app::Dataset d = app::LoadDataset(out);
+  EXPECT_EQ(d.samples.size() + d.capture["skipped"].size(), 100u);
+  EXPECT_GE(d.samples.size(), 95u);
+  EXPECT_EQ(d.Labels(perception::LabelKind::kCategory), std::vector<std::string>{"banana"});
+  EXPECT_EQ(d.Labels(perception::LabelKind::kInstance), std::vector<std::string>{"banana_1"});
+  // About a metre from the camera, a banana's few hundred to thousands of points.
+  for (const auto& s : d.samples) {
+    EXPECT_GT(s.points, 300) << s.cloud;
+  }
+}
+
+}  // namespace
