@@ -144,10 +144,11 @@ bool WithinLimits(const JointTrajectory& sum, const JointTrajectory& first, cons
     const int k = i - start;
     for (int j = 0; j < 6; ++j) {
       const double speed = std::fmax(limits.speed[j], std::fmax(std::abs(first.qd[i][j]), std::abs(second.qd[k][j])));
+      if (std::abs(sum.qd[i][j]) > speed * (1 + 1e-9)) return false;
+      if (fits) continue;  // Accelerations are judged by their torques below.
       const double acceleration =
           std::fmax(limits.acceleration[j], std::fmax(std::abs(first.qdd[i][j]), std::abs(second.qdd[k][j])));
-      if (std::abs(sum.qd[i][j]) > speed * (1 + 1e-9)) return false;
-      if (!fits && std::abs(sum.qdd[i][j]) > acceleration * (1 + 1e-9)) return false;
+      if (std::abs(sum.qdd[i][j]) > acceleration * (1 + 1e-9)) return false;
     }
     if (fits && !fits(sum.q[i], sum.qd[i], sum.qdd[i])) return false;
   }

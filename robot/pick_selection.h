@@ -55,7 +55,8 @@ struct Neighbours {
 };
 
 /// How far the open fingers of a top-down grasp at centre_xy, closing along `yaw` and opened to
-/// `open_gap`, stay from the neighbours (m; negative where a neighbour is in a finger's way).
+/// `open_gap`, stay from the neighbours (m): 0 where a neighbour's point is in a finger's way, negative
+/// where a finger reaches into a neighbour's footprint disc.
 double FingerClearance(const Eigen::Vector2d& centre_xy, double yaw, double open_gap, const Neighbours& neighbours);
 
 /// For a round object (the fingers may close on it from any side), the direction to close along:

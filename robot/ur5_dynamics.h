@@ -42,10 +42,11 @@ class Ur5Dynamics {
   /// part that falls as 1/k^2 when a motion is slowed down k times in time. Friction: damping and
   /// Coulomb friction.
   Joints Gravity(const Joints& q) const;
-  /// Gravity + Inertial: what a controller feeds forward (it leaves friction to its feedback).
-  Joints InverseDynamics(const Joints& q, const Joints& qd, const Joints& qdd) const;
   Joints Inertial(const Joints& q, const Joints& qd, const Joints& qdd) const;
   static Joints Friction(const Joints& qd, const Joints& qdd);
+
+  /// Gravity + Inertial: what a controller feeds forward (it leaves friction to its feedback).
+  Joints InverseDynamics(const Joints& q, const Joints& qd, const Joints& qdd) const;
 
  private:
   Joints RigidBodyTorque(const Joints& q, const Joints& qd, const Joints& qdd) const;
