@@ -28,10 +28,12 @@ bool MotionSequencer::Phase(const std::string& name, const std::function<MotionR
 
 void MotionChain::Add(const std::string& phase, const robot::JointTrajectory& segment) {
   int seam = 0;
-  const robot::TorqueBudget budget;
-  const auto fits = [&budget](const robot::Joints& q, const robot::Joints& qd, const robot::Joints& qdd) {
-    return budget.Fits(q, qd, qdd);
-  };
+  robot::SampleCheck fits;  // Holding: none, so blends keep joint_limits_' accelerations.
+  if (load_ == Load::kEmptyHanded) {
+    fits = [budget = robot::TorqueBudget{}](const robot::Joints& q, const robot::Joints& qd, const robot::Joints& qdd) {
+      return budget.Fits(q, qd, qdd);
+    };
+  }
   trajectory_ = robot::BlendMoves(trajectory_, segment, joint_limits_, &seam, fits);
   // The phase before now ends in the middle of the blend (never before the one before it ends).
   if (!phase_ends_.empty()) {
@@ -42,8 +44,14 @@ void MotionChain::Add(const std::string& phase, const robot::JointTrajectory& se
   q_end_ = trajectory_.q.back();
 }
 
-void MotionChain::JointMove(const std::string& phase, const robot::Joints& q_goal) {
-  Add(phase, robot::PlanTorqueLimitedJointMove(q_end_, q_goal, joint_limits_));
+bool MotionChain::JointMove(const std::string& phase, const robot::Joints& q_goal) {
+  const robot::TorqueLimitedMove move = robot::PlanTorqueLimitedJointMove(q_end_, q_goal, joint_limits_);
+  if (move.fit != robot::TorqueFit::kWithinBudget) {
+    failure_ = phase + ": the move needs more than the torque budget";
+    return false;
+  }
+  Add(phase, move.trajectory);
+  return true;
 }
 
 bool MotionChain::Line(const std::string& phase, const Eigen::Isometry3d& X_WT, double speed, double acceleration) {
@@ -62,14 +70,14 @@ bool MotionChain::Line(const std::string& phase, const Eigen::Isometry3d& X_WT, 
 }
 
 bool MotionSequencer::MoveJ(const std::string& name, const robot::Joints& q_goal) {
-  MotionChain chain(io_.CommandedJoints());
+  MotionChain chain(io_.CommandedJoints(), MotionChain::Load::kHolding);
   chain.JointMove(name, q_goal);
   return Run(chain);
 }
 
 bool MotionSequencer::MoveL(const std::string& name, const Eigen::Isometry3d& X_WT, double speed,
                             double acceleration) {
-  MotionChain chain(io_.CommandedJoints());
+  MotionChain chain(io_.CommandedJoints(), MotionChain::Load::kHolding);
   chain.Line(name, X_WT, speed, acceleration);
   return Run(chain);  // Reports a line that could not be planned.
 }

@@ -31,11 +31,18 @@ struct PhaseSpan {
 /// meet in the middle of each blend.
 class MotionChain {
  public:
-  explicit MotionChain(const robot::Joints& q_start,
-                       const robot::JointMotionLimits& joint_limits = robot::Ur5FastLimits())
-      : q_end_(q_start), joint_limits_(joint_limits) {}
+  /// What the gripper carries along the chain: it decides how hard blends may accelerate.
+  enum class Load {
+    kEmptyHanded,  ///< Blends as hard as the torque budget allows.
+    kHolding,      ///< Blends within joint_limits' accelerations too: what is held sees no harder jolt.
+  };
 
-  void JointMove(const std::string& phase, const robot::Joints& q_goal);
+  MotionChain(const robot::Joints& q_start, Load load,
+              const robot::JointMotionLimits& joint_limits = robot::Ur5FastLimits())
+      : q_end_(q_start), load_(load), joint_limits_(joint_limits) {}
+
+  /// False (failure() set, the chain unchanged) if the move needs more than the torque budget.
+  bool JointMove(const std::string& phase, const robot::Joints& q_goal);
   /// A straight TCP line to X_WT; false (failure() set, the chain unchanged) if it cannot be planned.
   bool Line(const std::string& phase, const Eigen::Isometry3d& X_WT, double speed, double acceleration);
 
@@ -50,6 +57,7 @@ class MotionChain {
   void Add(const std::string& phase, const robot::JointTrajectory& segment);
 
   robot::Joints q_end_;
+  Load load_;
   robot::JointMotionLimits joint_limits_;
   robot::JointTrajectory trajectory_;
   std::vector<std::pair<std::string, int>> phase_ends_;

@@ -56,7 +56,7 @@ bool ApproachAndGrasp(MotionSequencer& run, const PickRequest& request) {
     if (!run.MoveL("retreat", X_WT_clear, lines.slow, lines.slow_acceleration)) return false;
   }
   run.StartFingers(plan.open_gap);
-  MotionChain approach(run.io().CommandedJoints(), lines.empty_joints);
+  MotionChain approach(run.io().CommandedJoints(), MotionChain::Load::kEmptyHanded, lines.empty_joints);
   // Up out of the bin as if still holding: what was just released may still touch a finger, and a
   // fast pull flings it out of the bin.
   if (request.X_WT_exit && !approach.Line("retreat", *request.X_WT_exit, lines.transit, lines.transit_acceleration)) {
@@ -72,7 +72,7 @@ bool ApproachAndGrasp(MotionSequencer& run, const PickRequest& request) {
 
 bool GoHome(MotionSequencer& run, const std::optional<Eigen::Isometry3d>& X_WT_exit, const robot::Joints& q_home,
             const ArmSpeeds& lines) {
-  MotionChain home(run.io().CommandedJoints(), lines.empty_joints);
+  MotionChain home(run.io().CommandedJoints(), MotionChain::Load::kEmptyHanded, lines.empty_joints);
   if (X_WT_exit && !home.Line("retreat", *X_WT_exit, lines.transit, lines.transit_acceleration)) return run.Run(home);
   home.JointMove("home", q_home);
   return run.Run(home);
@@ -95,7 +95,7 @@ PickReport PickAndPlace(MotionSequencer& run, const PickRequest& request, const 
   Notify(hooks.grasped);
 
   // Lift, carry and lower as one motion; the placement is planned from where the lift ends.
-  MotionChain transfer(run.io().CommandedJoints());
+  MotionChain transfer(run.io().CommandedJoints(), MotionChain::Load::kHolding);
   if (!transfer.Line("lift", plan.X_WT_lift, lines.transit, lines.transit_acceleration)) {
     return Fail(run, request, report);
   }

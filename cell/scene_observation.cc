@@ -42,7 +42,9 @@ Observation ObserveScene(const perception::Cloud& cloud, const CameraCalibration
     const double table_z = TableHeightAt(segment.centroid, segmented.plane_C, X_WC);
     const robot::FootprintEstimate estimate = robot::EstimateFootprint(p_W, X_WC.translation(), table_z);
     d.footprint = estimate.footprint;
-    d.round = !estimate.prism;
+    // One pinched along its narrowest direction (too wide across the view) keeps it: turned, the
+    // fingers would close on its width.
+    d.round = !estimate.prism && estimate.across_view;
     d.occluded = occluded_edge[s] >= kOccludedEdgePixels;
     for (size_t k = 0; k < p_W.size(); k += kOutlineStride) d.p_W_xy.push_back(p_W[k].head<2>());
     const perception::DescriptorParts parts = perception::ComputeDescriptorParts(*segment.cloud_C, model.params);

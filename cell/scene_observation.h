@@ -27,7 +27,8 @@ struct CameraCalibration {
 struct Detection {
   perception::Segment segment;
   robot::ObjectFootprint footprint;
-  /// Round (not a prism): the fingers may close on it from any side (robot::FootprintEstimate).
+  /// Round (not a prism, pinched across the view): the fingers may close on it from any side
+  /// (robot::FootprintEstimate).
   bool round = false;
   /// Partly hidden behind something nearer the camera: what shows is less than the object, and its
   /// footprint is not to be trusted (perception::OccludedEdgePixels).

@@ -89,7 +89,7 @@ using SampleCheck = std::function<bool(const Joints& q, const Joints& qd, const 
 JointTrajectory BlendMoves(const JointTrajectory& first, const JointTrajectory& second,
                            const JointMotionLimits& limits, int* seam = nullptr, const SampleCheck& fits = {});
 
-enum class CartesianPlanStatus { kOk, kUnreachable, kTooFast };
+enum class CartesianPlanStatus { kOk, kUnreachable, kTooFast, kOverTorqueBudget };
 
 struct CartesianPlan {
   CartesianPlanStatus status = CartesianPlanStatus::kUnreachable;

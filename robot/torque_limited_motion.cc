@@ -2,14 +2,33 @@
 
 #include <cmath>
 #include <limits>
+#include <string>
+#include <utility>
 
 namespace sortcell::robot {
 namespace {
 
 // Stretching by the computed factor takes friction and damping as they were (they fall a little
-// with the speed); a re-check finds the rare move that needs a few per cent more.
+// with the speed); a re-check of each re-plan finds the rare move that needs a few per cent more.
 constexpr int kRechecks = 3;
-constexpr double kRecheckStep = 1.05;
+constexpr double kRecheckMargin = 1.02;
+
+// Plans with `plan_at(stretch)` until the torques fit the budget: stretched by the computed factor,
+// each re-plan checked again. `plan_at` returns false where a re-plan fails for another reason.
+template <typename PlanAt>
+TorqueLimitedMove StretchUntilItFits(const TorqueBudget& budget, JointTrajectory first, const PlanAt& plan_at) {
+  TorqueLimitedMove move{TorqueFit::kWithinBudget, 1, std::move(first)};
+  for (int check = 0;; ++check) {
+    const double k = TorqueTimeScale(move.trajectory, budget);
+    if (k <= 1 + 1e-9) return move;
+    if (!std::isfinite(k) || move.stretch >= kMaxStretch || check == kRechecks) {
+      move.fit = TorqueFit::kOverBudget;
+      return move;
+    }
+    move.stretch = std::fmin(kMaxStretch, move.stretch * k * (check == 0 ? 1 : kRecheckMargin));
+    if (!plan_at(move.stretch, &move.trajectory)) return move;
+  }
+}
 
 }  // namespace
 
@@ -35,28 +54,31 @@ double TorqueTimeScale(const JointTrajectory& trajectory, const TorqueBudget& bu
   return std::sqrt(k2);
 }
 
-JointTrajectory PlanTorqueLimitedJointMove(const Joints& q_start, const Joints& q_goal, const JointMotionLimits& caps,
-                                           const TorqueBudget& budget, double dt) {
-  JointTrajectory move = PlanJointMove(q_start, q_goal, caps, dt);
-  double stretch = 1;
-  for (int check = 0; check <= kRechecks; ++check) {
-    const double k = TorqueTimeScale(move, budget);
-    if (k <= 1 + 1e-9 || stretch >= kMaxStretch) break;
-    stretch = std::fmin(kMaxStretch, stretch * (check == 0 ? k : kRecheckStep));
-    move = PlanJointMove(q_start, q_goal, {caps.speed / stretch, caps.acceleration / (stretch * stretch)}, dt);
-  }
-  return move;
+TorqueLimitedMove PlanTorqueLimitedJointMove(const Joints& q_start, const Joints& q_goal,
+                                             const JointMotionLimits& caps, const TorqueBudget& budget, double dt) {
+  return StretchUntilItFits(budget, PlanJointMove(q_start, q_goal, caps, dt),
+                            [&](double stretch, JointTrajectory* move) {
+                              *move = PlanJointMove(q_start, q_goal,
+                                                    {caps.speed / stretch, caps.acceleration / (stretch * stretch)}, dt);
+                              return true;
+                            });
 }
 
 CartesianPlan PlanTorqueLimitedLine(const Joints& q_start, const Eigen::Isometry3d& X_BT_goal, double speed,
                                     double acceleration, const TorqueBudget& budget, double dt) {
   CartesianPlan plan = PlanCartesianLine(q_start, X_BT_goal, speed, acceleration, dt);
-  double stretch = 1;
-  for (int check = 0; check <= kRechecks && plan.status == CartesianPlanStatus::kOk; ++check) {
-    const double k = TorqueTimeScale(plan.trajectory, budget);
-    if (k <= 1 + 1e-9 || stretch >= kMaxStretch) break;
-    stretch = std::fmin(kMaxStretch, stretch * (check == 0 ? k : kRecheckStep));
-    plan = PlanCartesianLine(q_start, X_BT_goal, speed / stretch, acceleration / (stretch * stretch), dt);
+  if (plan.status != CartesianPlanStatus::kOk) return plan;
+  const TorqueLimitedMove move =
+      StretchUntilItFits(budget, std::move(plan.trajectory), [&](double stretch, JointTrajectory* trajectory) {
+        plan = PlanCartesianLine(q_start, X_BT_goal, speed / stretch, acceleration / (stretch * stretch), dt);
+        *trajectory = std::move(plan.trajectory);
+        return plan.status == CartesianPlanStatus::kOk;
+      });
+  plan.trajectory = move.trajectory;
+  if (plan.status == CartesianPlanStatus::kOk && move.fit == TorqueFit::kOverBudget) {
+    plan.status = CartesianPlanStatus::kOverTorqueBudget;
+    plan.detail = "the line needs more than the torque budget even " +
+                  std::to_string(static_cast<int>(kMaxStretch)) + " times slower";
   }
   return plan;
 }

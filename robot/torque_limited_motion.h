@@ -26,13 +26,26 @@ struct TorqueBudget {
 /// `budget` (1 where they already do; infinity where the arm's weight alone exceeds it somewhere).
 double TorqueTimeScale(const JointTrajectory& trajectory, const TorqueBudget& budget);
 
-/// PlanJointMove with per-joint speed and acceleration caps, then slowed down as far as the torques
-/// need (at most kMaxStretch times).
-/// @throws std::invalid_argument as PlanJointMove.
-JointTrajectory PlanTorqueLimitedJointMove(const Joints& q_start, const Joints& q_goal, const JointMotionLimits& caps,
-                                           const TorqueBudget& budget = {}, double dt = 0.002);
+/// Whether a planned move keeps within the torque budget.
+enum class TorqueFit {
+  kWithinBudget,
+  kOverBudget,  ///< Even stretched kMaxStretch times (or the arm's weight alone exceeds it somewhere).
+};
 
-/// PlanCartesianLine at `speed` and `acceleration` at most, slowed down as far as the torques need.
+struct TorqueLimitedMove {
+  TorqueFit fit = TorqueFit::kWithinBudget;
+  double stretch = 1;  ///< How much slower than the caps it runs.
+  JointTrajectory trajectory;
+};
+
+/// PlanJointMove with per-joint speed and acceleration caps, then slowed down as far as the torques
+/// need (at most kMaxStretch times; beyond that kOverBudget, with the most stretched plan).
+/// @throws std::invalid_argument as PlanJointMove.
+TorqueLimitedMove PlanTorqueLimitedJointMove(const Joints& q_start, const Joints& q_goal, const JointMotionLimits& caps,
+                                             const TorqueBudget& budget = {}, double dt = 0.002);
+
+/// PlanCartesianLine at `speed` and `acceleration` at most, slowed down as far as the torques need;
+/// CartesianPlanStatus::kOverTorqueBudget where kMaxStretch is not enough.
 /// @throws std::invalid_argument as PlanCartesianLine.
 CartesianPlan PlanTorqueLimitedLine(const Joints& q_start, const Eigen::Isometry3d& X_BT_goal, double speed,
                                     double acceleration, const TorqueBudget& budget = {}, double dt = 0.002);

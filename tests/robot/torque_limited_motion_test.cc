@@ -35,9 +35,10 @@ TEST(TorqueLimitedMotion, EveryJointMoveStaysWithinTheBudget) {
   for (int n = 0; n < 40; ++n) {
     const Joints a = RandomPoseAboveTable(rng), b = RandomPoseAboveTable(rng);
     if (TorqueTimeScale(PlanJointMove(a, b, kHighCaps), budget) > 1) ++stretched;
-    const JointTrajectory move = PlanTorqueLimitedJointMove(a, b, kHighCaps, budget);
-    EXPECT_TRUE(EverySampleFits(move, budget)) << "move " << n;
-    EXPECT_LT((move.q.back() - b).norm(), 1e-9);
+    const TorqueLimitedMove move = PlanTorqueLimitedJointMove(a, b, kHighCaps, budget);
+    EXPECT_EQ(move.fit, TorqueFit::kWithinBudget) << "move " << n;
+    EXPECT_TRUE(EverySampleFits(move.trajectory, budget)) << "move " << n;
+    EXPECT_LT((move.trajectory.q.back() - b).norm(), 1e-9);
   }
   // The caps alone would break the budget in many of them (the others are long enough to be limited
   // by the speed): the check does something.
@@ -52,7 +53,9 @@ TEST(TorqueLimitedMotion, AMoveThatFitsIsLeftAlone) {
   const JointMotionLimits gentle{Joints::Constant(1.0), Joints::Constant(1.0)};
   const JointTrajectory plain = PlanJointMove(a, b, gentle);
   EXPECT_DOUBLE_EQ(TorqueTimeScale(plain, TorqueBudget()), 1.0);
-  EXPECT_EQ(PlanTorqueLimitedJointMove(a, b, gentle).size(), plain.size());
+  const TorqueLimitedMove move = PlanTorqueLimitedJointMove(a, b, gentle);
+  EXPECT_EQ(move.trajectory.size(), plain.size());
+  EXPECT_EQ(move.stretch, 1.0);
 }
 
 TEST(TorqueLimitedMotion, ThePanTurnsFasterNearTheBodyThanTheWorstPoseAllows) {
@@ -61,7 +64,7 @@ TEST(TorqueLimitedMotion, ThePanTurnsFasterNearTheBodyThanTheWorstPoseAllows) {
   const Joints folded = (Joints() << M_PI, -1.9, 2.4, -2.0, -M_PI_2, 0).finished();
   Joints turned = folded;
   turned[0] -= 1.5;
-  const JointTrajectory fast = PlanTorqueLimitedJointMove(folded, turned, kHighCaps);
+  const JointTrajectory fast = PlanTorqueLimitedJointMove(folded, turned, kHighCaps).trajectory;
   const JointTrajectory safe = PlanJointMove(folded, turned, Ur5FastLimits());
   std::printf("pan 1.5 rad: %.3f s torque-limited, %.3f s at the everywhere-safe limits\n", fast.duration(),
               safe.duration());
@@ -87,14 +90,52 @@ TEST(TorqueLimitedMotion, BlendsAreJudgedByTheirTorques) {
   const Joints a = (Joints() << M_PI, -1.9, 1.3, -1.0, -M_PI_2, 0).finished();
   const Joints b = (Joints() << 2.2, -1.4, 1.6, -1.5, -M_PI_2, 0).finished();
   const Joints c = (Joints() << 1.6, -1.0, 1.2, -1.7, -M_PI_2, 0.5).finished();
-  const JointTrajectory first = PlanTorqueLimitedJointMove(a, b, kHighCaps, budget);
-  const JointTrajectory second = PlanTorqueLimitedJointMove(b, c, kHighCaps, budget);
+  const JointTrajectory first = PlanTorqueLimitedJointMove(a, b, kHighCaps, budget).trajectory;
+  const JointTrajectory second = PlanTorqueLimitedJointMove(b, c, kHighCaps, budget).trajectory;
   const SampleCheck fits = [&budget](const Joints& q, const Joints& qd, const Joints& qdd) {
     return budget.Fits(q, qd, qdd);
   };
   const JointTrajectory blended = BlendMoves(first, second, kHighCaps, nullptr, fits);
   EXPECT_TRUE(EverySampleFits(blended, budget));
   EXPECT_LT(blended.size(), first.size() + second.size() - 1);
+}
+
+TEST(TorqueLimitedMotion, AMoveBeyondTheBudgetSaysSo) {
+  // A budget of a tenth of the limits: the arm's weight alone needs more at the shoulder.
+  TorqueBudget weak;
+  weak.fraction = 0.1;
+  const Joints a = (Joints() << M_PI, -1.9, 1.3, -M_PI_2 + 0.6, -M_PI_2, 0).finished();  // The cell's home.
+  Joints b = a;
+  b[0] -= 1.0;
+  const TorqueLimitedMove move = PlanTorqueLimitedJointMove(a, b, kHighCaps, weak);
+  EXPECT_EQ(move.fit, TorqueFit::kOverBudget);
+  Eigen::Isometry3d X_BT = TcpPose(a);
+  X_BT.translation().z() -= 0.05;
+  const CartesianPlan line = PlanTorqueLimitedLine(a, X_BT, 0.5, 5.0, weak);
+  EXPECT_EQ(line.status, CartesianPlanStatus::kOverTorqueBudget);
+  EXPECT_NE(line.detail.find("torque budget"), std::string::npos) << line.detail;
+}
+
+TEST(TorqueLimitedMotion, AMoveStretchedToItsLimitIsCheckedAgain) {
+  // A budget the weight leaves little room in: only a large stretch fits, and what is returned as
+  // within the budget is checked to be so at every sample.
+  TorqueBudget tight;
+  tight.fraction = 0.35;
+  std::mt19937_64 rng(5);
+  int over = 0, stretched_to_fit = 0;
+  for (int n = 0; n < 40; ++n) {
+    const Joints a = RandomPoseAboveTable(rng), b = RandomPoseAboveTable(rng);
+    const TorqueLimitedMove move = PlanTorqueLimitedJointMove(a, b, kHighCaps, tight);
+    EXPECT_LE(move.stretch, kMaxStretch);
+    if (move.fit == TorqueFit::kOverBudget) {
+      ++over;
+      continue;
+    }
+    if (move.stretch > 1.5) ++stretched_to_fit;
+    EXPECT_TRUE(EverySampleFits(move.trajectory, tight)) << "move " << n;
+  }
+  std::printf("%d of 40 moves over a 35 %% budget, %d fit stretched more than 1.5 times\n", over, stretched_to_fit);
+  EXPECT_GE(stretched_to_fit, 3);
 }
 
 TEST(TorqueLimitedMotion, ABadToolIsRefused) {
