@@ -42,6 +42,13 @@ SortingPolicy::SortingPolicy(CellIo& io, const CellLayout& layout, const CameraC
     throw std::invalid_argument("policy options: attempt limits must be at least 1");
   }
   if (!(options.time_limit_s > 0)) throw std::invalid_argument("policy options: time limit must be > 0 s");
+  if (!(options.reject_below >= 0 && options.reject_below <= 1)) {
+    throw std::invalid_argument("policy options: reject_below must be in [0, 1]");
+  }
+  if (options.reject_below > 0 && !layout.p_W_bin.count(options.reject_bin)) {
+    throw std::invalid_argument("policy options: rejecting unknown objects needs a bin named '" + options.reject_bin +
+                                "'");
+  }
   for (const auto& c : model.classes) {
     if (!layout.p_W_bin.count(c)) throw std::invalid_argument("cell layout: no bin for the model's class '" + c + "'");
   }
@@ -54,6 +61,9 @@ Observation SortingPolicy::Observe() {
   const perception::Cloud::Ptr cloud = io_.Capture();
   const auto start = std::chrono::steady_clock::now();
   Observation observation = ObserveScene(*cloud, calibration_, segmentation_, model_);
+  for (Detection& d : observation.detections) {
+    if (d.category && d.confidence < options_.reject_below) d.category = options_.reject_bin;
+  }
   observer_.Observed(*cloud, observation, WallSecondsSince(start));
   return observation;
 }

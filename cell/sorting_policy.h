@@ -35,6 +35,9 @@ struct PolicyOptions {
   int max_attempts = 24;              ///< Grasp attempts in all before the episode ends.
   double time_limit_s = 330;          ///< Seconds on the cell's clock from the start before it ends.
   double same_object_radius = 0.04;   ///< Clusters this close in two captures are one object (m).
+  /// Objects recognised with a lower confidence than this are unknown and go to reject_bin (0: none).
+  double reject_below = 0;
+  std::string reject_bin = "others";
 };
 
 /// One attempt, as the policy saw it go.

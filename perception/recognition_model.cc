@@ -3,6 +3,7 @@
 #include <opencv2/core/eigen.hpp>
 #include <opencv2/core/persistence.hpp>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstring>
 #include <fstream>
@@ -185,7 +186,11 @@ LabelKind ParseLabelKind(const std::string& name) {
 
 RecognitionModel::Result RecognitionModel::Classify(const DescriptorParts& parts) const {
   const Prediction p = classifier.Predict(AssembleDescriptor(parts, descriptor));
-  return {classes.at(p.label), p.confidence, p.label};
+  Result result{classes.at(p.label), p.confidence, p.label, {}};
+  for (size_t c = 0; c < p.probabilities.size(); ++c) result.ranked.push_back({classes.at(c), p.probabilities[c]});
+  std::stable_sort(result.ranked.begin(), result.ranked.end(),
+                   [](const Ranked& a, const Ranked& b) { return a.probability > b.probability; });
+  return result;
 }
 
 void SaveModel(const std::filesystem::path& file, const RecognitionModel& model) {

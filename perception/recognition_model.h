@@ -32,15 +32,29 @@ struct RecognitionModel {
   int train_samples = 0;     ///< Rows it was trained on.
   double cv_accuracy = 0;    ///< Grouped cross-validation accuracy of the chosen (C, gamma).
 
+  struct Ranked {
+    std::string name;
+    double probability = 0;
+  };
   struct Result {
     std::string name;
     double confidence = 0;
     int label = -1;
+    std::vector<Ranked> ranked;  ///< Every class, most probable first.
   };
   /// Class name and confidence of one object's descriptor parts.
   /// @throws std::invalid_argument as AssembleDescriptor for parts whose status is not ok.
   Result Classify(const DescriptorParts& parts) const;
 };
+
+/// What a classification below a confidence threshold is called: the object is none of the model's
+/// classes as far as it can tell (an unknown object, for the reject bin).
+inline constexpr const char* kUnknownClass = "unknown";
+
+/// Whether a result is rejected at `reject_below` (a probability in [0, 1]; 0 rejects nothing).
+inline bool Rejected(const RecognitionModel::Result& result, double reject_below) {
+  return result.confidence < reject_below;
+}
 
 /// @throws std::runtime_error naming the file if it cannot be written (e.g. a full disk).
 void SaveModel(const std::filesystem::path& file, const RecognitionModel& model);

@@ -7,7 +7,8 @@
 
 namespace sortcell::perception {
 
-cv::Mat SegmentOverlay(const Cloud& organized, const std::vector<Segment>& segments) {
+cv::Mat SegmentOverlay(const Cloud& organized, const std::vector<Segment>& segments,
+                       const std::vector<std::string>& labels) {
   if (!organized.isOrganized()) throw std::invalid_argument("segment overlay: the cloud is not organized");
   const int w = static_cast<int>(organized.width), h = static_cast<int>(organized.height);
   cv::Mat image(h, w, CV_8UC3);
@@ -30,10 +31,11 @@ cv::Mat SegmentOverlay(const Cloud& organized, const std::vector<Segment>& segme
       sum_c += i % w;
     }
     if (segments[s].indices.empty()) continue;
+    const std::string text = s < labels.size() ? labels[s] : std::to_string(s);
     const cv::Point at(static_cast<int>(sum_c / segments[s].indices.size()) - 6,
                        static_cast<int>(sum_r / segments[s].indices.size()) + 6);
-    cv::putText(image, std::to_string(s), at, cv::FONT_HERSHEY_SIMPLEX, 0.6, cv::Scalar(0, 0, 0), 3, cv::LINE_AA);
-    cv::putText(image, std::to_string(s), at, cv::FONT_HERSHEY_SIMPLEX, 0.6, cv::Scalar(255, 255, 255), 1, cv::LINE_AA);
+    cv::putText(image, text, at, cv::FONT_HERSHEY_SIMPLEX, 0.5, cv::Scalar(0, 0, 0), 3, cv::LINE_AA);
+    cv::putText(image, text, at, cv::FONT_HERSHEY_SIMPLEX, 0.5, cv::Scalar(255, 255, 255), 1, cv::LINE_AA);
   }
   return image;
 }

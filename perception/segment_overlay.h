@@ -5,14 +5,17 @@
 
 #include <opencv2/core/mat.hpp>
 
+#include <string>
 #include <vector>
 
 #include "perception/segmentation.h"
 
 namespace sortcell::perception {
 
-/// BGR image (CV_8UC3) of cloud.width x cloud.height; segment i is numbered i.
+/// BGR image (CV_8UC3) of cloud.width x cloud.height; segment i is labelled labels[i] where given
+/// (e.g. its category), else its number i.
 /// @throws std::invalid_argument if the cloud is not organized.
-cv::Mat SegmentOverlay(const Cloud& organized, const std::vector<Segment>& segments);
+cv::Mat SegmentOverlay(const Cloud& organized, const std::vector<Segment>& segments,
+                       const std::vector<std::string>& labels = {});
 
 }  // namespace sortcell::perception

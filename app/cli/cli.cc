@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "app/cli/capture_command.h"
+#include "app/cli/classify_command.h"
 #include "app/cli/episode_command.h"
 #include "app/cli/experiment_command.h"
 #include "app/cli/kinematics_commands.h"
@@ -47,6 +48,7 @@ int RunCli(int argc, char** argv) {
   AddDatasetCommand(app, run, command_line);
   AddTrainCommand(app, run, command_line);
   AddEvalCommand(app, run, command_line);
+  AddClassifyCommand(app, run);
   AddExperimentCommand(app, run, command_line);
   AddEpisodeCommand(app, run, command_line);
   AddSweepCommand(app, run, command_line);

@@ -138,6 +138,9 @@ void AddEpisodeCommand(CLI::App& app, std::function<int()>& run, const std::vect
   cmd->add_option("--max-attempts", o.max_attempts_per_object, "Grasp attempts per object before giving it up")
       ->capture_default_str();
   cmd->add_option("--time-limit", o.time_limit_s, "Simulated seconds (0: 60 + 45 per object)")->capture_default_str();
+  cmd->add_option("--reject-below", o.reject_below,
+                  "Objects recognised with a lower confidence (0-1) are unknown and go to the 'others' bin")
+      ->check(CLI::Range(0.0, 1.0))->capture_default_str();
   cmd->add_option("--set", cli->sets,
                   "Override an option (repeatable): KEY=VALUE is --KEY VALUE for any option above by its long name, "
                   "e.g. --set noise-scale=1.5 --set seed=3 --set time-limit=100; applied after the other options, so "

@@ -4,12 +4,13 @@
 
 #include <algorithm>
 #include <iostream>
-#include <map>
-#include <random>
-#include <set>
+#include <cmath>
+#include <numeric>
+#include <optional>
 
 #include "app/cli/cli_validators.h"
 #include "app/recognition/dataset_capture.h"
+#include "app/recognition/experiment_splits.h"
 #include "app/common/object_set.h"
 #include "app/common/data_dir.h"
 #include "app/common/output_dir.h"
@@ -50,68 +51,106 @@ Dataset ReuseOrCapture(const std::filesystem::path& dir, const ObjectSet& set, i
   return d;
 }
 
-struct Split {
-  std::vector<int> train, test;
-  TrainRequest request;
-  nlohmann::json description;
+// Experiment 3's data: turntable views of the paper objects to train, random cell scenes to test.
+Trial SceneTrial(const Dataset& train_data, const Dataset& scene_data, int scenes) {
+  Trial t;
+  for (size_t i = 0; i < train_data.samples.size(); ++i) t.train.push_back(static_cast<int>(i));
+  for (size_t i = 0; i < scene_data.samples.size(); ++i) t.test.push_back(static_cast<int>(i));
+  t.description = {{"train", "turntable views of the six paper objects"},
+                   {"test", "objects segmented from " + std::to_string(scenes) + " random cell scenes"},
+                   {"scene_capture", scene_data.capture}};
+  return t;
+}
+
+// A dataset made elsewhere (e.g. `dataset --from-rgbd-objects`) when `dir` holds one, else none.
+std::optional<Dataset> GivenDataset(const std::filesystem::path& dir) {
+  if (dir.empty() || !std::filesystem::exists(dir / "manifest.json")) return std::nullopt;
+  return LoadDataset(dir);
+}
+
+// One descriptor trained and evaluated on every trial.
+struct DescriptorRun {
+  std::vector<Evaluation> trials;
+  Evaluation pooled;
+  double train_wall_s = 0;
 };
 
-Split FrameSplit(const Dataset& d) {
-  Split s;
-  for (size_t i = 0; i < d.samples.size(); ++i) (d.samples[i].frame % 4 == 3 ? s.test : s.train).push_back(static_cast<int>(i));
-  s.description = {{"test", "every fourth view (frame % 4 == 3) of every turntable sequence"}};
-  return s;
-}
-
-Split UnseenInstanceSplit(const Dataset& d, uint64_t seed) {
-  std::map<std::string, std::set<std::string>> instances;
-  for (const auto& sample : d.samples) instances[sample.category].insert(sample.instance);
-  std::mt19937_64 rng = EpisodeRng(seed, 0x5911);
-  std::set<std::string> held_out;
-  nlohmann::json test_instances = nlohmann::json::object();
-  for (const auto& [category, names] : instances) {
-    if (names.size() < 2) throw std::invalid_argument("unseen-instance split: category '" + category + "' has one instance");
-    std::vector<std::string> v(names.begin(), names.end());
-    const std::string pick = v[std::uniform_int_distribution<size_t>(0, v.size() - 1)(rng)];
-    held_out.insert(pick);
-    test_instances[category] = pick;
-  }
-  Split s;
-  for (size_t i = 0; i < d.samples.size(); ++i) {
-    (held_out.count(d.samples[i].instance) ? s.test : s.train).push_back(static_cast<int>(i));
-  }
-  s.request.group_by = Grouping::kInstance;
-  s.description = {{"test_instances", test_instances}};
-  return s;
-}
-
-Split SequenceSplit(const Dataset& d, uint64_t seed) {
-  // Sequences: (instance, elevation, third of the revolution); nine per instance.
-  std::map<std::string, std::set<std::pair<double, int>>> sequences;
-  auto part = [&](const Sample& s) { return 3 * s.frame / std::max(1, d.views); };
-  for (const auto& s : d.samples) {
-    if (s.category == "apple" || s.category == "orange") sequences[s.instance].insert({s.elevation_deg, part(s)});
-  }
-  std::mt19937_64 rng = EpisodeRng(seed, 0x5e9);
-  std::map<std::string, std::set<std::pair<double, int>>> test;
-  nlohmann::json chosen = nlohmann::json::object();
-  for (const auto& [instance, seqs] : sequences) {
-    std::vector<std::pair<double, int>> v(seqs.begin(), seqs.end());
-    std::shuffle(v.begin(), v.end(), rng);
-    for (size_t k = 0; k < std::min<size_t>(2, v.size()); ++k) {
-      test[instance].insert(v[k]);
-      chosen[instance].push_back({{"elevation_deg", v[k].first}, {"part", v[k].second}});
+DescriptorRun RunDescriptor(DescriptorKind kind, const Dataset& train_data, const Dataset& test_data,
+                            const std::vector<Trial>& trials, const std::filesystem::path& out, Progress& progress) {
+  std::vector<Evaluation> evaluations;
+  double train_wall_s = 0;
+  for (const Trial& trial : trials) {
+    TrainRequest request = trial.request;
+    request.descriptor = kind;
+    const auto train_start = WallClock::now();
+    const perception::RecognitionModel model = TrainModel(train_data, trial.train, request);
+    train_wall_s += SecondsSince(train_start);
+    // One model per descriptor where there is one trial; a trial's model has not seen some instances,
+    // so those of several trials are not kept.
+    if (trials.size() == 1) {
+      perception::SaveModel(out / "models" / (perception::DescriptorName(kind) + ".model.json"), model);
     }
+    evaluations.push_back(EvaluateModel(model, test_data, trial.test, "experiment data"));
+    progress.Advance();
   }
-  Split s;
-  for (size_t i = 0; i < d.samples.size(); ++i) {
-    const Sample& x = d.samples[i];
-    if (!sequences.count(x.instance)) continue;
-    (test[x.instance].count({x.elevation_deg, part(x)}) ? s.test : s.train).push_back(static_cast<int>(i));
+  Evaluation pooled = PoolEvaluations(evaluations);
+  return {std::move(evaluations), std::move(pooled), train_wall_s};
+}
+
+// results.json's entry for one descriptor. Several trials: "macro_f1" is their mean, beside its
+// spread and each trial's; the other figures are of the pooled confusion matrix.
+nlohmann::json DescriptorJson(const DescriptorRun& run) {
+  nlohmann::json j = EvaluationJson(run.pooled);
+  j["train_wall_s"] = run.train_wall_s;
+  if (run.trials.size() < 2) return j;
+  std::vector<double> f1;
+  nlohmann::json trials = nlohmann::json::array();
+  for (const Evaluation& e : run.trials) {
+    f1.push_back(e.metrics.macro_f1);
+    trials.push_back({{"macro_f1", e.metrics.macro_f1}, {"accuracy", e.metrics.accuracy},
+                      {"svm", {{"C", e.C}, {"gamma", e.gamma}, {"cv_accuracy", e.cv_accuracy}}}});
   }
-  s.request.label_kind = perception::LabelKind::kInstance;
-  s.description = {{"test_sequences", chosen}, {"sequences_per_instance", 9}};
-  return s;
+  const double mean = std::accumulate(f1.begin(), f1.end(), 0.0) / f1.size();
+  double variance = 0;
+  for (double x : f1) variance += (x - mean) * (x - mean) / (f1.size() - 1);
+  j["macro_f1_pooled"] = j["macro_f1"];
+  j["macro_f1"] = mean;
+  j["macro_f1_std"] = std::sqrt(variance);
+  j["macro_f1_min"] = *std::min_element(f1.begin(), f1.end());
+  j["macro_f1_max"] = *std::max_element(f1.begin(), f1.end());
+  j["trials"] = trials;
+  return j;
+}
+
+// The table of trials: what each held out and each descriptor's macro F1; mean, spread and range.
+std::string TrialTable(const std::vector<Trial>& trials, const std::vector<DescriptorRun>& runs) {
+  std::string table = "### Trials: one instance of every category held out in each\n\n| trial | held out |";
+  std::string rule = "|---|---|";
+  for (const auto& run : runs) {
+    table += " " + perception::DescriptorTitle(run.pooled.descriptor) + " macro F1 |";
+    rule += "---:|";
+  }
+  table += "\n" + rule + "\n";
+  for (size_t t = 0; t < trials.size(); ++t) {
+    std::string held_out;
+    for (const auto& [category, instance] : trials[t].description["test_instances"].items()) {
+      held_out += (held_out.empty() ? "" : ", ") + instance.get<std::string>();
+    }
+    table += fmt::format("| {} | {} |", t + 1, held_out);
+    for (const auto& run : runs) table += fmt::format(" {:.4f} |", run.trials[t].metrics.macro_f1);
+    table += "\n";
+  }
+  table += "| **mean ± std** | |";
+  for (const auto& run : runs) {
+    const nlohmann::json j = DescriptorJson(run);
+    table += fmt::format(" **{:.4f}** ± {:.4f} |", j["macro_f1"].get<double>(), j["macro_f1_std"].get<double>());
+  }
+  table += "\n| min-max | |";
+  for (const auto& run : runs) {
+    const nlohmann::json j = DescriptorJson(run);
+    table += fmt::format(" {:.4f}-{:.4f} |", j["macro_f1_min"].get<double>(), j["macro_f1_max"].get<double>());
+  }
+  return table + "\n\nThe tables below pool the trials' test views into one confusion matrix.\n";
 }
 
 }  // namespace
@@ -122,6 +161,14 @@ nlohmann::json RunExperiment(const ExperimentOptions& options, const std::vector
   }
   if (options.number != 1 && options.split != ExperimentSplit::kPaper) {
     throw std::invalid_argument("--split: experiment " + std::to_string(options.number) + " has only the paper split");
+  }
+  if (options.trials != 0 && options.split != ExperimentSplit::kUnseenInstance) {
+    throw std::invalid_argument("--trials: only the unseen-instance split has trials");
+  }
+  const std::optional<Dataset> given = GivenDataset(options.data);
+  if (given && options.number == 3) {
+    throw std::invalid_argument("--data '" + options.data.string() +
+                                "' holds one dataset; experiment 3 needs a folder for its turntable and scene datasets");
   }
   const auto start = WallClock::now();
   PrepareOutputDir(options.out);
@@ -139,12 +186,16 @@ nlohmann::json RunExperiment(const ExperimentOptions& options, const std::vector
   };
 
   Dataset train_data, scene_data;
-  Split split;
+  std::vector<Trial> trials;
   if (options.number == 1 || options.number == 2) {
-    train_data = turntable(Set("produce"));
-    split = options.number == 2 ? SequenceSplit(train_data, options.seed)
-            : options.split == ExperimentSplit::kPaper ? FrameSplit(train_data)
-                                                       : UnseenInstanceSplit(train_data, options.seed);
+    train_data = given ? *given : turntable(Set("produce"));
+    if (options.number == 2) {
+      trials = {SequenceSplit(train_data, options.seed)};
+    } else if (options.split == ExperimentSplit::kPaper) {
+      trials = {FrameSplit(train_data)};
+    } else {
+      trials = LeaveOneInstanceOutTrials(train_data, options.trials, options.seed);
+    }
   } else {
     const ObjectSet paper = Set("paper");
     train_data = turntable(paper);
@@ -155,38 +206,37 @@ nlohmann::json RunExperiment(const ExperimentOptions& options, const std::vector
                                   s.seed = options.seed;
                                   return CaptureScenes(paper, s, dir);
                                 });
-    for (size_t i = 0; i < train_data.samples.size(); ++i) split.train.push_back(static_cast<int>(i));
-    for (size_t i = 0; i < scene_data.samples.size(); ++i) split.test.push_back(static_cast<int>(i));
-    split.description = {{"train", "turntable views of the six paper objects"},
-                         {"test", "objects segmented from " + std::to_string(options.scenes) + " random cell scenes"},
-                         {"scene_capture", scene_data.capture}};
+    trials = {SceneTrial(train_data, scene_data, options.scenes)};
   }
   const Dataset& test_data = options.number == 3 ? scene_data : train_data;
 
   std::filesystem::create_directories(options.out / "models");
-  std::vector<Evaluation> evaluations;
+  std::vector<DescriptorRun> runs;
   nlohmann::json descriptors = nlohmann::json::object();
-  Progress progress("experiment " + std::to_string(options.number) + " training", 3);
+  Progress progress("experiment " + std::to_string(options.number) + " training", 3 * static_cast<int>(trials.size()));
   for (DescriptorKind kind : {DescriptorKind::kCvfh, DescriptorKind::kColorCvfh, DescriptorKind::kColorCvfhNorm}) {
-    TrainRequest request = split.request;
-    request.descriptor = kind;
-    const auto train_start = WallClock::now();
-    const perception::RecognitionModel model = TrainModel(train_data, split.train, request);
-    const double train_s = SecondsSince(train_start);
-    perception::SaveModel(options.out / "models" / (perception::DescriptorName(kind) + ".model.json"), model);
-    evaluations.push_back(EvaluateModel(model, test_data, split.test, "experiment data"));
-    descriptors[perception::DescriptorName(kind)] = EvaluationJson(evaluations.back());
-    descriptors[perception::DescriptorName(kind)]["train_wall_s"] = train_s;
-    progress.Advance();
+    runs.push_back(RunDescriptor(kind, train_data, test_data, trials, options.out, progress));
+    descriptors[perception::DescriptorName(kind)] = DescriptorJson(runs.back());
   }
   progress.Finish();
-  const std::string title = fmt::format("Experiment {} (split {}, {} views per revolution, seed {})", options.number,
-                                        ToString(options.split), options.views, options.seed);
-  WriteRecognitionReport(options.out, title, evaluations);
+  std::vector<Evaluation> pooled;
+  for (const auto& run : runs) pooled.push_back(run.pooled);
+  const std::string title = fmt::format("Experiment {} (split {}, {} views per revolution, seed {}{})", options.number,
+                                        ToString(options.split), given ? given->views : options.views, options.seed,
+                                        trials.size() > 1 ? fmt::format(", {} trials", trials.size()) : "");
+  WriteRecognitionReport(options.out, title, pooled, trials.size() > 1 ? TrialTable(trials, runs) : "");
+  nlohmann::json split_detail = trials.front().description;
+  if (trials.size() > 1) {
+    split_detail = nlohmann::json::array();
+    for (const Trial& t : trials) split_detail.push_back(t.description);
+  }
+  // Samples per trial (the first's: the trials differ by a few views).
   nlohmann::json results = {{"experiment", options.number}, {"split", ToString(options.split)},
-                            {"views", options.views}, {"seed", options.seed}, {"train_samples", split.train.size()},
-                            {"test_samples", split.test.size()}, {"split_detail", split.description},
+                            {"views", given ? given->views : options.views}, {"seed", options.seed},
+                            {"trials", trials.size()}, {"train_samples", trials.front().train.size()},
+                            {"test_samples", trials.front().test.size()}, {"split_detail", split_detail},
                             {"descriptors", descriptors}};
+  if (given) results["data"] = options.data.string();
   WriteJson(options.out / "results.json", results);
   WriteJson(options.out / "run.json", RunRecord(command_line, options.seed, {{"command", "experiment"},
                                                                           {"experiment_wall_s", SecondsSince(start)}}));
@@ -204,6 +254,10 @@ void AddExperimentCommand(CLI::App& app, std::function<int()>& run, const std::v
       "Color-CVFH (normalization), and writes tables.md, metrics.csv, confusion_*.csv/.png, results.json, models/.");
   cmd->add_option("experiment", o->number, "1, 2 or 3")->required()->check(CLI::IsMember({1, 2, 3}));
   cmd->add_option("--split", *split, "paper | unseen-instance (experiment 1 only)")->capture_default_str();
+  cmd->add_option("--trials", o->trials,
+                  "unseen-instance: trials, each holding out one instance per category (default 0: until every "
+                  "instance has been held out once)")
+      ->check(CLI::Range(0, 1000));
   cmd->add_option("--views", o->views, "Turntable views per revolution and elevation")
       ->check(CLI::Range(3, 3600))->capture_default_str();
   cmd->add_option("--scenes", o->scenes, "Experiment 3: random cell scenes to test on")
@@ -212,7 +266,8 @@ void AddExperimentCommand(CLI::App& app, std::function<int()>& run, const std::v
   cmd->add_option("--out", o->out, "Output folder (created if missing)")->required();
   cmd->add_option("--data", o->data,
                   "Folder of the captured datasets, reused when they match (default DIR/data); experiments 1 "
-                  "and 2 share the produce turntable data");
+                  "and 2 share the produce turntable data. A folder holding one dataset (manifest.json, e.g. "
+                  "from `dataset --from-rgbd-objects`): experiments 1 and 2 run on it instead");
   cmd->callback([&run, o, split, command_line] {
     run = [o, split, command_line] {
       o->split = ParseOption("--split", *split, ParseExperimentSplit);

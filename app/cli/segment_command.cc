@@ -6,6 +6,7 @@
 #include <chrono>
 #include <iostream>
 
+#include "app/cli/classify_command.h"
 #include "app/common/camera_file.h"
 #include "app/common/output_dir.h"
 #include "perception/pcd_io.h"
@@ -17,6 +18,21 @@ namespace {
 
 nlohmann::json Vec(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
 
+// Classifies one segment into its segments.json entry; returns what the overlay shows. A segment too
+// small to describe (a fragment) gets a null category and the reason.
+std::string Recognise(const perception::RecognitionModel& model, const perception::Segment& segment,
+                      double reject_below, nlohmann::json& entry) {
+  try {
+    const nlohmann::json r = ClassifyObject(model, *segment.cloud_C, reject_below, 3, "segment");
+    for (const char* key : {"category", "confidence", "rejected", "top"}) entry[key] = r[key];
+    return fmt::format("{} {:.2f}", r["category"].get<std::string>(), r["confidence"].get<double>());
+  } catch (const std::invalid_argument& e) {
+    entry["category"] = nullptr;
+    entry["detail"] = e.what();
+    return "?";
+  }
+}
+
 }  // namespace
 
 int RunSegment(const SegmentOptions& options, const std::vector<std::string>& command_line) {
@@ -25,6 +41,8 @@ int RunSegment(const SegmentOptions& options, const std::vector<std::string>& co
   if (!options.camera.empty()) X_WC = LoadCameraPose(options.camera);
   perception::Cloud::Ptr background;
   if (!options.background.empty()) background = perception::LoadCloud(options.background, /*organized=*/true);
+  std::optional<perception::RecognitionModel> model;
+  if (!options.model.empty()) model = perception::LoadModel(options.model);
   PrepareOutputDir(options.out);
 
   const auto start = std::chrono::steady_clock::now();
@@ -41,6 +59,7 @@ int RunSegment(const SegmentOptions& options, const std::vector<std::string>& co
   const double wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
   nlohmann::json segments = nlohmann::json::array();
+  std::vector<std::string> labels;
   for (size_t i = 0; i < result.segments.size(); ++i) {
     const perception::Segment& s = result.segments[i];
     const std::string name = fmt::format("segment_{:02}.pcd", i);
@@ -48,13 +67,14 @@ int RunSegment(const SegmentOptions& options, const std::vector<std::string>& co
     segments.push_back({{"id", i}, {"points", s.cloud_C->size()}, {"voxels", s.voxels}, {"file", name},
                         {"centroid", Vec(s.centroid)}, {"bbox_min", Vec(s.bbox_min)}, {"bbox_max", Vec(s.bbox_max)},
                         {"principal_axis", Vec(s.principal_axes.col(0))}});
+    if (model) labels.push_back(fmt::format("{} {}", i, Recognise(*model, s, options.reject_below, segments.back())));
   }
   const Eigen::Vector4d& plane = result.plane_C;
   WriteJson(options.out / "segments.json",
             {{"frame", result.world_frame ? "world" : "camera"},
              {"plane_camera_frame", {plane[0], plane[1], plane[2], plane[3]}},
              {"segments", segments}});
-  const cv::Mat overlay = perception::SegmentOverlay(*cloud, result.segments);
+  const cv::Mat overlay = perception::SegmentOverlay(*cloud, result.segments, labels);
   if (!cv::imwrite((options.out / "overlay.png").string(), overlay)) {
     throw std::runtime_error("cannot write '" + (options.out / "overlay.png").string() + "'");
   }
@@ -65,6 +85,8 @@ int RunSegment(const SegmentOptions& options, const std::vector<std::string>& co
                        {"pcd", options.pcd.string()},
                        {"camera", options.camera.string()},
                        {"background", options.background.string()},
+                       {"model", options.model.string()},
+                       {"reject_below", options.reject_below},
                        {"segment_wall_s", wall_s},
                        {"stages_wall_s", {{"crop", t.crop_s}, {"plane", t.plane_s}, {"voxel", t.voxel_s},
                                           {"cluster", t.cluster_s}}}}));
@@ -83,6 +105,12 @@ void AddSegmentCommand(CLI::App& app, std::function<int()>& run, const std::vect
   cmd->add_option("--pcd", options->pcd, "Organized cloud, e.g. cloud.pcd from sortcell capture")->required();
   cmd->add_option("--camera", options->camera, "camera.json with X_WC (from sortcell capture)");
   cmd->add_option("--background", options->background, "Organized cloud of the empty scene, same camera");
+  cmd->add_option("--model", options->model,
+                  "Recognition model (sortcell train): each segment's category, confidence and top 3 in "
+                  "segments.json and on overlay.png");
+  cmd->add_option("--reject-below", options->reject_below,
+                  "With --model: a segment whose confidence is below this (0-1) is 'unknown'")
+      ->check(CLI::Range(0.0, 1.0))->capture_default_str();
   cmd->add_option("--out", options->out, "Output folder (created if missing)")->required();
   cmd->callback([&run, options, command_line] {
     run = [options, command_line] {

@@ -17,6 +17,8 @@ struct SegmentOptions {
   std::filesystem::path pcd;
   std::filesystem::path camera;      ///< camera.json; empty: camera frame, dominant plane.
   std::filesystem::path background;  ///< Organized PCD of the empty scene; empty: none.
+  std::filesystem::path model;       ///< Recognition model: every segment classified; empty: none.
+  double reject_below = 0;           ///< With a model: below this confidence a segment is "unknown".
   std::filesystem::path out;
 };
 

@@ -121,6 +121,7 @@ cell::PolicyOptions EpisodeRun::Budget() const {
   budget.max_attempts_per_position = options_.max_attempts_per_object;
   budget.max_attempts = (options_.max_attempts_per_object + 1) * objects;
   budget.time_limit_s = options_.time_limit_s > 0 ? options_.time_limit_s : 60.0 + 45.0 * objects;
+  budget.reject_below = options_.reject_below;
   return budget;
 }
 

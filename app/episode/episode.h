@@ -39,6 +39,7 @@ struct EpisodeOptions {
   // The policy's budget.
   int max_attempts_per_object = 3;  ///< Grasp attempts at one position before it is given up.
   double time_limit_s = 0;          ///< Simulated seconds of sorting (0: 60 + 45 per object placed).
+  double reject_below = 0;          ///< Objects recognised less surely go to the 'others' bin (0: none).
 };
 
 /// Runs the episode and writes metrics.json and run.json (and the video) into options.out.

@@ -124,9 +124,11 @@ std::string SvmTable(const std::vector<Evaluation>& evaluations) {
   out << "| descriptor | train | test | SVM C | SVM gamma | grouped-CV accuracy | mean confidence |\n"
          "|---|---:|---:|---:|---:|---:|---:|\n";
   for (const auto& e : evaluations) {
+    const std::string C = e.trials > 1 ? "per trial" : fmt::format("{:g}", e.C);
+    const std::string gamma = e.trials > 1 ? "per trial" : fmt::format("{:g}", e.gamma);
     out << "| " << perception::DescriptorTitle(e.descriptor) << " | " << e.train_samples << " | " << e.test_samples
-        << " | " << e.C << " | " << e.gamma << " | " << Percent(e.cv_accuracy) << " | "
-        << Fixed(e.mean_confidence, 3) << " |\n";
+        << " | " << C << " | " << gamma << " | " << Percent(e.cv_accuracy) << " | " << Fixed(e.mean_confidence, 3)
+        << " |\n";
   }
   return out.str();
 }
@@ -269,6 +271,36 @@ Evaluation EvaluateModel(const perception::RecognitionModel& model, const Datase
   return e;
 }
 
+Evaluation PoolEvaluations(const std::vector<Evaluation>& trials) {
+  if (trials.empty()) throw std::invalid_argument("PoolEvaluations: no evaluations");
+  std::vector<std::string> classes;
+  for (const Evaluation& e : trials) {
+    if (e.descriptor != trials.front().descriptor) throw std::invalid_argument("PoolEvaluations: mixed descriptors");
+    for (const auto& name : e.confusion.classes()) {
+      if (ClassIndex(classes, name) < 0) classes.push_back(name);
+    }
+  }
+  const Evaluation& first = trials.front();
+  Evaluation pooled{first.descriptor, perception::ConfusionMatrix(classes), {}, first.C, first.gamma, 0, 0, 0, 0,
+                    static_cast<int>(trials.size())};
+  for (const Evaluation& e : trials) {
+    const auto& names = e.confusion.classes();
+    for (size_t r = 0; r < names.size(); ++r) {
+      for (size_t c = 0; c < names.size(); ++c) {
+        const int count = e.confusion.counts()(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(c));
+        if (count > 0) pooled.confusion.Add(ClassIndex(classes, names[r]), ClassIndex(classes, names[c]), count);
+      }
+    }
+    pooled.cv_accuracy += e.cv_accuracy / trials.size();
+    pooled.train_samples += e.train_samples;
+    pooled.test_samples += e.test_samples;
+    pooled.mean_confidence += e.mean_confidence * e.test_samples;
+  }
+  if (pooled.test_samples > 0) pooled.mean_confidence /= pooled.test_samples;
+  pooled.metrics = perception::ComputeMetrics(pooled.confusion);
+  return pooled;
+}
+
 nlohmann::json EvaluationJson(const Evaluation& e) {
   const auto& classes = e.confusion.classes();
   nlohmann::json per_class = nlohmann::json::object();
@@ -298,9 +330,10 @@ nlohmann::json EvaluationJson(const Evaluation& e) {
 }
 
 std::string WriteRecognitionReport(const std::filesystem::path& dir, const std::string& title,
-                                   const std::vector<Evaluation>& evaluations) {
+                                   const std::vector<Evaluation>& evaluations, const std::string& preface) {
   if (evaluations.empty()) return "";
-  std::string markdown = "## " + title + "\n\n" + PerClassTable(evaluations) + "\n" + SvmTable(evaluations);
+  std::string markdown = "## " + title + "\n\n" + (preface.empty() ? "" : preface + "\n") +
+                         PerClassTable(evaluations) + "\n" + SvmTable(evaluations);
   std::string metrics_csv = "descriptor,class,recall,precision,accuracy,f1,tp,fp,fn,tn\n";
   for (const auto& e : evaluations) {
     const std::string name = perception::DescriptorName(e.descriptor);

@@ -54,9 +54,10 @@ struct Evaluation {
   perception::DescriptorKind descriptor;
   perception::ConfusionMatrix confusion;
   perception::RecognitionMetrics metrics;
-  double C = 0, gamma = 0, cv_accuracy = 0;
-  int train_samples = 0, test_samples = 0;
+  double C = 0, gamma = 0, cv_accuracy = 0;  ///< Pooled over trials: C and gamma of the first, mean CV accuracy.
+  int train_samples = 0, test_samples = 0;   ///< Pooled: summed over the trials.
   double mean_confidence = 0;
+  int trials = 1;  ///< How many evaluations were pooled into this one.
 };
 
 /// Classifies the samples `rows` of `dataset` (all when empty).
@@ -66,6 +67,11 @@ struct Evaluation {
 Evaluation EvaluateModel(const perception::RecognitionModel& model, const Dataset& dataset, std::vector<int> rows,
                          const std::string& dataset_name);
 
+/// The evaluations of one descriptor on several trials as one: confusion counts summed (classes matched
+/// by name, in the order of their first appearance), metrics of the sum.
+/// @throws std::invalid_argument for none, or evaluations of different descriptors.
+Evaluation PoolEvaluations(const std::vector<Evaluation>& trials);
+
 /// {"macro_f1", "accuracy", "macro_recall", "macro_precision", "macro_accuracy", "per_class": {name:
 /// {recall, precision, accuracy, f1}}, "confusion": {"classes", "counts", "percent"}, "svm": {...}}.
 nlohmann::json EvaluationJson(const Evaluation& e);
@@ -73,9 +79,9 @@ nlohmann::json EvaluationJson(const Evaluation& e);
 /// Writes, for the evaluations side by side: tables.md (per class recall, precision, accuracy, F1 per
 /// descriptor; confusion matrices in percent; macro averages), metrics.csv, and per descriptor
 /// confusion_<name>.csv and confusion_<name>.png (heat map). Returns the Markdown. CSV fields are
-/// quoted as RFC 4180 says (a class name may hold a comma).
+/// quoted as RFC 4180 says (a class name may hold a comma). `preface` (Markdown) follows the title.
 /// @throws std::runtime_error naming the file if one cannot be written (e.g. a full disk).
 std::string WriteRecognitionReport(const std::filesystem::path& dir, const std::string& title,
-                                   const std::vector<Evaluation>& evaluations);
+                                   const std::vector<Evaluation>& evaluations, const std::string& preface = "");
 
 }  // namespace sortcell::app

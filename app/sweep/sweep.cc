@@ -178,7 +178,8 @@ std::vector<std::string> EpisodeArguments(const SweepSetup& s, const Worker& w) 
                                 "--model",       w.axes.contains("model") ? w.axes["model"].get<std::string>() : s.model.string()};
   static const std::map<std::string, std::string> kAxisOptions{
       {"light_intensity", "--light-intensity"}, {"noise_scale", "--noise-scale"},   {"friction_scale", "--friction-scale"},
-      {"mass_scale", "--mass-scale"},           {"camera_shift_m", "--camera-shift"}, {"camera_turn_rad", "--camera-turn"}};
+      {"mass_scale", "--mass-scale"},           {"camera_shift_m", "--camera-shift"}, {"camera_turn_rad", "--camera-turn"},
+      {"reject_below", "--reject-below"}};
   for (const auto& [axis, value] : w.axes.items()) {
     if (axis == "objects") args.insert(args.end(), {"--objects", std::to_string(value.get<int>())});
     const auto option = kAxisOptions.find(axis);

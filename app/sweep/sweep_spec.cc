@@ -190,7 +190,8 @@ void ReadAxes(const SpecReader& r, const YAML::Node& root, SweepSpec& spec) {
 
 const std::vector<std::string>& SweepAxisNames() {
   static const std::vector<std::string> names{"objects",     "light_intensity", "camera_shift_m", "camera_turn_rad",
-                                               "noise_scale", "friction_scale",  "mass_scale",     "model"};
+                                               "noise_scale", "friction_scale",  "mass_scale",     "model",
+                                               "reject_below"};
   return names;
 }
 

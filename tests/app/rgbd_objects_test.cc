@@ -108,10 +108,10 @@ TEST(RgbdObjects, BadFilesAreNamed) {
   EXPECT_THROW(app::FindRgbdObjectsViews(root / "nowhere"), std::invalid_argument);
 }
 
-// Two categories, two instances each, in the dataset's layout; one view damaged.
-fs::path WriteSmallDataset(const std::string& name) {
+// Two categories, `instances` each, in the dataset's layout; one view damaged.
+fs::path WriteSmallDataset(const std::string& name, int instances = 2) {
   const fs::path root = fs::path(sortcell_test::TestTempDir()) / name;
-  for (int instance = 1; instance <= 2; ++instance) {
+  for (int instance = 1; instance <= instances; ++instance) {
     for (int frame = 1; frame <= 8; ++frame) {
       const double scale = 1 + 0.1 * instance + 0.01 * frame;
       const std::string ball = "ball_" + std::to_string(instance), can = "can_" + std::to_string(instance);
@@ -161,6 +161,37 @@ TEST(RgbdObjects, TheCommandRefusesAMixOfSourcesAndAnEmptyFolder) {
   EXPECT_EQ(sortcell_test::RunSortcell("dataset --from-rgbd-objects " + empty.string() + " --views 5 --out " + out)
                 .exit_code, 2);
   sortcell_test::ExpectOneLineError(sortcell_test::RunSortcell("dataset --out " + out), "--from-rgbd-objects DIR");
+}
+
+TEST(RgbdObjects, ExperimentOneRunsOnAnImportedDataset) {
+  const fs::path root = WriteSmallDataset("rgbd_three", 3);
+  const fs::path out = fs::path(sortcell_test::TestTempDir()) / "rgbd_three_out";
+  ASSERT_EQ(sortcell_test::RunSortcell("dataset --from-rgbd-objects " + root.string() + " --out " +
+                                       (out / "data").string()).exit_code, 0);
+  const std::string data = " --data " + (out / "data").string();
+  const auto unseen = sortcell_test::RunSortcell("experiment 1 --split unseen-instance" + data + " --out " +
+                                                 (out / "unseen").string());
+  ASSERT_EQ(unseen.exit_code, 0) << unseen.err;
+  const nlohmann::json results = nlohmann::json::parse(std::ifstream(out / "unseen" / "results.json"));
+  EXPECT_EQ(results["trials"], 3);  // Every instance held out once.
+  EXPECT_EQ(results["split_detail"].size(), 3u);
+  const nlohmann::json& norm = results["descriptors"]["color-cvfh-norm"];
+  ASSERT_EQ(norm["trials"].size(), 3u);
+  double sum = 0;
+  for (const auto& t : norm["trials"]) sum += t["macro_f1"].get<double>();
+  EXPECT_NEAR(norm["macro_f1"].get<double>(), sum / 3, 1e-12);  // The mean over the trials.
+  EXPECT_TRUE(norm.contains("macro_f1_std"));
+  // A red ball and a green can: unseen instances of them are still told apart by colour.
+  EXPECT_GE(norm["macro_f1"].get<double>(), 0.9);
+  std::ifstream tables(out / "unseen" / "tables.md");
+  const std::string text((std::istreambuf_iterator<char>(tables)), std::istreambuf_iterator<char>());
+  EXPECT_NE(text.find("| **mean ± std** |"), std::string::npos);
+  EXPECT_EQ(sortcell_test::RunSortcell("experiment 1" + data + " --out " + (out / "paper").string()).exit_code, 0);
+  sortcell_test::ExpectOneLineError(
+      sortcell_test::RunSortcell("experiment 3" + data + " --out " + (out / "three").string()), "holds one dataset");
+  sortcell_test::ExpectOneLineError(
+      sortcell_test::RunSortcell("experiment 1 --trials 2" + data + " --out " + (out / "x").string()),
+      "--trials: only the unseen-instance split has trials");
 }
 
 // The shared real sample (one banana, 100 views), where this checkout has it beside it.

@@ -14,21 +14,23 @@ namespace sortcell_test {
 struct Result {
   int exit_code = -1;
   std::string err;
+  std::string out;
 };
 
-// Runs the binary with `args`, capturing stderr (stdout is discarded).
+// Runs the binary with `args`, capturing stderr and stdout.
 inline Result RunSortcell(const std::string& args) {
   // One file per test and call, in this process's own folder.
   static int call = 0;
-  const std::string err_file = TestTempDir() + "sortcell_stderr_" +
-                               ::testing::UnitTest::GetInstance()->current_test_info()->name() + "_" +
-                               std::to_string(++call) + ".txt";
-  const std::string command = std::string(SORTCELL_BINARY) + " " + args + " > /dev/null 2> " + err_file;
+  const std::string stem = TestTempDir() + "sortcell_" + ::testing::UnitTest::GetInstance()->current_test_info()->name() +
+                           "_" + std::to_string(++call);
+  const std::string command =
+      std::string(SORTCELL_BINARY) + " " + args + " > " + stem + "_stdout.txt 2> " + stem + "_stderr.txt";
   const int status = std::system(command.c_str());
   Result r;
   r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  std::ifstream in(err_file);
-  r.err.assign(std::istreambuf_iterator<char>(in), {});
+  std::ifstream err(stem + "_stderr.txt"), out(stem + "_stdout.txt");
+  r.err.assign(std::istreambuf_iterator<char>(err), {});
+  r.out.assign(std::istreambuf_iterator<char>(out), {});
   return r;
 }
 

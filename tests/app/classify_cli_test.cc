@@ -1,0 +1,110 @@
+// Recognition on the command line: `segment --model` names every segment of a capture, `classify`
+// names one segment's cloud (the same answer), `--reject-below` calls the unsure 'unknown' (and the
+// episode sorts them into 'others'). The model comes from the CTest fixture episode_model.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "run_sortcell.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using sortcell_test::ExpectOneLineError;
+using sortcell_test::RunSortcell;
+
+const std::string kSource = SORTCELL_SOURCE_DIR;
+const std::string kModel = SORTCELL_TEST_MODEL;
+
+std::string Temp(const std::string& name) { return sortcell_test::TestTempDir() + "classify_cli_" + name; }
+
+nlohmann::json ReadJson(const fs::path& file) {
+  std::ifstream in(file);
+  if (!in) return {};
+  return nlohmann::json::parse(in);
+}
+
+// A capture of the default cell (six paper objects), segmented with the model.
+fs::path SegmentedCapture() {
+  const fs::path capture = Temp("capture"), segmented = Temp("segmented");
+  if (fs::exists(segmented / "segments.json")) return segmented;
+  EXPECT_EQ(RunSortcell("capture --scene " + kSource + "/scenes/cell.xml --out " + capture.string()).exit_code, 0);
+  const auto r = RunSortcell("segment --pcd " + (capture / "cloud.pcd").string() + " --camera " +
+                             (capture / "camera.json").string() + " --model " + kModel + " --out " + segmented.string());
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  return segmented;
+}
+
+TEST(ClassifyCli, SegmentAndClassifyNameTheSameCategory) {
+  ASSERT_TRUE(fs::exists(kModel)) << "no test model at " << kModel << ": run through ctest (fixture episode_model)";
+  const fs::path segmented = SegmentedCapture();
+  const nlohmann::json segments = ReadJson(segmented / "segments.json")["segments"];
+  ASSERT_EQ(segments.size(), 6u);
+  std::multiset<std::string> categories;
+  for (const auto& s : segments) {
+    ASSERT_TRUE(s["category"].is_string()) << s.dump();
+    categories.insert(s["category"].get<std::string>());
+    const auto r = RunSortcell("classify --pcd " + (segmented / s["file"].get<std::string>()).string() + " --model " + kModel);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const nlohmann::json c = nlohmann::json::parse(r.out);
+    EXPECT_EQ(c["category"], s["category"]);
+    EXPECT_DOUBLE_EQ(c["confidence"].get<double>(), s["confidence"].get<double>());
+    ASSERT_EQ(c["top"].size(), 3u);
+    EXPECT_EQ(c["top"][0]["name"], c["category"]);
+    EXPECT_GE(c["top"][0]["probability"].get<double>(), c["top"][1]["probability"].get<double>());
+    EXPECT_GE(c["top"][1]["probability"].get<double>(), c["top"][2]["probability"].get<double>());
+  }
+  // The default cell: two bottles of the others bin, one bottle, a cup, a ball and a box.
+  EXPECT_EQ(categories, (std::multiset<std::string>{"ball", "bottle", "cup", "others", "others", "others"}));
+  EXPECT_TRUE(fs::exists(segmented / "overlay.png"));
+}
+
+TEST(ClassifyCli, BelowTheThresholdAnObjectIsUnknown) {
+  ASSERT_TRUE(fs::exists(kModel));
+  const fs::path segment = SegmentedCapture() / "segment_00.pcd";
+  const auto r = RunSortcell("classify --pcd " + segment.string() + " --model " + kModel + " --reject-below 1 --top 2");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json c = nlohmann::json::parse(r.out);
+  EXPECT_EQ(c["category"], "unknown");
+  EXPECT_TRUE(c["rejected"].get<bool>());
+  EXPECT_EQ(c["top"].size(), 2u);  // The best guess is still reported.
+}
+
+TEST(ClassifyCli, BadInputIsOneLineExitTwo) {
+  ASSERT_TRUE(fs::exists(kModel));
+  const fs::path segment = SegmentedCapture() / "segment_00.pcd";
+  ExpectOneLineError(RunSortcell("classify --pcd /nonexistent.pcd --model " + kModel), "/nonexistent.pcd");
+  ExpectOneLineError(RunSortcell("classify --pcd " + segment.string() + " --model /nonexistent.json"),
+                     "/nonexistent.json");
+  ExpectOneLineError(RunSortcell("classify --pcd " + segment.string() + " --model " + kModel + " --reject-below 2"),
+                     "--reject-below");
+  // Three points: nothing to describe.
+  const fs::path tiny = Temp("tiny.pcd");
+  std::ofstream(tiny) << "# .PCD v0.7\nVERSION 0.7\nFIELDS x y z rgb\nSIZE 4 4 4 4\nTYPE F F F F\nCOUNT 1 1 1 1\n"
+                         "WIDTH 3\nHEIGHT 1\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS 3\nDATA ascii\n"
+                         "0 0 1 0\n0.01 0 1 0\n0 0.01 1 0\n";
+  ExpectOneLineError(RunSortcell("classify --pcd " + tiny.string() + " --model " + kModel), "cannot be described");
+}
+
+TEST(ClassifyCli, TheEpisodeSortsUnknownObjectsIntoOthers) {
+  ASSERT_TRUE(fs::exists(kModel));
+  const std::string out = Temp("episode_reject");
+  const auto r = RunSortcell("episode --scene " + kSource + "/scenes/cell.xml --object-set " + kSource +
+                             "/scenes/objects/paper.yaml --model " + kModel + " --seed 1 --objects 2 --place "
+                             "ball=0.60,-0.12 --place cup=0.42,0.14,1.0 --reject-below 1 --out " + out);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json m = ReadJson(fs::path(out) / "metrics.json");
+  ASSERT_EQ(m["items"].size(), 2u);
+  for (const auto& item : m["items"]) EXPECT_EQ(item["outcome"], "wrong_bin") << item.dump();  // All in 'others'.
+  for (const auto& a : m["attempts"]) {
+    if (a.contains("category")) {
+      EXPECT_EQ(a["category"], "others") << a.dump();
+    }
+  }
+}
+
+}  // namespace
