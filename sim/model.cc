@@ -1,5 +1,6 @@
 #include "sim/model.h"
 
+#include <algorithm>
 #include <array>
 #include <cstring>
 #include <filesystem>
@@ -27,12 +28,45 @@ std::string OneLine(std::string text) {
   return squeezed;
 }
 
+// MuJoCo's virtual file system holding `files`; null when there are none.
+std::unique_ptr<mjVFS, void (*)(mjVFS*)> MakeVfs(const std::vector<Model::VirtualFile>& files, const std::string& name) {
+  std::unique_ptr<mjVFS, void (*)(mjVFS*)> vfs(nullptr, [](mjVFS* v) {
+    mj_deleteVFS(v);
+    delete v;
+  });
+  if (files.empty()) return vfs;
+  vfs.reset(new mjVFS);  // Large (file tables); keep it off the stack.
+  mj_defaultVFS(vfs.get());
+  for (const Model::VirtualFile& file : files) {
+    if (mj_makeEmptyFileVFS(vfs.get(), file.name.c_str(), static_cast<int>(file.text.size())) != 0) {
+      throw std::runtime_error("scene '" + name + "': cannot add '" + file.name + "' to MuJoCo's virtual files");
+    }
+    std::memcpy(vfs->filedata[mj_findFileVFS(vfs.get(), file.name.c_str())], file.text.data(), file.text.size());
+  }
+  return vfs;
+}
+
 }  // namespace
+
+std::vector<Model::VirtualFile> Model::AssetFiles(const std::filesystem::path& dir) {
+  std::vector<VirtualFile> files;
+  std::error_code ec;
+  if (!std::filesystem::is_directory(dir, ec)) return files;
+  for (const auto& entry : std::filesystem::directory_iterator(dir)) {
+    if (!entry.is_regular_file()) continue;
+    std::ifstream in(entry.path(), std::ios::binary);
+    std::string content((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    if (!in.good() && !in.eof()) throw std::runtime_error("asset '" + entry.path().string() + "': cannot be read");
+    files.push_back({entry.path().filename().string(), std::move(content)});
+  }
+  std::sort(files.begin(), files.end(), [](const VirtualFile& a, const VirtualFile& b) { return a.name < b.name; });
+  return files;
+}
 
 Model::Model(mjModel* model, std::string source, std::string warning)
     : model_(model), source_(std::move(source)), compile_warning_(std::move(warning)) {}
 
-Model Model::FromFile(const std::string& path) {
+Model Model::FromFile(const std::string& path, const std::vector<VirtualFile>& assets) {
   InstallMujocoHandlers();
   namespace fs = std::filesystem;
   std::error_code ec;
@@ -41,8 +75,9 @@ Model Model::FromFile(const std::string& path) {
     throw std::invalid_argument("scene '" + path + "': is a directory, expected an MJCF file");
   }
   if (!std::ifstream(path).good()) throw std::invalid_argument("scene '" + path + "': cannot be read");
+  const auto vfs = MakeVfs(assets, path);
   std::array<char, kErrorSize> error{};
-  mjModel* m = mj_loadXML(path.c_str(), nullptr, error.data(), kErrorSize);
+  mjModel* m = mj_loadXML(path.c_str(), vfs.get(), error.data(), kErrorSize);
   if (m == nullptr) {
     throw std::invalid_argument("scene '" + path + "': " + OneLine(error.data()));
   }
@@ -52,18 +87,9 @@ Model Model::FromFile(const std::string& path) {
 Model Model::FromVirtualFiles(const std::vector<VirtualFile>& files, const std::string& name) {
   InstallMujocoHandlers();
   if (files.empty()) throw std::invalid_argument("scene '" + name + "': no files to compile");
-  auto vfs = std::make_unique<mjVFS>();  // Large (file tables); keep it off the stack.
-  mj_defaultVFS(vfs.get());
-  for (const VirtualFile& file : files) {
-    if (mj_makeEmptyFileVFS(vfs.get(), file.name.c_str(), static_cast<int>(file.text.size())) != 0) {
-      mj_deleteVFS(vfs.get());
-      throw std::runtime_error("scene '" + name + "': cannot add '" + file.name + "' to MuJoCo's virtual files");
-    }
-    std::memcpy(vfs->filedata[mj_findFileVFS(vfs.get(), file.name.c_str())], file.text.data(), file.text.size());
-  }
+  const auto vfs = MakeVfs(files, name);
   std::array<char, kErrorSize> error{};
   mjModel* m = mj_loadXML(files.front().name.c_str(), vfs.get(), error.data(), kErrorSize);
-  mj_deleteVFS(vfs.get());
   if (m == nullptr) throw std::invalid_argument("scene '" + name + "': " + OneLine(error.data()));
   return Model(m, name, OneLine(error.data()));
 }

@@ -4,6 +4,7 @@
 
 #include <mujoco/mujoco.h>
 
+#include <filesystem>
 #include <memory>
 #include <string>
 #include <vector>
@@ -13,22 +14,31 @@ namespace sortcell::sim {
 /// A compiled MJCF model. Immutable after loading; many Data may share one Model.
 class Model {
  public:
-  /// Loads and compiles an MJCF (or URDF) file.
-  /// @throws std::invalid_argument naming the file if it is missing, unreadable or does not compile
-  ///         (with MuJoCo's message, which names the element and line).
-  static Model FromFile(const std::string& path);
-
-  /// A file held in memory: its name (no directory) and its text.
+  /// A file held in memory: its name (no directory) and its content.
   struct VirtualFile {
     std::string name;
     std::string text;
   };
-  /// Compiles files held in memory (MuJoCo's virtual file system); the first is the main file.
+
+  /// Loads and compiles an MJCF (or URDF) file. `assets` (e.g. AssetFiles of the textures folder)
+  /// are found by their file name alone, whatever folder the model names them in: MuJoCo's virtual
+  /// file system ignores folders, so an object model's texture resolves from a scene anywhere.
+  /// @throws std::invalid_argument naming the file if it is missing, unreadable or does not compile
+  ///         (with MuJoCo's message, which names the element and line).
+  static Model FromFile(const std::string& path, const std::vector<VirtualFile>& assets = {});
+
+  /// Compiles files held in memory (MuJoCo's virtual file system); the first is the main file, the
+  /// others are includes and assets (found by name, as FromFile's `assets`).
   /// Includes of other virtual files use their bare names; includes of files on disk must be
   /// absolute paths (MuJoCo 2.2 prefixes includes with the main file's directory, which is empty
   /// here). `name` names the model in error messages.
   /// @throws std::invalid_argument with `name` and MuJoCo's message if it does not compile.
   static Model FromVirtualFiles(const std::vector<VirtualFile>& files, const std::string& name);
+
+  /// Every regular file of `dir` (not its subfolders), read into memory by name; none if `dir` does
+  /// not exist.
+  /// @throws std::runtime_error naming a file that cannot be read.
+  static std::vector<VirtualFile> AssetFiles(const std::filesystem::path& dir);
 
   const mjModel* get() const { return model_.get(); }
   const mjModel* operator->() const { return model_.get(); }

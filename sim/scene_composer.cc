@@ -6,6 +6,8 @@
 namespace sortcell::sim {
 namespace {
 
+constexpr size_t kObjectsInDefaultBuffers = 12;
+
 std::string Include(const std::filesystem::path& file) {
   return "  <include file=\"" + std::filesystem::absolute(file).lexically_normal().string() + "\"/>\n";
 }
@@ -33,6 +35,12 @@ std::vector<Model::VirtualFile> ComposeCell(const std::filesystem::path& models_
   main += Include(models_dir / "ur5" / "ur5.inc.xml");
   main += Include(models_dir / "objects" / "objects.inc.xml");
   for (const auto& object : object_models) main += Include(object);
+  // MuJoCo's default buffers (100 contacts, 500 constraint rows) hold the cell with a dozen objects;
+  // a larger set (e.g. every produce instance at once) gets room for ~4 contacts of 10 rows each.
+  if (object_models.size() > kObjectsInDefaultBuffers) {
+    main += "  <size nconmax=\"" + std::to_string(100 + 4 * object_models.size()) + "\" njmax=\"" +
+            std::to_string(500 + 40 * object_models.size()) + "\"/>\n";
+  }
   if (!cameras.empty()) {
     main += "  <worldbody>\n";
     for (const auto& camera : cameras) main += CameraElement(camera);
@@ -53,7 +61,9 @@ Model LoadComposedCell(const std::filesystem::path& models_dir,
       throw std::invalid_argument(name + ": object model '" + object.string() + "' not found");
     }
   }
-  return Model::FromVirtualFiles(ComposeCell(models_dir, object_models, cameras), name);
+  std::vector<Model::VirtualFile> files = ComposeCell(models_dir, object_models, cameras);
+  for (auto& asset : Model::AssetFiles(models_dir / "objects" / "textures")) files.push_back(std::move(asset));
+  return Model::FromVirtualFiles(files, name);
 }
 
 }  // namespace sortcell::sim

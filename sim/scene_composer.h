@@ -27,7 +27,8 @@ std::vector<Model::VirtualFile> ComposeCell(const std::filesystem::path& models_
                                             const std::vector<std::filesystem::path>& object_models,
                                             const std::vector<CameraSpec>& cameras = {});
 
-/// Compiles ComposeCell(...). `name` names the scene in errors (e.g. the object set file).
+/// Compiles ComposeCell(...) with the object textures of models_dir/objects/textures (found by name).
+/// `name` names the scene in errors (e.g. the object set file).
 /// @throws std::invalid_argument naming a missing model file, or the scene with MuJoCo's message.
 Model LoadComposedCell(const std::filesystem::path& models_dir,
                        const std::vector<std::filesystem::path>& object_models, const std::string& name,

@@ -8,6 +8,7 @@
 #include <iostream>
 #include <stdexcept>
 
+#include "app/common/data_dir.h"
 #include "app/common/camera_file.h"
 #include "app/cli/cli_validators.h"
 #include "app/common/output_dir.h"
@@ -44,7 +45,7 @@ cv::Mat DepthMillimetres(const cv::Mat& depth) {
 CaptureSummary RunCapture(const CaptureOptions& options, const std::vector<std::string>& command_line) {
   const auto start = Clock::now();
   PrepareOutputDir(options.out);
-  const sim::Model model = sim::Model::FromFile(options.scene.string());
+  const sim::Model model = LoadScene(options.scene);
   sim::Data data(model);
   sim::ResetToObserve(model, data);
   mj_forward(model.get(), data.get());

@@ -3,8 +3,11 @@
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
-#include <iostream>
 #include <cmath>
+#include <fstream>
+#include <functional>
+#include <iostream>
+#include <iterator>
 #include <numeric>
 #include <optional>
 
@@ -28,10 +31,30 @@ ObjectSet Set(const std::string& name) {
   return LoadObjectSet(std::filesystem::path(DataDir()) / "scenes" / "objects" / (name + ".yaml"));
 }
 
+// A digest of what the set's objects look like: their model files and the object textures. A
+// dataset captured from other models is not reused (e.g. after models/tools/make_produce.py).
+std::string ObjectModelsDigest(const ObjectSet& set) {
+  std::string content;
+  const auto append = [&content](const std::filesystem::path& file) {
+    std::ifstream in(file, std::ios::binary);
+    content.append(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  };
+  for (const auto& object : set.objects) append(object.model);
+  const std::filesystem::path textures = std::filesystem::path(DataDir()) / "models" / "objects" / "textures";
+  if (std::filesystem::is_directory(textures)) {
+    std::vector<std::filesystem::path> files;
+    for (const auto& entry : std::filesystem::directory_iterator(textures)) files.push_back(entry.path());
+    std::sort(files.begin(), files.end());
+    for (const auto& file : files) append(file);
+  }
+  return fmt::format("{:016x}", std::hash<std::string>{}(content));
+}
+
 // The dataset in `dir` if it was made from `set` with these settings, else a fresh capture.
 template <typename Capture>
 Dataset ReuseOrCapture(const std::filesystem::path& dir, const ObjectSet& set, int views, uint64_t seed,
-                       const nlohmann::json& capture_settings, Capture capture) {
+                       nlohmann::json capture_settings, Capture capture) {
+  capture_settings["object_models"] = ObjectModelsDigest(set);
   try {
     Dataset d = LoadDataset(dir);
     if (d.object_set == set.source.string() && d.views == views && d.seed == seed &&
@@ -249,7 +272,7 @@ void AddExperimentCommand(CLI::App& app, std::function<int()>& run, const std::v
   CLI::App* cmd = app.add_subcommand(
       "experiment",
       "Run one of the paper's recognition experiments whole (section 3, Tables 1-8): 1 = category level on the "
-      "produce set, 2 = instance level on apple1-5 and orange1-4, 3 = the six paper objects tested in random cell "
+      "produce set, 2 = instance level on the apple and orange instances, 3 = the six paper objects tested in random cell "
       "scenes. Captures the data into DIR/data (reused when it matches), trains and evaluates CVFH, Color-CVFH and "
       "Color-CVFH (normalization), and writes tables.md, metrics.csv, confusion_*.csv/.png, results.json, models/.");
   cmd->add_option("experiment", o->number, "1, 2 or 3")->required()->check(CLI::IsMember({1, 2, 3}));

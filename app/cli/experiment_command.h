@@ -6,7 +6,7 @@
 ///     turntable sequence is a test view (75/25, as the paper's frame split). Split
 ///     "unseen-instance" (Lai et al. 2011): trials, each holding out one instance per category for
 ///     testing, until every instance has been held out; the mean and spread of macro F1 reported.
-///  2: instance level on apple1-5 and orange1-4: each elevation sequence cut into three contiguous
+///  2: instance level on the apple and orange instances: each elevation sequence cut into three contiguous
 ///     parts (nine per instance); two random parts per instance for testing, seven for training.
 ///  3: the real-scene experiment: trained on turntable views of the six paper objects (bottle, cup,
 ///     ball, others), tested on the objects segmented from random cell scenes.

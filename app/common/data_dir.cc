@@ -9,4 +9,9 @@ std::string DataDir() {
   return env != nullptr && *env != '\0' ? env : SORTCELL_DEFAULT_DATA_DIR;
 }
 
+sim::Model LoadScene(const std::filesystem::path& scene) {
+  return sim::Model::FromFile(scene.string(),
+                              sim::Model::AssetFiles(std::filesystem::path(DataDir()) / "models" / "objects" / "textures"));
+}
+
 }  // namespace sortcell::app

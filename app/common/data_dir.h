@@ -2,11 +2,19 @@
 /// @file
 /// Where the repository's models/ and scenes/ live at run time.
 
+#include <filesystem>
 #include <string>
+
+#include "sim/model.h"
 
 namespace sortcell::app {
 
 /// $SORTCELL_DATA_DIR, else the source tree this binary was built from.
 std::string DataDir();
+
+/// Loads a scene file with the objects' textures (models/objects/textures under DataDir()), which
+/// object models name relative to scenes/ but MuJoCo then finds from a scene in any folder.
+/// @throws std::invalid_argument as sim::Model::FromFile.
+sim::Model LoadScene(const std::filesystem::path& scene);
 
 }  // namespace sortcell::app

@@ -6,6 +6,7 @@
 #include <set>
 #include <stdexcept>
 
+#include "app/common/data_dir.h"
 #include "app/common/object_set.h"
 #include "app/common/output_dir.h"
 #include "app/common/seeding.h"
@@ -33,7 +34,7 @@ class EpisodeRun {
  public:
   EpisodeRun(const EpisodeOptions& options, const ObjectSet& set, const perception::RecognitionModel& recognizer)
       : options_(options), set_(set), recognizer_(recognizer), rng_(EpisodeRng(options.seed, 0)),
-        model_(sim::Model::FromFile(options.scene.string())) {}
+        model_(LoadScene(options.scene)) {}
 
   EpisodeMetrics Run(const std::vector<std::string>& command_line);
 

@@ -8,6 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "app/common/data_dir.h"
 #include "app/common/json_fields.h"
 #include "app/common/output_dir.h"
 #include "app/common/wall_clock.h"
@@ -129,7 +130,7 @@ nlohmann::json ResultJson(const PickOptions& options, const PickResult& result, 
 PickResult RunPick(const PickOptions& options, const std::vector<std::string>& command_line) {
   const auto wall_start = WallClock::now();
   PrepareOutputDir(options.out);
-  const sim::Model model = sim::Model::FromFile(options.scene.string());
+  const sim::Model model = LoadScene(options.scene);
   const PickTarget target = FindTarget(model, options);
   const cell::CellLayout layout = ReadCellLayout(model);
   const int tcp = model.Id(mjOBJ_SITE, "tcp");

@@ -17,6 +17,7 @@
 #include <stdexcept>
 #include <thread>
 
+#include "app/common/data_dir.h"
 #include "app/common/object_set.h"
 #include "app/common/output_dir.h"
 #include "app/common/progress.h"
@@ -313,7 +314,7 @@ SweepRun RunSweep(const SweepOptions& options, const std::vector<std::string>& c
   CheckOptions(options);
   const SweepSpec spec = LoadSweepSpec(options.spec, options.sets);
   const ObjectSet set = LoadObjectSet(spec.object_set);
-  sim::Model::FromFile(spec.scene.string());  // Fails here, once, rather than in every worker.
+  LoadScene(spec.scene);  // Fails here, once, rather than in every worker.
   PrepareOutputDir(options.out);
   const std::filesystem::path results_file = options.out / "results.jsonl";
   const std::filesystem::path spec_copy = options.out / "spec.yaml";

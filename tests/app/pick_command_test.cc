@@ -62,7 +62,7 @@ INSTANTIATE_TEST_SUITE_P(PaperSet, PaperPick,
                          [](const auto& info) { return std::string(info.param.name); });
 
 TEST(Pick, WidestProduceFitsTheStroke) {
-  const PickResult r = Pick("scenes/produce.xml", "orange2", "others");  // 80 mm
+  const PickResult r = Pick("scenes/produce.xml", "pepper5", "others");  // 85 mm
   EXPECT_EQ(r.status, "sorted");
   EXPECT_LT(r.slip_mm, 5.0);
 }

@@ -4,8 +4,10 @@
 #include <urdf_parser/urdf_parser.h>
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <set>
 #include <sstream>
 
@@ -44,6 +46,39 @@ std::string ReadText(const fs::path& file) {
   std::stringstream s;
   s << in.rdbuf();
   return s.str();
+}
+
+// Every produce instance: a textured visual mesh over a collision primitive, and instances of one
+// category differ in size and colour.
+TEST(ModelFiles, ProduceInstancesAreTexturedAndVary) {
+  const auto produce = sortcell::app::LoadObjectSet(kRoot / "scenes/objects/produce.yaml");
+  std::vector<fs::path> models;
+  for (const auto& o : produce.objects) models.push_back(o.model);
+  const Model scene = sortcell::sim::LoadComposedCell(kRoot / "models", models, "produce");
+  std::map<std::string, std::vector<double>> widths;
+  std::map<std::string, std::set<std::vector<unsigned char>>> first_texels;
+  for (const auto& o : produce.objects) {
+    SCOPED_TRACE(o.name);
+    const int visual = scene.Id(mjOBJ_GEOM, o.name);
+    EXPECT_EQ(scene->geom_type[visual], mjGEOM_MESH);
+    EXPECT_EQ(scene->geom_contype[visual], 0);  // Seen, not touched.
+    const int material = scene->geom_matid[visual];
+    ASSERT_GE(material, 0);
+    const int texture = scene->mat_texid[material];
+    ASSERT_GE(texture, 0);
+    EXPECT_EQ(scene->tex_type[texture], mjTEXTURE_2D);
+    const unsigned char* rgb = scene->tex_rgb + scene->tex_adr[texture];
+    first_texels[o.category].insert(std::vector<unsigned char>(rgb, rgb + 3 * 64));
+    // The collision hull: a primitive touching the world.
+    const int hull = scene.Id(mjOBJ_GEOM, o.name + "_hull");
+    EXPECT_NE(scene->geom_type[hull], mjGEOM_MESH);
+    EXPECT_NE(scene->geom_contype[hull], 0);
+    widths[o.category].push_back(2 * std::min(scene->geom_size[3 * hull], scene->geom_size[3 * hull + 1]));
+  }
+  for (const auto& [category, w] : widths) {
+    EXPECT_GE(*std::max_element(w.begin(), w.end()) / *std::min_element(w.begin(), w.end()), 1.08) << category;
+    EXPECT_EQ(first_texels[category].size(), w.size()) << category << ": two instances share a texture";
+  }
 }
 
 }  // namespace
@@ -154,9 +189,7 @@ TEST(ModelFiles, ObjectSetsComposeIntoTheCell) {
   EXPECT_EQ(produce.Categories().size(), 10u);
   std::map<std::string, int> instances;
   for (const auto& o : produce.objects) ++instances[o.category];
-  EXPECT_EQ(instances["apple"], 5);
-  EXPECT_EQ(instances["orange"], 4);
-  for (const auto& [category, count] : instances) EXPECT_GE(count, 2) << category;
+  for (const auto& [category, count] : instances) EXPECT_GE(count, 6) << category;
 
   for (const auto* set : {&paper, &produce}) {
     std::vector<fs::path> models;
