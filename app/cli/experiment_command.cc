@@ -4,10 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
-#include <functional>
 #include <iostream>
-#include <iterator>
 #include <numeric>
 #include <optional>
 
@@ -31,30 +28,12 @@ ObjectSet Set(const std::string& name) {
   return LoadObjectSet(std::filesystem::path(DataDir()) / "scenes" / "objects" / (name + ".yaml"));
 }
 
-// A digest of what the set's objects look like: their model files and the object textures. A
-// dataset captured from other models is not reused (e.g. after models/tools/make_produce.py).
-std::string ObjectModelsDigest(const ObjectSet& set) {
-  std::string content;
-  const auto append = [&content](const std::filesystem::path& file) {
-    std::ifstream in(file, std::ios::binary);
-    content.append(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-  };
-  for (const auto& object : set.objects) append(object.model);
-  const std::filesystem::path textures = std::filesystem::path(DataDir()) / "models" / "objects" / "textures";
-  if (std::filesystem::is_directory(textures)) {
-    std::vector<std::filesystem::path> files;
-    for (const auto& entry : std::filesystem::directory_iterator(textures)) files.push_back(entry.path());
-    std::sort(files.begin(), files.end());
-    for (const auto& file : files) append(file);
-  }
-  return fmt::format("{:016x}", std::hash<std::string>{}(content));
-}
-
 // The dataset in `dir` if it was made from `set` with these settings, else a fresh capture.
 template <typename Capture>
 Dataset ReuseOrCapture(const std::filesystem::path& dir, const ObjectSet& set, int views, uint64_t seed,
                        nlohmann::json capture_settings, Capture capture) {
-  capture_settings["object_models"] = ObjectModelsDigest(set);
+  capture_settings["object_models"] =
+      ObjectModelsDigest(set, std::filesystem::path(DataDir()) / "models" / "objects" / "textures");
   try {
     Dataset d = LoadDataset(dir);
     if (d.object_set == set.source.string() && d.views == views && d.seed == seed &&

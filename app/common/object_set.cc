@@ -1,8 +1,14 @@
 #include "app/common/object_set.h"
 
 #include <algorithm>
+#include <fstream>
+#include <functional>
+#include <iomanip>
+#include <iterator>
 #include <set>
+#include <sstream>
 #include <stdexcept>
+#include <vector>
 
 #include "app/common/yaml_reader.h"
 
@@ -58,6 +64,25 @@ ObjectSet LoadObjectSet(const std::filesystem::path& file) {
     set.objects.push_back(std::move(spec));
   }
   return set;
+}
+
+std::string ObjectModelsDigest(const ObjectSet& set, const std::filesystem::path& texture_dir) {
+  std::string content;
+  const auto append = [&content](const std::filesystem::path& file) {
+    std::ifstream in(file, std::ios::binary);
+    content.append(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  };
+  for (const auto& object : set.objects) append(object.model);
+  std::error_code ec;
+  if (std::filesystem::is_directory(texture_dir, ec)) {
+    std::vector<std::filesystem::path> files;
+    for (const auto& entry : std::filesystem::directory_iterator(texture_dir)) files.push_back(entry.path());
+    std::sort(files.begin(), files.end());
+    for (const auto& file : files) append(file);
+  }
+  std::ostringstream hex;
+  hex << std::hex << std::setw(16) << std::setfill('0') << std::hash<std::string>{}(content);
+  return hex.str();
 }
 
 }  // namespace sortcell::app

@@ -35,4 +35,9 @@ struct ObjectSet {
 ///         unknown or missing key, a value of the wrong type, a duplicate name or a missing model file.
 ObjectSet LoadObjectSet(const std::filesystem::path& file);
 
+/// A digest of what the set's objects look like: the content of their model files and of every file
+/// in `texture_dir` (none if it does not exist). Captures record it, so data of other models is not
+/// reused. Not a cryptographic hash: it tells versions of a set apart, nothing more.
+std::string ObjectModelsDigest(const ObjectSet& set, const std::filesystem::path& texture_dir);
+
 }  // namespace sortcell::app

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <fstream>
 
 #include "temp_dir.h"
@@ -70,6 +71,23 @@ TEST(ObjectSet, RejectsWrongTypesMissingKeysDuplicatesAndMissingModels) {
 }  // namespace
 
 namespace {
+
+TEST(ObjectSet, TheModelsDigestChangesWithAModelOrATexture) {
+  const std::string dir = sortcell_test::TestTempDir() + "digest/";
+  std::filesystem::create_directories(dir + "textures");
+  std::ofstream(dir + "a.inc.xml") << "<mujoco/>";
+  std::ofstream(dir + "textures/a.png") << "png 1";
+  const auto set = LoadObjectSet(Write(
+      "digest.yaml", "name: d\nobjects:\n  - {name: a, category: c, instance: a, model: " + dir + "a.inc.xml}\n"));
+  const std::string first = sortcell::app::ObjectModelsDigest(set, dir + "textures");
+  EXPECT_EQ(sortcell::app::ObjectModelsDigest(set, dir + "textures"), first);
+  std::ofstream(dir + "textures/a.png") << "png 2";
+  const std::string second = sortcell::app::ObjectModelsDigest(set, dir + "textures");
+  EXPECT_NE(second, first);
+  std::ofstream(dir + "a.inc.xml") << "<mujoco><!-- moved --></mujoco>";
+  EXPECT_NE(sortcell::app::ObjectModelsDigest(set, dir + "textures"), second);
+  EXPECT_EQ(sortcell::app::ObjectModelsDigest(set, dir + "no_textures").size(), 16u);
+}
 
 TEST(ObjectSet, FindNamesTheSetAndTheObject) {
   const auto set = LoadObjectSet(SORTCELL_SOURCE_DIR "/scenes/objects/paper.yaml");
