@@ -2,6 +2,7 @@
 //   real-time factor of a headless episode and of one with video (same seed, so the same motions);
 //   episodes per hour of a sweep with 1 and with 2 worker processes.
 // Usage: episode_benchmark [MODEL] [SWEEP_EPISODES]   (default: the cached default model, 6 episodes)
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -70,6 +71,16 @@ int main(int argc, char** argv) {
     std::printf("  %-14s %8.2f (%4.1f %%) %8.2f (%4.1f %%)\n", stage.c_str(), seconds.get<double>(),
                 100 * seconds.get<double>() / headless["wall_time_s"].get<double>(), v,
                 100 * v / video["wall_time_s"].get<double>());
+  }
+  // Inside the physics steps (MuJoCo's stage timers) and the load they work on.
+  const auto& physics = headless["physics_profile"];
+  const double step_s = physics["step_s"].get<double>();
+  std::printf("physics steps, headless: %.0f steps, %.1f us per step, %.1f contacts and %.1f constraint rows per step\n",
+              physics["steps"].get<double>(), 1e6 * step_s / std::max(1.0, physics["steps"].get<double>()),
+              physics["contacts_per_step"].get<double>(), physics["constraint_rows_per_step"].get<double>());
+  for (const char* stage : {"collision_s", "constraint_s", "smooth_s"}) {
+    const double s = physics[stage].get<double>();
+    std::printf("  %-14s %8.2f s (%4.1f %% of the steps)\n", stage, s, 100 * s / std::max(1e-9, step_s));
   }
   std::printf("pick cycle (mean simulated s per attempt): %.2f over", headless["mean_cycle_time_s"].get<double>());
   for (const auto& [phase, seconds] : headless["cycle_phases_s"].items()) std::printf(" %s %.2f", phase.c_str(), seconds.get<double>());

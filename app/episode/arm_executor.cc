@@ -37,6 +37,9 @@ sim::StepStatus ArmExecutor::ControlStep(const robot::Joints& q_ref, const robot
     const auto start = std::chrono::steady_clock::now();
     sim::StepStatus status = sim::Step(model_, data_);
     step_wall_s_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    ++steps_;
+    contacts_sum_ += data_->ncon;
+    constraint_rows_sum_ += data_->nefc;
     if (video_) video_->Update(data_);
     if (status.code != sim::StepStatus::kOk) return status;
   }

@@ -48,6 +48,10 @@ class ArmExecutor {
   double time() const { return data_->time; }
   /// Wall time spent in physics steps so far (s), for profiles.
   double step_wall_s() const { return step_wall_s_; }
+  /// Mean contacts and constraint rows per physics step so far (what the collision and constraint
+  /// stages of a step work on), for profiles.
+  double mean_contacts() const { return steps_ > 0 ? static_cast<double>(contacts_sum_) / steps_ : 0.0; }
+  double mean_constraint_rows() const { return steps_ > 0 ? static_cast<double>(constraint_rows_sum_) / steps_ : 0.0; }
   /// Caption for the video (the current phase).
   void SetPhase(const std::string& phase);
 
@@ -65,6 +69,7 @@ class ArmExecutor {
   int substeps_;
   robot::Joints q_hold_ = robot::Joints::Zero();
   double step_wall_s_ = 0;
+  long steps_ = 0, contacts_sum_ = 0, constraint_rows_sum_ = 0;
 };
 
 }  // namespace sortcell::app

@@ -22,6 +22,7 @@
 #include "sim/ground_truth.h"
 #include "sim/kinect_camera.h"
 #include "sim/object_placement.h"
+#include "sim/physics_profile.h"
 #include "sim/point_cloud.h"
 #include "sim/video_recorder.h"
 
@@ -45,6 +46,7 @@ class EpisodeRun {
   cell::PolicyOptions Budget() const;
   EpisodeMetrics Metrics(const cell::PolicyResult& result, double wall_s) const;
   std::map<std::string, double> WallProfile(double wall_s) const;
+  std::map<std::string, double> PhysicsProfile() const;
 
   const EpisodeOptions& options_;
   const ObjectSet& set_;
@@ -78,6 +80,7 @@ void EpisodeRun::Calibrate() {
 // captured for background subtraction.
 void EpisodeRun::BuildCell() {
   sim::ApplyVariation(model_, options_.variation, rng_);
+  sim::EnablePhysicsTimers();
   data_ = std::make_unique<sim::Data>(model_);
   kinect_ = std::make_unique<sim::KinectCamera>(model_, "kinect");
   sim::Lighting lighting;
@@ -166,6 +169,18 @@ std::map<std::string, double> EpisodeRun::WallProfile(double wall_s) const {
   return profile;
 }
 
+std::map<std::string, double> EpisodeRun::PhysicsProfile() const {
+  const std::map<std::string, double> stages = sim::PhysicsStageSeconds(*data_);
+  const ArmExecutor& exec = cell_->executor();
+  return {{"collision_s", stages.at("collision")},
+          {"constraint_s", stages.at("constraint")},
+          {"smooth_s", stages.at("smooth")},
+          {"step_s", stages.at("step")},
+          {"steps", (*data_)->timer[mjTIMER_STEP].number},
+          {"contacts_per_step", exec.mean_contacts()},
+          {"constraint_rows_per_step", exec.mean_constraint_rows()}};
+}
+
 EpisodeMetrics EpisodeRun::Metrics(const cell::PolicyResult& result, double wall_s) const {
   RunFigures run;
   run.status = result.status;
@@ -180,6 +195,7 @@ EpisodeMetrics EpisodeRun::Metrics(const cell::PolicyResult& result, double wall
   for (int i = 0; i < mjNWARNING; ++i) run.mujoco_warnings += (*data_)->warning[i].number;
   run.cycle_phases_s = recorder_->CyclePhases();
   run.profile_wall_s = WallProfile(wall_s);
+  run.physics_profile = PhysicsProfile();
   run.tracking_max_error_rad = cell_->tracking().max_error;
   run.torque_saturated_samples = cell_->tracking().saturated_samples;
   run.carry_slip_max_mm = recorder_->slip().max_mm;

@@ -125,6 +125,7 @@ void to_json(nlohmann::json& j, const EpisodeSummary& v) {
        {"mujoco_warnings", v.run.mujoco_warnings},
        {"cycle_phases_s", v.run.cycle_phases_s},
        {"profile_wall_s", v.run.profile_wall_s},
+       {"physics_profile", v.run.physics_profile},
        {"tracking_max_error_rad", v.run.tracking_max_error_rad},
        {"torque_saturated_samples", v.run.torque_saturated_samples},
        {"carry_slip_max_mm", v.run.carry_slip_max_mm},
@@ -161,6 +162,7 @@ void from_json(const nlohmann::json& j, EpisodeSummary& v) {
   v.picks_per_hour = PicksPerHour(v.outcomes.at(cell::ItemOutcome::kSorted), v.run.sim_time_s);
   ReadAddedField(j, path, "cycle_phases_s", v.run.cycle_phases_s);
   ReadAddedField(j, path, "profile_wall_s", v.run.profile_wall_s);
+  ReadAddedField(j, path, "physics_profile", v.run.physics_profile);
   ReadAddedField(j, path, "tracking_max_error_rad", v.run.tracking_max_error_rad);
   ReadAddedField(j, path, "torque_saturated_samples", v.run.torque_saturated_samples);
   ReadAddedField(j, path, "carry_slip_max_mm", v.run.carry_slip_max_mm);

@@ -46,6 +46,10 @@ struct RunFigures {
   /// Where the wall time went (s): "physics" (steps), "kinect_render", "kinect_noise", "label_render",
   /// "cloud" (the organized cloud), "perception", "video" (review frames), "other" (the rest).
   std::map<std::string, double> profile_wall_s;
+  /// Inside the physics steps, from MuJoCo's stage timers (s): "collision_s", "constraint_s" (rows,
+  /// solver and noslip), "smooth_s" (the rest), "step_s" (all, settling included), and the load they work
+  /// on: "steps", "contacts_per_step", "constraint_rows_per_step" (means over the controlled steps).
+  std::map<std::string, double> physics_profile;
   double tracking_max_error_rad = 0;  ///< Largest joint tracking error of the arm's controller.
   int torque_saturated_samples = 0;   ///< Control periods with a joint torque at its limit.
   /// How far held objects moved in the gripper from the grasp closing to the bin, before the release

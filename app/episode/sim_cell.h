@@ -50,6 +50,7 @@ class SimCell : public cell::CellIo {
   double cloud_wall_s() const { return cloud_wall_s_; }
   /// Wall time of the physics steps (s).
   double step_wall_s() const { return exec_.step_wall_s(); }
+  const ArmExecutor& executor() const { return exec_; }
 
  private:
   cell::MotionResult Result(const sim::StepStatus& status) const;
