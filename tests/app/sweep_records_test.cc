@@ -142,7 +142,7 @@ TEST(SweepResults, OldResultsReadAndWriteBackTheSameKeys) {
   // Written back: the same keys and values, plus the summary figures added since.
   nlohmann::json back = r;
   for (const char* key : {"picks_per_hour", "cycle_phases_s", "tracking_max_error_rad", "torque_saturated_samples", "profile_wall_s",
-                          "carry_slip_max_mm", "carry_slip_mean_mm", "carries", "carry_turn_max_deg"}) {
+                          "physics_profile", "carry_slip_max_mm", "carry_slip_mean_mm", "carries", "carry_turn_max_deg"}) {
     ASSERT_TRUE(back["summary"].contains(key)) << key;
     back["summary"].erase(key);
   }
