@@ -32,8 +32,7 @@ ObjectSet Set(const std::string& name) {
 template <typename Capture>
 Dataset ReuseOrCapture(const std::filesystem::path& dir, const ObjectSet& set, int views, uint64_t seed,
                        nlohmann::json capture_settings, Capture capture) {
-  capture_settings["object_models"] =
-      ObjectModelsDigest(set, std::filesystem::path(DataDir()) / "models" / "objects" / "textures");
+  capture_settings["object_models"] = ObjectModelsDigest(set, ObjectTexturesDir());
   try {
     Dataset d = LoadDataset(dir);
     if (d.object_set == set.source.string() && d.views == views && d.seed == seed &&
@@ -175,7 +174,11 @@ nlohmann::json RunExperiment(const ExperimentOptions& options, const std::vector
   const auto start = WallClock::now();
   PrepareOutputDir(options.out);
   const std::filesystem::path data = options.data.empty() ? options.out / "data" : options.data;
-  const nlohmann::json turntable_settings = {{"kind", "turntable"}, {"views", options.views}};
+  // Experiment 3 tests on segments of cluttered scenes, where nearer objects hide parts of farther ones:
+  // its training views get an occluded copy each (TurntableOptions::occluded_copies).
+  const int occluded_copies = options.number == 3 ? 1 : 0;
+  nlohmann::json turntable_settings = {{"kind", "turntable"}, {"views", options.views}};
+  if (occluded_copies > 0) turntable_settings["occluded_copies"] = occluded_copies;
 
   auto turntable = [&](const ObjectSet& set) {
     return ReuseOrCapture(data / (set.name + "_turntable"), set, options.views, options.seed, turntable_settings,
@@ -183,6 +186,7 @@ nlohmann::json RunExperiment(const ExperimentOptions& options, const std::vector
                             TurntableOptions t;
                             t.views = options.views;
                             t.seed = options.seed;
+                            t.occluded_copies = occluded_copies;
                             return CaptureTurntable(set, t, dir);
                           });
   };

@@ -18,6 +18,7 @@ struct DatasetOptions {
   std::filesystem::path objects, rgbd_objects, out;
   int views = 36;
   int scenes = 0;
+  int occluded = 0;
   uint64_t seed = 0;
 };
 
@@ -74,7 +75,13 @@ void AddDatasetCommand(CLI::App& app, std::function<int()>& run, const std::vect
   CLI::Option* scenes = cmd->add_option("--scenes", o->scenes, "Random cell scenes instead of turntable views (0: turntable)")
                             ->check(CLI::Range(0, 100000))->capture_default_str();
   CLI::Option* seed = cmd->add_option("--seed", o->seed, "Seed (uint64)")->check(kUnsignedInteger)->capture_default_str();
-  for (CLI::Option* simulated : {views, scenes, seed}) rgbd->excludes(simulated);
+  CLI::Option* occluded =
+      cmd->add_option("--occluded", o->occluded,
+                      "Turntable: per view, this many more samples with 15-70 % of the object hidden beyond a "
+                      "random straight edge (as a nearer object hides it in a scene)")
+          ->check(CLI::Range(0, 10))->capture_default_str();
+  occluded->excludes(scenes);
+  for (CLI::Option* simulated : {views, scenes, seed, occluded}) rgbd->excludes(simulated);
   cmd->callback([&run, o, command_line] {
     run = [o, command_line] {
       if (!o->rgbd_objects.empty()) return ImportRgbdObjectsCommand(*o, command_line);
@@ -95,6 +102,7 @@ void AddDatasetCommand(CLI::App& app, std::function<int()>& run, const std::vect
         TurntableOptions options;
         options.views = o->views;
         options.seed = o->seed;
+        options.occluded_copies = o->occluded;
         d = CaptureTurntable(set, options, o->out);
       }
       SaveDataset(o->out, d);

@@ -9,9 +9,10 @@ std::string DataDir() {
   return env != nullptr && *env != '\0' ? env : SORTCELL_DEFAULT_DATA_DIR;
 }
 
+std::filesystem::path ObjectTexturesDir() { return std::filesystem::path(DataDir()) / "models" / "objects" / "textures"; }
+
 sim::Model LoadScene(const std::filesystem::path& scene) {
-  return sim::Model::FromFile(scene.string(),
-                              sim::Model::AssetFiles(std::filesystem::path(DataDir()) / "models" / "objects" / "textures"));
+  return sim::Model::FromFile(scene.string(), sim::Model::AssetFiles(ObjectTexturesDir()));
 }
 
 }  // namespace sortcell::app

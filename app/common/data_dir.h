@@ -12,6 +12,9 @@ namespace sortcell::app {
 /// $SORTCELL_DATA_DIR, else the source tree this binary was built from.
 std::string DataDir();
 
+/// models/objects/textures under DataDir(): the object models' texture files.
+std::filesystem::path ObjectTexturesDir();
+
 /// Loads a scene file with the objects' textures (models/objects/textures under DataDir()), which
 /// object models name relative to scenes/ but MuJoCo then finds from a scene in any folder.
 /// @throws std::invalid_argument as sim::Model::FromFile.

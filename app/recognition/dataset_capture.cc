@@ -2,6 +2,8 @@
 
 #include <spdlog/fmt/fmt.h>
 
+#include <algorithm>
+#include <cmath>
 #include <map>
 #include <memory>
 #include <numeric>
@@ -143,6 +145,32 @@ bool Describe(const LabelledSegment& l, const std::filesystem::path& dir, const 
   return true;
 }
 
+// The segment with the points beyond a random straight edge across the view dropped: a nearer object's
+// silhouette, as seen in scenes, hiding 15-70 % of the object. The edge runs in the image plane (points
+// compared by x/z, y/z along a random direction); what is kept is the near side of the edge.
+LabelledSegment OccludedCopy(const LabelledSegment& l, std::mt19937_64& rng) {
+  std::uniform_real_distribution<double> angle(0, 2 * M_PI), keep(0.30, 0.85);
+  const double a = angle(rng), fraction = keep(rng);
+  const perception::Cloud& cloud = *l.segment.cloud_C;
+  std::vector<double> along;
+  along.reserve(cloud.size());
+  for (const auto& p : cloud) along.push_back((std::cos(a) * p.x + std::sin(a) * p.y) / p.z);
+  std::vector<double> sorted = along;
+  const size_t cut = static_cast<size_t>(fraction * (sorted.size() - 1));
+  std::nth_element(sorted.begin(), sorted.begin() + cut, sorted.end());
+  const double edge = sorted[cut];
+  LabelledSegment occluded = l;
+  occluded.segment.cloud_C.reset(new perception::Cloud);
+  occluded.segment.indices.clear();
+  for (size_t i = 0; i < cloud.size(); ++i) {
+    if (along[i] > edge) continue;
+    occluded.segment.cloud_C->push_back(cloud[i]);
+    if (i < l.segment.indices.size()) occluded.segment.indices.push_back(l.segment.indices[i]);
+  }
+  occluded.iou = l.iou * static_cast<double>(occluded.segment.cloud_C->size()) / std::max<size_t>(1, cloud.size());
+  return occluded;
+}
+
 void PrepareDatasetDir(const std::filesystem::path& dir) {
   PrepareOutputDir(dir);
   std::filesystem::create_directories(dir / "clouds");
@@ -200,7 +228,16 @@ Dataset CaptureTurntable(const ObjectSet& set, const TurntableOptions& options, 
         sample.frame = view;
         std::string reason = segmentation_failure.empty() ? "no segment of the object" : segmentation_failure;
         if (best != nullptr && Describe(*best, dir, dataset.params, sample, reason)) {
-          dataset.samples.push_back(std::move(sample));
+          dataset.samples.push_back(sample);
+          for (int k = 0; k < options.occluded_copies; ++k) {
+            Sample occluded = sample;
+            occluded.id = static_cast<int>(dataset.samples.size());
+            occluded.source = "turntable_occluded";
+            std::string why;  // An occluded copy too small to describe is left out; the view is not.
+            if (Describe(OccludedCopy(*best, rng), dir, dataset.params, occluded, why)) {
+              dataset.samples.push_back(std::move(occluded));
+            }
+          }
         } else {
           skipped.push_back({{"instance", spec.instance}, {"elevation_deg", options.elevations_deg[c]},
                              {"frame", view}, {"reason", reason}});
@@ -212,7 +249,8 @@ Dataset CaptureTurntable(const ObjectSet& set, const TurntableOptions& options, 
   progress.Finish();
   dataset.capture = {{"kind", "turntable"}, {"captures", total}, {"samples", dataset.samples.size()},
                      {"skipped", skipped}, {"elevations_deg", options.elevations_deg},
-                     {"distance_m", options.distance_m}, {"jitter_m", options.jitter_m}};
+                     {"distance_m", options.distance_m}, {"jitter_m", options.jitter_m},
+                     {"occluded_copies", options.occluded_copies}};
   return dataset;
 }
 

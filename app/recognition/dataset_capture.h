@@ -31,6 +31,11 @@ struct TurntableOptions {
   double aim_height_m = 0.06;                  ///< Aim point above the centre.
   double jitter_m = 0.005;                     ///< Uniform +- position jitter.
   double yaw_jitter_rad = 0.05;                ///< Uniform +- yaw jitter on top of the view's angle.
+  /// Per view, this many more samples of the same segment with part of the object hidden, as a nearer
+  /// object hides it in a scene: the points beyond a random straight edge across the view are dropped,
+  /// keeping a random 30-85 % of them (source "turntable_occluded"; same instance, elevation and frame,
+  /// so grouped cross-validation keeps them with their view).
+  int occluded_copies = 0;
 };
 
 struct SceneOptions {

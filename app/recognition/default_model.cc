@@ -6,6 +6,9 @@
 
 #include <cstdlib>
 
+#include <fstream>
+
+#include "app/common/data_dir.h"
 #include "app/recognition/dataset_capture.h"
 #include "app/recognition/recognition.h"
 
@@ -15,6 +18,17 @@ namespace {
 
 // The scenes the default model of `set` is trained on, next to the model.
 std::filesystem::path DefaultDatasetDir(const ObjectSet& set) { return ModelCacheDir() / (set.name + "_scenes"); }
+
+// Beside the model: the digest of the object models it was trained on, so that a cached model of
+// objects that have changed since (a new texture, another shape) is trained again, not reused.
+std::filesystem::path DigestPath(const std::filesystem::path& model) { return model.string() + ".objects"; }
+
+std::string ReadDigest(const std::filesystem::path& file) {
+  std::ifstream in(file);
+  std::string digest;
+  in >> digest;
+  return digest;
+}
 
 }  // namespace
 
@@ -42,9 +56,10 @@ std::string DefaultModelHint(const ObjectSet& set) {
 
 std::filesystem::path EnsureDefaultModel(const ObjectSet& set) {
   const std::filesystem::path path = DefaultModelPath(set);
-  if (std::filesystem::exists(path)) return path;
-  spdlog::info("no trained model at {}: training one on 150 random scenes of '{}' (about 20 s)", path.string(),
-               set.name);
+  const std::string digest = ObjectModelsDigest(set, ObjectTexturesDir());
+  if (std::filesystem::exists(path) && ReadDigest(DigestPath(path)) == digest) return path;
+  spdlog::info("{} trained model at {}: training one on 150 random scenes of '{}' (about 20 s)",
+               std::filesystem::exists(path) ? "the objects have changed since the" : "no", path.string(), set.name);
   const std::filesystem::path data = DefaultDatasetDir(set);
   SceneOptions scenes;
   const Dataset dataset = CaptureScenes(set, scenes, data);
@@ -52,6 +67,8 @@ std::filesystem::path EnsureDefaultModel(const ObjectSet& set) {
   const perception::RecognitionModel model = TrainModel(dataset, {}, TrainRequest{});
   const std::filesystem::path temporary = path.string() + ".tmp" + std::to_string(::getpid());
   perception::SaveModel(temporary, model);
+  std::ofstream(temporary.string() + ".objects") << digest << "\n";
+  std::filesystem::rename(temporary.string() + ".objects", DigestPath(path));
   std::filesystem::rename(temporary, path);
   spdlog::info("trained {} (cross-validation accuracy {:.3f}) and cached it", path.string(), model.cv_accuracy);
   return path;

@@ -22,7 +22,7 @@ std::filesystem::path DefaultModelPath(const ObjectSet& set);
 /// The command that makes the default model, for error messages.
 std::string DefaultModelHint(const ObjectSet& set);
 
-/// Trains the default model of `set` if it is not there yet (150 random scenes, seed 0; about 20 s;
+/// Trains the default model of `set` if it is not there yet, or was trained on other object models (150 random scenes, seed 0; about 20 s;
 /// the scenes' dataset is kept next to it) and returns its path. Written to a temporary file and
 /// renamed, so concurrent runs never read a half-written model.
 std::filesystem::path EnsureDefaultModel(const ObjectSet& set);
