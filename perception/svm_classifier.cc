@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cstdlib>
+#include <limits>
 #include <mutex>
 #include <numeric>
 #include <random>
@@ -83,10 +84,35 @@ std::vector<int> GroupFolds(const std::vector<int>& groups, int folds) {
   return fold;
 }
 
-double CrossValidate(const NodeRows& x, const std::vector<double>& y, const std::vector<int>& fold, int folds,
-                     double C, double gamma) {
+// The true class's one-vs-one margin for one sample: the smallest decision value, signed towards the
+// true class, over the pairs it takes part in (libsvm orders pairs (i, j), i < j, by model->label).
+double TrueClassMargin(const svm_model* model, const svm_node* x, double y, std::vector<double>& decision) {
+  svm_predict_values(model, x, decision.data());
+  const int k = model->nr_class;
+  int truth = -1;
+  for (int i = 0; i < k; ++i) {
+    if (model->label[i] == static_cast<int>(y)) truth = i;
+  }
+  if (truth < 0) return -1;  // A class the fold's training part did not hold: wrong, fully.
+  double margin = std::numeric_limits<double>::infinity();
+  for (int i = 0, pair = 0; i < k; ++i) {
+    for (int j = i + 1; j < k; ++j, ++pair) {
+      if (i == truth) margin = std::min(margin, decision[pair]);
+      if (j == truth) margin = std::min(margin, -decision[pair]);
+    }
+  }
+  return margin;
+}
+
+// Grouped cross-validation of one (C, gamma): the held-out accuracy, and the held-out samples' mean
+// margin clipped at 1 (minus the hinge loss) to tell apart settings of the same accuracy: with few
+// samples many settings classify every held-out one right, and the first of them (the smallest C)
+// is the least confident.
+CvScore CrossValidate(const NodeRows& x, const std::vector<double>& y, const std::vector<int>& fold, int folds,
+                      double C, double gamma) {
   const svm_parameter param = RbfParameter(C, gamma, false);
   int correct = 0;
+  double margin_sum = 0;
   for (int f = 0; f < folds; ++f) {
     std::vector<svm_node*> train_x;
     std::vector<double> train_y;
@@ -98,12 +124,15 @@ double CrossValidate(const NodeRows& x, const std::vector<double>& y, const std:
     }
     svm_problem problem{static_cast<int>(train_y.size()), train_y.data(), train_x.data()};
     svm_model* model = svm_train(&problem, &param);
+    std::vector<double> decision(static_cast<size_t>(model->nr_class) * (model->nr_class - 1) / 2 + 1);
     for (size_t i = 0; i < y.size(); ++i) {
-      if (fold[i] == f && svm_predict(model, x.rows[i]) == y[i]) ++correct;
+      if (fold[i] != f) continue;
+      if (svm_predict(model, x.rows[i]) == y[i]) ++correct;
+      margin_sum += std::min(1.0, TrueClassMargin(model, x.rows[i], y[i], decision));
     }
     svm_free_and_destroy_model(&model);
   }
-  return static_cast<double>(correct) / y.size();
+  return {C, gamma, static_cast<double>(correct) / y.size(), margin_sum / y.size()};
 }
 
 }  // namespace
@@ -176,15 +205,18 @@ SvmClassifier SvmClassifier::Train(const Eigen::MatrixXf& samples, const std::ve
   auto worker = [&] {
     for (size_t k = next++; k < result.cv_scores_.size(); k = next++) {
       const double C = grid.C[k / grid.gamma.size()], gamma = grid.gamma[k % grid.gamma.size()];
-      result.cv_scores_[k] = {C, gamma, CrossValidate(x, y, fold, grid.folds, C, gamma)};
+      result.cv_scores_[k] = CrossValidate(x, y, fold, grid.folds, C, gamma);
     }
   };
   std::vector<std::thread> threads;
   for (int t = 1; t < std::max(1, grid.threads); ++t) threads.emplace_back(worker);
   worker();
   for (auto& thread : threads) thread.join();
+  // The best held-out accuracy; among equals, the largest held-out margin.
   const CvScore best = *std::max_element(result.cv_scores_.begin(), result.cv_scores_.end(),
-                                         [](const CvScore& a, const CvScore& b) { return a.accuracy < b.accuracy; });
+                                         [](const CvScore& a, const CvScore& b) {
+                                           return a.accuracy < b.accuracy || (a.accuracy == b.accuracy && a.margin < b.margin);
+                                         });
 
   const svm_parameter param = RbfParameter(best.C, best.gamma, true);
   svm_problem problem{static_cast<int>(n), y.data(), const_cast<svm_node**>(x.rows.data())};

@@ -6,7 +6,8 @@
 /// prediction's confidence), which cv::ml::SVM does not, and it is the SVM the paper's era used.
 /// (C, gamma) are chosen by grouped k-fold cross-validation on the training set: whole groups
 /// (instances or frame sequences) go to one fold, since neighbouring frames are near-duplicates and
-/// a random split would reward memorising.
+/// a random split would reward memorising. The best held-out accuracy wins; among settings of equal
+/// accuracy, the largest held-out margin (CvScore::margin).
 
 #include <Eigen/Core>
 
@@ -25,9 +26,12 @@ struct SvmGrid {
   int threads = 2;  ///< Grid points trained in parallel.
 };
 
-/// One grid point's grouped cross-validation accuracy.
+/// One grid point's grouped cross-validation accuracy and held-out margin.
 struct CvScore {
   double C = 0, gamma = 0, accuracy = 0;
+  /// Held-out samples' mean one-vs-one margin of their true class, clipped at 1 (1 = every one outside
+  /// the margin): the tie-break between settings of the same accuracy.
+  double margin = 0;
 };
 
 struct Prediction {

@@ -42,6 +42,7 @@ KinectFrame KinectCamera::Capture(const Data& data, const KinectNoiseParams* noi
   const cv::Mat clean = LinearizeDepth(depth_buffer, DepthRangeOf(model_));
   lap(timings_.render_s);
   frame.depth = noise != nullptr ? ApplyKinectNoise(clean, intrinsics_, *noise, *rng) : clean;
+  if (noise != nullptr) frame.rgb = ApplyKinectColour(frame.rgb, noise->colour, *rng);
   lap(timings_.noise_s);
   if (truth == nullptr) return frame;
 

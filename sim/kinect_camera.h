@@ -45,7 +45,8 @@ class KinectCamera {
   KinectCamera(const Model& model, const std::string& camera_name = "kinect", int width = 640, int height = 480);
 
   /// Renders the current state. With `noise` null the depth is ideal (NaN only where nothing was
-  /// drawn); otherwise the Kinect noise model is applied, driven by `rng`. With `truth`, the label
+  /// drawn) and the colour the clean render; otherwise the Kinect noise model is applied to the depth
+  /// and its colour model (`noise->colour`) to the colour image, driven by `rng`. With `truth`, the label
   /// image is rendered too and the camera's true pose given there.
   /// @throws std::invalid_argument if `noise` is given without `rng`.
   KinectFrame Capture(const Data& data, const KinectNoiseParams* noise, std::mt19937_64* rng,

@@ -1,13 +1,15 @@
 #pragma once
 /// @file
 /// Kinect v1 depth noise (DESIGN.md section 5): what a structured-light sensor does to an ideal
-/// planar depth image. Applied to depth only; colour is rendered clean.
+/// planar depth image. The parameters also carry the colour camera's model (sim/kinect_colour.h),
+/// which KinectCamera applies to the colour image of a noisy capture.
 
 #include <opencv2/core/mat.hpp>
 
 #include <random>
 
 #include "sim/camera_model.h"
+#include "sim/kinect_colour.h"
 
 namespace sortcell::sim {
 
@@ -37,6 +39,8 @@ struct KinectNoiseParams {
   bool shadows = true;
   /// Multiplies both noise sigmas (sweeps vary it; 1 = the Kinect).
   double noise_scale = 1.0;
+  /// The colour camera: exposure, white balance, saturation, blur and noise as measured on real views.
+  KinectColourParams colour;
 };
 
 /// Axial standard deviation (m) at depth z (m) and incidence angle theta (rad).

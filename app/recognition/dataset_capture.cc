@@ -94,7 +94,9 @@ class CaptureRig {
     mj_forward(model_.get(), data_.get());
     sim::KinectCamera& kinect = Camera(camera);
     kinect.SetLighting(RandomLighting(rng));
-    const sim::KinectNoiseParams noise;
+    // Training captures vary the camera's colour too, so a model does not learn one exact exposure.
+    sim::KinectNoiseParams noise;
+    noise.colour = sim::JitterColour(noise.colour, rng);
     sim::FrameTruth shown;  // Training labels: the true camera pose and label image.
     const sim::KinectFrame frame = kinect.Capture(data_, &noise, &rng, &shown);
     const auto cloud = sim::ToOrganizedCloud(frame);

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <map>
 #include <regex>
@@ -101,6 +102,41 @@ std::vector<RgbdObjectsView> FindRgbdObjectsViews(const std::filesystem::path& r
   return views;
 }
 
+namespace {
+
+// The masked pixels with depth that show the object: not at a depth edge, not far from its median depth.
+cv::Mat ObjectPixels(const cv::Mat& depth, const cv::Mat& mask, const RgbdObjectsCamera& camera) {
+  std::vector<uint16_t> masked;
+  for (int v = 0; v < depth.rows; ++v) {
+    for (int u = 0; u < depth.cols; ++u) {
+      if (mask.at<uint8_t>(v, u) != 0 && depth.at<uint16_t>(v, u) != 0) masked.push_back(depth.at<uint16_t>(v, u));
+    }
+  }
+  cv::Mat object = cv::Mat::zeros(depth.size(), CV_8UC1);
+  if (masked.empty()) return object;
+  std::nth_element(masked.begin(), masked.begin() + masked.size() / 2, masked.end());
+  const double median_m = masked[masked.size() / 2] / 1000.0;
+  for (int v = 0; v < depth.rows; ++v) {
+    for (int u = 0; u < depth.cols; ++u) {
+      const uint16_t mm = depth.at<uint16_t>(v, u);
+      if (mask.at<uint8_t>(v, u) == 0 || mm == 0 || std::abs(mm / 1000.0 - median_m) > camera.from_median_m) continue;
+      uint16_t lo = mm, hi = mm;  // The neighbourhood's depth span (pixels without depth left out).
+      for (int dv = -1; dv <= 1; ++dv) {
+        for (int du = -1; du <= 1; ++du) {
+          const int y = v + dv, x = u + du;
+          if (y < 0 || x < 0 || y >= depth.rows || x >= depth.cols || depth.at<uint16_t>(y, x) == 0) continue;
+          lo = std::min(lo, depth.at<uint16_t>(y, x));
+          hi = std::max(hi, depth.at<uint16_t>(y, x));
+        }
+      }
+      if ((hi - lo) / 1000.0 <= camera.edge_jump_m) object.at<uint8_t>(v, u) = 255;
+    }
+  }
+  return object;
+}
+
+}  // namespace
+
 perception::Cloud::Ptr ReadRgbdObjectsView(const RgbdObjectsView& view, const RgbdObjectsCamera& camera) {
   const cv::Mat colour = ReadImage(view.crop, cv::IMREAD_COLOR, CV_8UC3, "8-bit colour");
   const std::filesystem::path depth_file = Partner(view, "depthcrop.png"), mask_file = Partner(view, "maskcrop.png");
@@ -112,12 +148,12 @@ perception::Cloud::Ptr ReadRgbdObjectsView(const RgbdObjectsView& view, const Rg
     }
   }
   const cv::Point corner = ReadLoc(Partner(view, "loc.txt"), colour.size());
+  const cv::Mat object = ObjectPixels(depth, mask, camera);
   auto cloud = std::make_shared<perception::Cloud>();
   for (int v = 0; v < colour.rows; ++v) {
     for (int u = 0; u < colour.cols; ++u) {
-      const uint16_t millimetres = depth.at<uint16_t>(v, u);
-      if (mask.at<uint8_t>(v, u) == 0 || millimetres == 0) continue;
-      const double z = millimetres / 1000.0;
+      if (object.at<uint8_t>(v, u) == 0) continue;
+      const double z = depth.at<uint16_t>(v, u) / 1000.0;
       perception::PointT p;
       p.x = static_cast<float>((u + corner.x - camera.cx) * z / camera.focal_px);
       p.y = static_cast<float>((v + corner.y - camera.cy) * z / camera.focal_px);

@@ -21,6 +21,13 @@ namespace sortcell::app {
 struct RgbdObjectsCamera {
   double focal_px = 570.3;
   double cx = 320, cy = 240;
+  /// The dataset's masks reach a few pixels past the object's depth edges (DESIGN.md section 5): a
+  /// masked pixel whose 3x3 neighbourhood in the depth crop spans more than `edge_jump_m` is at a
+  /// depth edge (a mixed pixel, or background beside the object), and one farther than
+  /// `from_median_m` from the masked pixels' median depth is background seen past the object; both
+  /// are left out.
+  double edge_jump_m = 0.02;
+  double from_median_m = 0.15;
 };
 
 /// One view: its colour crop and where it belongs.
@@ -36,7 +43,8 @@ struct RgbdObjectsView {
 std::vector<RgbdObjectsView> FindRgbdObjectsViews(const std::filesystem::path& root);
 
 /// One view's masked pixels with depth as a camera-frame cloud (m; optical frame, z forward),
-/// unorganized, coloured from the crop.
+/// unorganized, coloured from the crop; pixels at depth edges or far from the object's median depth
+/// left out (RgbdObjectsCamera).
 /// @throws std::invalid_argument naming the file: a partner file missing or unreadable, images of
 ///         different sizes, a loc file that is not "X,Y" with the crop inside the 640x480 frame.
 perception::Cloud::Ptr ReadRgbdObjectsView(const RgbdObjectsView& view, const RgbdObjectsCamera& camera = {});

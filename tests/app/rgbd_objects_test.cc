@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
 
 #include "app/recognition/dataset.h"
 #include "app/recognition/rgbd_objects.h"
@@ -80,6 +81,25 @@ TEST(RgbdObjects, BackProjectsTheMaskedPixelsWithTheDatasetsCamera) {
     }
   }
   EXPECT_EQ(centre, 1);
+}
+
+TEST(RgbdObjects, MaskPixelsPastTheDepthEdgeAreLeftOut) {
+  // A sphere in front of a wall 0.3 m behind it, the mask 2 px wider than the sphere (as the dataset's
+  // masks reach past depth edges): the wall's pixels and the mixed ones at the rim are not the object.
+  const fs::path root = fs::path(sortcell_test::TestTempDir()) / "rgbd_edge";
+  WriteView(root / "ball" / "ball_1", "ball_1", 1, 1, Shape::kSphere, 0.03, {10, 20, 200});
+  const std::string stem = (root / "ball/ball_1/ball_1_1_1_").string();
+  cv::Mat depth = cv::imread(stem + "depthcrop.png", cv::IMREAD_ANYDEPTH);
+  cv::Mat mask = cv::imread(stem + "maskcrop.png", cv::IMREAD_GRAYSCALE);
+  const int sphere = cv::countNonZero(mask);
+  depth.setTo(1100, depth == 0);
+  cv::dilate(mask, mask, cv::Mat(), cv::Point(-1, -1), 2);
+  cv::imwrite(stem + "depthcrop.png", depth);
+  cv::imwrite(stem + "maskcrop.png", mask);
+  const perception::Cloud::Ptr cloud = app::ReadRgbdObjectsView(app::FindRgbdObjectsViews(root).at(0));
+  for (const auto& p : cloud->points) EXPECT_LT(p.z, 0.80) << "a wall point at " << p.z;
+  EXPECT_GT(static_cast<int>(cloud->size()), sphere * 8 / 10);  // The rim's mixed pixels only are lost.
+  EXPECT_LT(static_cast<int>(cloud->size()), sphere);
 }
 
 TEST(RgbdObjects, BadFilesAreNamed) {

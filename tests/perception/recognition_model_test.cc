@@ -69,6 +69,26 @@ TEST(SvmClassifier, LearnsSeparableClassesWithConfidence) {
   EXPECT_EQ(m.classifier.cv_scores().size(), 4u);
 }
 
+TEST(SvmClassifier, TiesInAccuracyGoToTheLargestHeldOutMargin) {
+  // Well separated blobs: every grid point classifies every held-out sample right, so the margin
+  // decides, and the chosen point is the one with the largest held-out margin (not the grid's first).
+  const RecognitionModel m = TrainedModel();
+  const auto& scores = m.classifier.cv_scores();
+  double best_margin = -1e9;
+  for (const auto& s : scores) {
+    EXPECT_EQ(s.accuracy, 1.0);
+    EXPECT_LE(s.margin, 1.0);
+    best_margin = std::max(best_margin, s.margin);
+  }
+  int chosen = -1;
+  for (size_t k = 0; k < scores.size(); ++k) {
+    if (scores[k].C == m.classifier.C() && scores[k].gamma == m.classifier.gamma()) chosen = static_cast<int>(k);
+  }
+  ASSERT_GE(chosen, 0);
+  EXPECT_EQ(scores[chosen].margin, best_margin);
+  EXPECT_GT(best_margin, scores[0].margin) << "the grid's first point is not the most confident here";
+}
+
 TEST(SvmClassifier, SameDataSameModel) {
   const RecognitionModel a = TrainedModel(), b = TrainedModel();
   const Data test = Blobs(308, 3, 3);
