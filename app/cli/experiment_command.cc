@@ -13,6 +13,7 @@
 #include "app/recognition/experiment_splits.h"
 #include "app/common/object_set.h"
 #include "app/common/data_dir.h"
+#include "sim/kinect_colour.h"
 #include "app/common/output_dir.h"
 #include "app/common/progress.h"
 #include "app/recognition/recognition.h"
@@ -33,6 +34,10 @@ template <typename Capture>
 Dataset ReuseOrCapture(const std::filesystem::path& dir, const ObjectSet& set, int views, uint64_t seed,
                        nlohmann::json capture_settings, Capture capture) {
   capture_settings["object_models"] = ObjectModelsDigest(set, ObjectTexturesDir());
+  // The sensor's colour model too: data rendered through another is not this capture.
+  const sim::KinectColourParams colour;
+  capture_settings["kinect_colour"] = {colour.enabled, colour.exposure, colour.white_balance_r, colour.white_balance_g,
+                                       colour.white_balance_b, colour.saturation, colour.blur_sigma_px, colour.noise_sigma};
   try {
     Dataset d = LoadDataset(dir);
     if (d.object_set == set.source.string() && d.views == views && d.seed == seed &&

@@ -1,5 +1,6 @@
 #include "app/recognition/default_model.h"
 
+#include <spdlog/fmt/fmt.h>
 #include <spdlog/spdlog.h>
 
 #include <unistd.h>
@@ -11,6 +12,7 @@
 #include "app/common/data_dir.h"
 #include "app/recognition/dataset_capture.h"
 #include "app/recognition/recognition.h"
+#include "sim/kinect_colour.h"
 
 namespace sortcell::app {
 
@@ -19,8 +21,8 @@ namespace {
 // The scenes the default model of `set` is trained on, next to the model.
 std::filesystem::path DefaultDatasetDir(const ObjectSet& set) { return ModelCacheDir() / (set.name + "_scenes"); }
 
-// Beside the model: the digest of the object models it was trained on, so that a cached model of
-// objects that have changed since (a new texture, another shape) is trained again, not reused.
+// Beside the model: the digest of the object models and the sensor's colour model it was trained on,
+// so that a cached model of objects or a sensor that have changed since is trained again, not reused.
 std::filesystem::path DigestPath(const std::filesystem::path& model) { return model.string() + ".objects"; }
 
 std::string ReadDigest(const std::filesystem::path& file) {
@@ -56,7 +58,11 @@ std::string DefaultModelHint(const ObjectSet& set) {
 
 std::filesystem::path EnsureDefaultModel(const ObjectSet& set) {
   const std::filesystem::path path = DefaultModelPath(set);
-  const std::string digest = ObjectModelsDigest(set, ObjectTexturesDir());
+  const sim::KinectColourParams colour;  // The sensor the scenes are rendered through, too.
+  const std::string digest = ObjectModelsDigest(set, ObjectTexturesDir()) +
+                             fmt::format("-colour-{}-{}-{}-{}-{}-{}-{}-{}", colour.enabled, colour.exposure,
+                                         colour.white_balance_r, colour.white_balance_g, colour.white_balance_b,
+                                         colour.saturation, colour.blur_sigma_px, colour.noise_sigma);
   if (std::filesystem::exists(path) && ReadDigest(DigestPath(path)) == digest) return path;
   spdlog::info("{} trained model at {}: training one on 150 random scenes of '{}' (about 20 s)",
                std::filesystem::exists(path) ? "the objects have changed since the" : "no", path.string(), set.name);
