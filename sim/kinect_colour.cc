@@ -3,6 +3,7 @@
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include <cstdio>
 #include <stdexcept>
 #include <string>
 
@@ -14,6 +15,14 @@ void Check(bool ok, const std::string& what) {
 }
 
 }  // namespace
+
+std::string ToString(const KinectColourParams& p) {
+  if (!p.enabled) return "off";
+  char text[200];
+  std::snprintf(text, sizeof text, "exposure %g, white balance %g %g %g, saturation %g, blur %g px, noise %g", p.exposure,
+                p.white_balance_r, p.white_balance_g, p.white_balance_b, p.saturation, p.blur_sigma_px, p.noise_sigma);
+  return text;
+}
 
 KinectColourParams JitterColour(const KinectColourParams& params, std::mt19937_64& rng) {
   std::uniform_real_distribution<double> exposure(0.6, 1.2), saturation(0.85, 1.15), balance(0.96, 1.04);

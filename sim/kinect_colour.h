@@ -8,6 +8,7 @@
 #include <opencv2/core/mat.hpp>
 
 #include <random>
+#include <string>
 
 namespace sortcell::sim {
 
@@ -30,6 +31,10 @@ struct KinectColourParams {
   /// to pixel (0.67 levels) than the textured renders already are (1.21), so none is added by default.
   double noise_sigma = 0.0;
 };
+
+/// The parameters in one line ("exposure 0.83, white balance 0.96 0.98 1.06, ..."): for records and
+/// digests of what a capture was rendered through.
+std::string ToString(const KinectColourParams& params);
 
 /// The per-capture variation of training captures: exposure x U(0.6, 1.2) (real views of darker
 /// objects and rooms are darker still, DESIGN.md section 5), saturation x U(0.85, 1.15), each

@@ -35,9 +35,7 @@ Dataset ReuseOrCapture(const std::filesystem::path& dir, const ObjectSet& set, i
                        nlohmann::json capture_settings, Capture capture) {
   capture_settings["object_models"] = ObjectModelsDigest(set, ObjectTexturesDir());
   // The sensor's colour model too: data rendered through another is not this capture.
-  const sim::KinectColourParams colour;
-  capture_settings["kinect_colour"] = {colour.enabled, colour.exposure, colour.white_balance_r, colour.white_balance_g,
-                                       colour.white_balance_b, colour.saturation, colour.blur_sigma_px, colour.noise_sigma};
+  capture_settings["kinect_colour"] = sim::ToString(sim::KinectColourParams{});
   try {
     Dataset d = LoadDataset(dir);
     if (d.object_set == set.source.string() && d.views == views && d.seed == seed &&

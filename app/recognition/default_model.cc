@@ -1,6 +1,5 @@
 #include "app/recognition/default_model.h"
 
-#include <spdlog/fmt/fmt.h>
 #include <spdlog/spdlog.h>
 
 #include <unistd.h>
@@ -28,7 +27,7 @@ std::filesystem::path DigestPath(const std::filesystem::path& model) { return mo
 std::string ReadDigest(const std::filesystem::path& file) {
   std::ifstream in(file);
   std::string digest;
-  in >> digest;
+  std::getline(in, digest);
   return digest;
 }
 
@@ -58,11 +57,9 @@ std::string DefaultModelHint(const ObjectSet& set) {
 
 std::filesystem::path EnsureDefaultModel(const ObjectSet& set) {
   const std::filesystem::path path = DefaultModelPath(set);
-  const sim::KinectColourParams colour;  // The sensor the scenes are rendered through, too.
-  const std::string digest = ObjectModelsDigest(set, ObjectTexturesDir()) +
-                             fmt::format("-colour-{}-{}-{}-{}-{}-{}-{}-{}", colour.enabled, colour.exposure,
-                                         colour.white_balance_r, colour.white_balance_g, colour.white_balance_b,
-                                         colour.saturation, colour.blur_sigma_px, colour.noise_sigma);
+  // The sensor the scenes are rendered through counts too.
+  const std::string digest = ObjectModelsDigest(set, ObjectTexturesDir()) + " colour " +
+                             sim::ToString(sim::KinectColourParams{});
   if (std::filesystem::exists(path) && ReadDigest(DigestPath(path)) == digest) return path;
   spdlog::info("{} trained model at {}: training one on 150 random scenes of '{}' (about 20 s)",
                std::filesystem::exists(path) ? "the objects have changed since the" : "no", path.string(), set.name);
