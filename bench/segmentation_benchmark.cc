@@ -49,7 +49,12 @@ int main(int argc, char** argv) {
     const fs::path real = fs::path(SORTCELL_SOURCE_DIR) / ".." / "shared" / "real";
     folders = {real / "mosd-learn", real / "mosd-hard"};
   }
-  std::printf("segmentation (Euclidean clusters on the dominant plane, no camera pose) against the labels:\n");
+  for (const auto clustering : {perception::SegmentationParams::Clustering::kEuclidean,
+                                 perception::SegmentationParams::Clustering::kConvex}) {
+  perception::SegmentationParams params;
+  params.clustering = clustering;
+  std::printf("segmentation (%s clusters on the dominant plane, no camera pose) against the labels:\n",
+              clustering == perception::SegmentationParams::Clustering::kConvex ? "convex (supervoxels + LCCP)" : "Euclidean");
   for (const fs::path& folder : folders) {
     if (!fs::is_directory(folder)) {
       std::fprintf(stderr, "segmentation_benchmark: '%s' is not a folder\n", folder.c_str());
@@ -71,7 +76,7 @@ int main(int argc, char** argv) {
         return 2;
       }
       const auto start = std::chrono::steady_clock::now();
-      const perception::SegmentationResult result = perception::SegmentObjects(*cloud, std::nullopt, nullptr);
+      const perception::SegmentationResult result = perception::SegmentObjects(*cloud, std::nullopt, nullptr, params);
       const double ms = 1000 * std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       total_ms += ms;
       std::vector<std::vector<int>> segments;
@@ -81,6 +86,7 @@ int main(int argc, char** argv) {
       PrintScore(file.filename().c_str(), scores.back(), ms);
     }
     PrintScore("pooled", perception::PoolScores(scores), files.empty() ? 0 : total_ms / files.size());
+  }
   }
   return 0;
 }

@@ -237,7 +237,9 @@ void ClusterObjects(const Cloud& cloud, const std::vector<int>& above, const std
   result.timings.voxel_s = Since(t);
 
   t = Clock::now();
-  const std::vector<pcl::PointIndices> clusters = EuclideanClusters(voxels, params);
+  const std::vector<pcl::PointIndices> clusters = params.clustering == SegmentationParams::Clustering::kConvex
+                                                      ? ConvexClusters(voxels, result.plane_C, params.convex)
+                                                      : EuclideanClusters(voxels, params);
   std::vector<int> cluster_of_voxel(voxels->size(), -1);
   for (size_t c = 0; c < clusters.size(); ++c) {
     for (int v : clusters[c].indices) cluster_of_voxel[v] = static_cast<int>(c);

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "perception/cloud.h"
+#include "perception/convex_segmentation.h"
 
 namespace sortcell::perception {
 
@@ -34,6 +35,10 @@ struct SegmentationParams {
   /// Without a camera pose: objects are what stands on the plane's inlier area up to this height.
   double max_object_height_m = 0.5;
   double voxel_leaf_m = 0.005;       ///< Voxel grid leaf for clustering.
+  /// How the voxels are clustered: by Euclidean distance (touching objects merge), or into convex
+  /// clusters (perception/convex_segmentation.h: touching objects come apart at concave creases).
+  enum class Clustering { kEuclidean, kConvex } clustering = Clustering::kEuclidean;
+  ConvexClusteringParams convex;
   double cluster_tolerance_m = 0.015;  ///< Euclidean clustering distance (3 voxels).
   int min_cluster_voxels = 25;
   int max_cluster_voxels = 20000;

@@ -48,7 +48,9 @@ int RunSegment(const SegmentOptions& options, const std::vector<std::string>& co
   const auto start = std::chrono::steady_clock::now();
   perception::SegmentationResult result;
   try {
-    result = perception::SegmentObjects(*cloud, X_WC, background.get());
+    perception::SegmentationParams params;
+    if (options.clustering == "convex") params.clustering = perception::SegmentationParams::Clustering::kConvex;
+    result = perception::SegmentObjects(*cloud, X_WC, background.get(), params);
   } catch (const std::invalid_argument& e) {
     throw std::invalid_argument("PCD '" + options.pcd.string() + "': " + e.what());
   }
@@ -111,6 +113,10 @@ void AddSegmentCommand(CLI::App& app, std::function<int()>& run, const std::vect
   cmd->add_option("--reject-below", options->reject_below,
                   "With --model: a segment whose confidence is below this (0-1) is 'unknown'")
       ->check(CLI::Range(0.0, 1.0))->capture_default_str();
+  cmd->add_option("--clustering", options->clustering,
+                  "euclidean: voxels within 15 mm join (touching objects merge); convex: supervoxels joined "
+                  "across convex connections and cut at concave creases (LCCP), so touching objects come apart")
+      ->check(CLI::IsMember({"euclidean", "convex"}))->capture_default_str();
   cmd->add_option("--out", options->out, "Output folder (created if missing)")->required();
   cmd->callback([&run, options, command_line] {
     run = [options, command_line] {

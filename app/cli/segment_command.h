@@ -19,6 +19,7 @@ struct SegmentOptions {
   std::filesystem::path background;  ///< Organized PCD of the empty scene; empty: none.
   std::filesystem::path model;       ///< Recognition model: every segment classified; empty: none.
   double reject_below = 0;           ///< With a model: below this confidence a segment is "unknown".
+  std::string clustering = "euclidean";  ///< "euclidean" or "convex" (SegmentationParams::Clustering).
   std::filesystem::path out;
 };
 

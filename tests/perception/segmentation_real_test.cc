@@ -1,0 +1,56 @@
+// Segmentation on real labelled Kinect captures (mOSD, ../shared/real beside the checkout; skipped
+// where it is absent): touching objects, scored against the capture's own labels.
+#include <gtest/gtest.h>
+
+#include <pcl/io/pcd_io.h>
+#include <pcl/point_types.h>
+
+#include <filesystem>
+
+#include "perception/pcd_io.h"
+#include "perception/segmentation.h"
+#include "perception/segmentation_scoring.h"
+
+namespace sortcell::perception {
+namespace {
+
+namespace fs = std::filesystem;
+
+const fs::path kReal = fs::path(SORTCELL_SOURCE_DIR) / ".." / "shared" / "real";
+
+SegmentationScore Score(const fs::path& file, SegmentationParams::Clustering clustering) {
+  pcl::PointCloud<pcl::PointXYZRGBL> labelled;
+  EXPECT_EQ(pcl::io::loadPCDFile(file.string(), labelled), 0);
+  std::vector<int> truth(labelled.size(), 0);
+  for (size_t i = 0; i < labelled.size(); ++i) truth[i] = labelled[i].label >= 10 ? static_cast<int>(labelled[i].label / 10) : 0;
+  SegmentationParams params;
+  params.clustering = clustering;
+  const SegmentationResult result = SegmentObjects(*LoadCloud(file, true), std::nullopt, nullptr, params);
+  std::vector<std::vector<int>> segments;
+  for (const auto& s : result.segments) segments.push_back(s.indices);
+  return ScoreSegmentation(truth, segments, 100);
+}
+
+TEST(SegmentationReal, ConvexClustersSeparateTouchingBoxesAndCansThatEuclideanMerges) {
+  const fs::path file = kReal / "mosd-hard" / "test44.pcd";  // Five objects, touching in pairs.
+  if (!fs::exists(file)) GTEST_SKIP() << "no " << file << " beside this checkout";
+  const SegmentationScore euclidean = Score(file, SegmentationParams::Clustering::kEuclidean);
+  const SegmentationScore convex = Score(file, SegmentationParams::Clustering::kConvex);
+  EXPECT_EQ(euclidean.objects, 5);
+  EXPECT_LE(euclidean.found, 3) << "Euclidean clusters merge the touching pairs";
+  EXPECT_EQ(convex.found, 5);
+  EXPECT_GT(convex.OverlapF(), 0.9);
+}
+
+TEST(SegmentationReal, ConvexClustersKeepStackedBoxesApartAndSingleBoxesWhole) {
+  for (const char* name : {"learn0.pcd", "learn20.pcd"}) {  // Two boxes side by side; two boxes stacked.
+    const fs::path file = kReal / "mosd-learn" / name;
+    if (!fs::exists(file)) GTEST_SKIP() << "no " << file << " beside this checkout";
+    const SegmentationScore convex = Score(file, SegmentationParams::Clustering::kConvex);
+    EXPECT_EQ(convex.found, 2) << name;
+    EXPECT_EQ(convex.split, 0) << name;
+  }
+}
+
+}  // namespace
+}  // namespace sortcell::perception
