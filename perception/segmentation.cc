@@ -31,9 +31,13 @@ double AxialSigma(double z) { return 0.0012 + 0.0019 * (z - 0.4) * (z - 0.4); }
 
 void CheckInput(const Cloud& cloud, const Cloud* background) {
   if (cloud.empty()) throw std::invalid_argument("segmentation: the cloud is empty");
-  if (!cloud.isOrganized() || cloud.size() != static_cast<size_t>(cloud.width) * cloud.height) {
-    throw std::invalid_argument("segmentation: the cloud is not organized (height " + std::to_string(cloud.height) +
-                                "): expected one point per pixel, e.g. 640x480 from a Kinect");
+  if (cloud.size() != static_cast<size_t>(cloud.width) * cloud.height) {
+    throw std::invalid_argument("segmentation: the cloud holds " + std::to_string(cloud.size()) + " points, not its " +
+                                std::to_string(cloud.width) + "x" + std::to_string(cloud.height));
+  }
+  if (background != nullptr && !cloud.isOrganized()) {
+    throw std::invalid_argument("segmentation: background subtraction needs an organized cloud (one point per "
+                                "pixel); this one is unorganized (height 1)");
   }
   if (background != nullptr && (background->width != cloud.width || background->height != cloud.height)) {
     throw std::invalid_argument("segmentation: the background cloud is " + std::to_string(background->width) + "x" +
@@ -99,9 +103,12 @@ std::optional<PlaneFit> FitSupportingPlane(const Cloud& cloud, const std::vector
                                            const SegmentationParams& params, std::string& detail) {
   auto sample = std::make_shared<Cloud>();
   const int stride = std::max(1, params.plane_stride);
-  for (int i : roi) {
+  for (size_t k = 0; k < roi.size(); ++k) {
+    const int i = roi[k];
     const int row = i / static_cast<int>(cloud.width), col = i % static_cast<int>(cloud.width);
-    if (row % stride == 0 && col % stride == 0) sample->push_back(cloud[i]);
+    // Organized: a grid of every stride-th pixel; unorganized: every stride^2-th point, as many.
+    const bool sampled = cloud.isOrganized() ? row % stride == 0 && col % stride == 0 : k % (stride * stride) == 0;
+    if (sampled) sample->push_back(cloud[i]);
   }
   pcl::SACSegmentation<PointT> sac;  // Not randomly seeded: the same cloud gives the same plane.
   sac.setOptimizeCoefficients(true);

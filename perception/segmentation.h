@@ -46,7 +46,7 @@ struct SegmentationParams {
 
 /// One segmented object.
 struct Segment {
-  std::vector<int> indices;  ///< Pixels (row * width + col) of the organized input cloud.
+  std::vector<int> indices;  ///< Pixels (row * width + col) of an organized input cloud; point indices of an unorganized one.
   Cloud::Ptr cloud_C;        ///< Those points, full resolution, camera optical frame.
   /// Centroid, bounding box and principal axes (columns, largest variance first) in the output frame:
   /// the world with a camera pose, else the camera frame.
@@ -81,13 +81,15 @@ struct SegmentationResult {
   SegmentationTimings timings;
 };
 
-/// Segments `cloud` (organized, camera optical frame, NaN where no depth). A capture without a valid
+/// Segments `cloud` (camera optical frame, NaN where no depth; organized as a depth camera gives it, or
+/// unorganized: then only background subtraction, which compares pixels, is not available, and the
+/// plane is fitted on every plane_stride^2-th point instead of a pixel grid). A capture without a valid
 /// point in the region of interest or without a supporting plane is an expected outcome: the result's
 /// status says which (kNoValidPoints, kNoPlane), `detail` says why, and `segments` is empty.
 /// @param X_WC      Camera pose in the world: enables the workspace box and world-frame outputs.
 /// @param background The empty cell seen from the same camera (organized, same size), or null.
-/// @throws std::invalid_argument naming the problem for misuse: an empty cloud, a cloud that is not
-///         organized, or a background of another size.
+/// @throws std::invalid_argument naming the problem for misuse: an empty cloud, a cloud whose size is not
+///         its width x height, a background with an unorganized cloud or of another size.
 SegmentationResult SegmentObjects(const Cloud& cloud, const std::optional<Eigen::Isometry3d>& X_WC,
                                   const Cloud* background, const SegmentationParams& params = {});
 

@@ -36,7 +36,11 @@ std::string Recognise(const perception::RecognitionModel& model, const perceptio
 }  // namespace
 
 int RunSegment(const SegmentOptions& options, const std::vector<std::string>& command_line) {
-  const perception::Cloud::Ptr cloud = perception::LoadCloud(options.pcd, /*organized=*/true);
+  const perception::Cloud::Ptr cloud = perception::LoadCloud(options.pcd, /*organized=*/false);
+  if (!cloud->isOrganized() && !options.background.empty()) {
+    throw std::invalid_argument("--background: PCD '" + options.pcd.string() +
+                                "' is unorganized (height 1); background subtraction compares pixels of organized clouds");
+  }
   std::optional<Eigen::Isometry3d> X_WC;
   if (!options.camera.empty()) X_WC = LoadCameraPose(options.camera);
   perception::Cloud::Ptr background;
@@ -76,9 +80,13 @@ int RunSegment(const SegmentOptions& options, const std::vector<std::string>& co
             {{"frame", result.world_frame ? "world" : "camera"},
              {"plane_camera_frame", {plane[0], plane[1], plane[2], plane[3]}},
              {"segments", segments}});
-  const cv::Mat overlay = perception::SegmentOverlay(*cloud, result.segments, labels);
-  if (!cv::imwrite((options.out / "overlay.png").string(), overlay)) {
-    throw std::runtime_error("cannot write '" + (options.out / "overlay.png").string() + "'");
+  // An unorganized cloud has no image to draw on: no overlay (the summary and run.json say so).
+  if (!cloud->isOrganized()) std::filesystem::remove(options.out / "overlay.png");
+  if (cloud->isOrganized()) {
+    const cv::Mat overlay = perception::SegmentOverlay(*cloud, result.segments, labels);
+    if (!cv::imwrite((options.out / "overlay.png").string(), overlay)) {
+      throw std::runtime_error("cannot write '" + (options.out / "overlay.png").string() + "'");
+    }
   }
   const auto& t = result.timings;
   WriteJson(options.out / "run.json",
@@ -89,6 +97,9 @@ int RunSegment(const SegmentOptions& options, const std::vector<std::string>& co
                        {"background", options.background.string()},
                        {"model", options.model.string()},
                        {"reject_below", options.reject_below},
+                       {"organized", cloud->isOrganized()},
+                       {"skipped", cloud->isOrganized() ? nlohmann::json::array()
+                                                        : nlohmann::json{"overlay.png (an unorganized cloud has no image)"}},
                        {"segment_wall_s", wall_s},
                        {"stages_wall_s", {{"crop", t.crop_s}, {"plane", t.plane_s}, {"voxel", t.voxel_s},
                                           {"cluster", t.cluster_s}}}}));
@@ -103,7 +114,8 @@ void AddSegmentCommand(CLI::App& app, std::function<int()>& run, const std::vect
       "and background subtraction (with --background), RANSAC supporting plane, 5 mm voxels, Euclidean "
       "clusters. Writes segment_NN.pcd (camera frame, full resolution), segments.json (world frame with "
       "--camera, else camera frame) and overlay.png. Works on real Kinect v1 PCDs (organized 640x480 "
-      "XYZRGBA, any encoding) without --camera: the dominant plane is found and objects standing on it kept.");
+      "XYZRGBA, any encoding) without --camera: the dominant plane is found and objects standing on it kept. "
+      "Unorganized clouds are segmented too, without --background and without overlay.png.");
   cmd->add_option("--pcd", options->pcd, "Organized cloud, e.g. cloud.pcd from sortcell capture")->required();
   cmd->add_option("--camera", options->camera, "camera.json with X_WC (from sortcell capture)");
   cmd->add_option("--background", options->background, "Organized cloud of the empty scene, same camera");
@@ -122,7 +134,9 @@ void AddSegmentCommand(CLI::App& app, std::function<int()>& run, const std::vect
     run = [options, command_line] {
       const int n = RunSegment(*options, command_line);
       std::cout << "Segmented " << options->pcd.string() << ": " << n << " objects. Files in "
-                << options->out.string() << "/\n";
+                << options->out.string() << "/"
+                << (std::filesystem::exists(options->out / "overlay.png") ? "" : " (unorganized cloud: no overlay.png)")
+                << "\n";
       return 0;
     };
   });

@@ -2,6 +2,10 @@
 // and experiment: one line naming the culprit, exit 2.
 #include <gtest/gtest.h>
 
+#include <pcl/io/pcd_io.h>
+#include <pcl/point_types.h>
+
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 
@@ -27,7 +31,33 @@ TEST(RecognitionCli, SegmentRejectsMissingAndNonPcdFiles) {
   std::ofstream(Dir() + "/camera.json") << "{\"X_WC\": [[1, 0, 0]]}";
   std::ofstream(Dir() + "/flat.pcd") << "VERSION .7\nFIELDS x y z rgb\nSIZE 4 4 4 4\nTYPE F F F U\nCOUNT 1 1 1 1\n"
                                         "WIDTH 1\nHEIGHT 1\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS 1\nDATA ascii\n0 0 1 0\n";
-  ExpectOneLineError(RunSortcell("segment --pcd " + Dir() + "/flat.pcd --out " + Dir() + "/s"), "not organized (1x1)");
+  // An unorganized cloud segments (below), but cannot be background-subtracted pixel by pixel.
+  ExpectOneLineError(RunSortcell("segment --pcd " + Dir() + "/flat.pcd --background " + Dir() + "/flat.pcd --out " + Dir() + "/s"),
+                     "--background: PCD '" + Dir() + "/flat.pcd' is unorganized (height 1)");
+  ExpectOneLineError(RunSortcell("segment --pcd " + Dir() + "/flat.pcd --clustering fancy --out " + Dir() + "/s"),
+                     "--clustering");
+}
+
+TEST(RecognitionCli, SegmentsAnUnorganizedRealCaptureWithoutAnOverlay) {
+  const std::filesystem::path real = std::filesystem::path(SORTCELL_SOURCE_DIR) / ".." / "shared" / "real" / "mosd-learn" / "learn0.pcd";
+  if (!std::filesystem::exists(real)) GTEST_SKIP() << "no " << real << " beside this checkout";
+  pcl::PointCloud<pcl::PointXYZRGB> cloud;
+  ASSERT_EQ(pcl::io::loadPCDFile(real.string(), cloud), 0);
+  pcl::PointCloud<pcl::PointXYZRGB> row;
+  for (const auto& p : cloud) {
+    if (std::isfinite(p.z)) row.push_back(p);  // As a scanner or a merged view delivers it: valid points only.
+  }
+  ASSERT_EQ(row.height, 1u);
+  pcl::io::savePCDFileBinaryCompressed(Dir() + "/row.pcd", row);
+  for (const char* clustering : {"euclidean", "convex"}) {
+    const std::string out = Dir() + "/row_" + clustering;
+    const auto r = RunSortcell("segment --pcd " + Dir() + "/row.pcd --clustering " + clustering + " --out " + out);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.out.find("2 objects"), std::string::npos) << r.out;  // Two boxes, side by side.
+    EXPECT_NE(r.out.find("no overlay.png"), std::string::npos) << r.out;
+    EXPECT_FALSE(std::filesystem::exists(out + "/overlay.png"));
+    EXPECT_TRUE(std::filesystem::exists(out + "/segment_01.pcd"));
+  }
 }
 
 TEST(RecognitionCli, SegmentSaysWhenACloudHasNoTableOrNoDepth) {

@@ -94,17 +94,40 @@ TEST(Segmentation, WorkspaceBoxCropsOutsideObjects) {
   EXPECT_GT(r.segments[0].centroid.x(), 0.5);
 }
 
-TEST(Segmentation, RejectsMisuseEmptyUnorganizedAndBackgroundOfAnotherSize) {
+TEST(Segmentation, RejectsMisuseEmptyUnorganizedWithBackgroundAndBackgroundOfAnotherSize) {
   Cloud empty;
   EXPECT_EQ(ErrorOf([&] { SegmentObjects(empty, std::nullopt, nullptr); }), "segmentation: the cloud is empty");
   Cloud flat = TableWithBoxes({}, 0).cloud;
+  const Cloud background = flat;
   flat.height = 1;
   flat.width = static_cast<uint32_t>(flat.size());
-  EXPECT_NE(ErrorOf([&] { SegmentObjects(flat, std::nullopt, nullptr); }).find("not organized"), std::string::npos);
+  EXPECT_NE(ErrorOf([&] { SegmentObjects(flat, std::nullopt, &background); }).find("needs an organized cloud"),
+            std::string::npos);
+  Cloud wrong = flat;
+  wrong.width = 7;
+  EXPECT_NE(ErrorOf([&] { SegmentObjects(wrong, std::nullopt, nullptr); }).find("not its 7x1"), std::string::npos);
   const Scene s = TableWithBoxes({}, 0);
   Cloud small(10, 10);
   EXPECT_NE(ErrorOf([&] { SegmentObjects(s.cloud, s.X_WC, &small); }).find("background cloud is 10x10"),
             std::string::npos);
+}
+
+TEST(Segmentation, AnUnorganizedCloudSegmentsLikeTheOrganizedOne) {
+  // The same points in a row (height 1), without and with a pose: the same objects, point for point.
+  const Scene s = TableWithBoxes({cv::Rect(20, 20, 30, 30), cv::Rect(100, 60, 30, 40)}, 0.1);
+  Cloud row = s.cloud;
+  row.height = 1;
+  row.width = static_cast<uint32_t>(row.size());
+  for (const auto& pose : {std::optional<Eigen::Isometry3d>(), std::optional(s.X_WC)}) {
+    const SegmentationResult organized = SegmentObjects(s.cloud, pose, nullptr, OpenBox());
+    const SegmentationResult unorganized = SegmentObjects(row, pose, nullptr, OpenBox());
+    ASSERT_EQ(organized.segments.size(), 2u);
+    ASSERT_EQ(unorganized.segments.size(), 2u);
+    for (size_t k = 0; k < 2; ++k) {
+      EXPECT_EQ(unorganized.segments[k].indices, organized.segments[k].indices);  // Point index = pixel index.
+      EXPECT_NEAR((unorganized.segments[k].centroid - organized.segments[k].centroid).norm(), 0.0, 2e-3);
+    }
+  }
 }
 
 TEST(Segmentation, NoValidPointIsAStatusNotAnError) {
