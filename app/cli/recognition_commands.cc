@@ -1,5 +1,8 @@
 #include "app/cli/recognition_commands.h"
 
+#include <spdlog/fmt/fmt.h>
+
+#include <fstream>
 #include <iostream>
 #include <memory>
 
@@ -7,6 +10,7 @@
 #include "app/recognition/dataset_capture.h"
 #include "app/common/object_set.h"
 #include "app/common/output_dir.h"
+#include "app/recognition/out_of_set.h"
 #include "app/recognition/recognition.h"
 #include "app/recognition/rgbd_objects.h"
 #include "app/common/wall_clock.h"
@@ -48,6 +52,45 @@ int ImportRgbdObjectsCommand(const DatasetOptions& o, const std::vector<std::str
             << " categories, " << d.Labels(perception::LabelKind::kInstance).size() << " instances), "
             << d.capture["skipped"].size() << " views skipped, in " << o.out.string() << "/, " << std::lround(wall)
             << " s\n";
+  return 0;
+}
+
+// `sortcell eval`: the paper's tables for the samples of the model's classes; for samples of other
+// categories (an out-of-set object), what they were called and how confidently (out_of_set.h).
+int EvalCommand(const perception::RecognitionModel& model, const Dataset& d, const EvalOptions& o,
+                const std::vector<std::string>& command_line) {
+  std::vector<int> in_set, out_of_set;
+  SplitBySet(model, d, in_set, out_of_set);
+  const std::string title = "Evaluation of " + o.model.string() + " on " + o.dataset.string();
+  nlohmann::json results = nlohmann::json::object();
+  std::string summary;
+  if (!in_set.empty()) {
+    const Evaluation e = EvaluateModel(model, d, in_set, o.dataset.string());
+    WriteRecognitionReport(o.out, title, {e});
+    results = EvaluationJson(e);
+    summary = fmt::format("{} samples of its classes: accuracy {}, macro F1 {}", in_set.size(), e.metrics.accuracy,
+                          e.metrics.macro_f1);
+  }
+  if (!out_of_set.empty()) {
+    const OutOfSetReport report = ClassifyOutOfSet(model, d, out_of_set);
+    results["out_of_set"] = OutOfSetJson(report);
+    std::ofstream tables(o.out / "tables.md", in_set.empty() ? std::ios::trunc : std::ios::app);
+    tables << (in_set.empty() ? "# " + title + "\n\n" : "\n") << OutOfSetMarkdown(report);
+    if (!tables) throw std::runtime_error("cannot write '" + (o.out / "tables.md").string() + "'");
+    double mean = 0;
+    for (const auto& [name, c] : report) {
+      for (double confidence : c.confidences) mean += confidence / out_of_set.size();
+    }
+    summary += fmt::format("{}{} samples of categories it does not know (mean confidence {:.2f})",
+                           summary.empty() ? "" : "; ", out_of_set.size(), mean);
+  }
+  results["descriptor"] = perception::DescriptorName(model.descriptor);
+  results["dataset"] = o.dataset.string();
+  results["model"] = o.model.string();
+  WriteJson(o.out / "results.json", results);
+  WriteJson(o.out / "run.json", RunRecord(command_line, 0, {{"command", "eval"}}));
+  std::cout << "Evaluated " << perception::DescriptorTitle(model.descriptor) << ": " << summary << ". Tables in "
+            << o.out.string() << "/tables.md\n";
   return 0;
 }
 
@@ -160,7 +203,9 @@ void AddEvalCommand(CLI::App& app, std::function<int()>& run, const std::vector<
       "eval",
       "Classify every sample of a dataset with a model and write the paper's tables: per class one-vs-all "
       "recall, precision, accuracy, F1 and the confusion matrix in percent (tables.md, metrics.csv, "
-      "confusion_<descriptor>.csv/.png), results.json and run.json.");
+      "confusion_<descriptor>.csv/.png), results.json and run.json. Samples of categories the model does not "
+      "know (an out-of-set object) are reported apart: what they were called, the confidence distribution and "
+      "the share a --reject-below threshold would reject (results.json out_of_set, tables.md).");
   cmd->add_option("--dataset", o->dataset, "Dataset folder from sortcell dataset")->required();
   cmd->add_option("--model", o->model, "Model file from sortcell train")->required();
   cmd->add_option("--out", o->out, "Output folder (created if missing)")->required();
@@ -169,18 +214,7 @@ void AddEvalCommand(CLI::App& app, std::function<int()>& run, const std::vector<
       const perception::RecognitionModel model = perception::LoadModel(o->model);
       const Dataset d = LoadDataset(o->dataset);
       PrepareOutputDir(o->out);
-      const Evaluation e = EvaluateModel(model, d, {}, o->dataset.string());
-      WriteRecognitionReport(o->out, "Evaluation of " + o->model.string() + " on " + o->dataset.string(), {e});
-      nlohmann::json results = EvaluationJson(e);
-      results["descriptor"] = perception::DescriptorName(model.descriptor);
-      results["dataset"] = o->dataset.string();
-      results["model"] = o->model.string();
-      WriteJson(o->out / "results.json", results);
-      WriteJson(o->out / "run.json", RunRecord(command_line, 0, {{"command", "eval"}}));
-      std::cout << "Evaluated " << perception::DescriptorTitle(model.descriptor) << " on " << d.samples.size()
-                << " samples: accuracy " << e.metrics.accuracy << ", macro F1 " << e.metrics.macro_f1 << ". Tables in "
-                << o->out.string() << "/tables.md\n";
-      return 0;
+      return EvalCommand(model, d, *o, command_line);
     };
   });
 }

@@ -167,6 +167,33 @@ TEST(RgbdObjects, ImportTrainAndEvalRunOnTheDatasetsFormat) {
   EXPECT_EQ(results["test_samples"], 31);
   // A red ball and a green can, seen in training: the model tells them apart.
   EXPECT_GE(results["accuracy"].get<double>(), 0.95);
+  EXPECT_FALSE(results.contains("out_of_set"));
+
+  // The real banana (where ../shared is beside the checkout), a category this model does not know:
+  // eval reports what it was called and how confidently, not a score.
+  const fs::path banana = fs::path(SORTCELL_SOURCE_DIR) / ".." / "shared" / "real" / "rgbd-object";
+  if (!fs::is_directory(banana)) GTEST_SKIP() << "no " << banana << " beside this checkout";
+  ASSERT_EQ(sortcell_test::RunSortcell("dataset --from-rgbd-objects " + banana.string() + " --out " +
+                                       (out / "banana").string()).exit_code, 0);
+  const auto unknown = sortcell_test::RunSortcell("eval --dataset " + (out / "banana").string() + " --model " +
+                                                  model.string() + " --out " + (out / "eval_banana").string());
+  ASSERT_EQ(unknown.exit_code, 0) << unknown.err;
+  EXPECT_NE(unknown.out.find("samples of categories it does not know"), std::string::npos) << unknown.out;
+  const nlohmann::json b = nlohmann::json::parse(std::ifstream(out / "eval_banana" / "results.json"));
+  const auto& report = b["out_of_set"]["banana"];
+  EXPECT_EQ(report["samples"].get<int>(), static_cast<int>(app::LoadDataset(out / "banana").samples.size()));
+  int called = 0;
+  for (const auto& [name, n] : report["called"].items()) {
+    EXPECT_TRUE(name == "ball" || name == "can") << name;
+    called += n.get<int>();
+  }
+  EXPECT_EQ(called, report["samples"].get<int>());
+  EXPECT_GE(report["confidence"]["max"].get<double>(), report["confidence"]["median"].get<double>());
+  EXPECT_LE(report["confidence"]["max"].get<double>(), 1.0);
+  EXPECT_FALSE(b.contains("accuracy"));  // Nothing of the model's classes to score.
+  std::ifstream tables(out / "eval_banana" / "tables.md");
+  const std::string md((std::istreambuf_iterator<char>(tables)), std::istreambuf_iterator<char>());
+  EXPECT_NE(md.find("| banana | "), std::string::npos) << md;
 }
 
 TEST(RgbdObjects, TheCommandRefusesAMixOfSourcesAndAnEmptyFolder) {
