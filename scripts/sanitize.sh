@@ -1,0 +1,15 @@
+#!/usr/bin/env bash
+# Builds SortCell with AddressSanitizer + UndefinedBehaviorSanitizer into build-sanitize/ and runs the unit
+# tests there (ctest -L unit). Needs the packages scripts/setup.sh installs.
+#   scripts/sanitize.sh            build (RelWithDebInfo, no benchmarks) and run the unit tests
+#   SORTCELL_SANITIZE_DIR=dir      build somewhere else
+set -euo pipefail
+cd "$(dirname "$0")/.."
+build_dir=${SORTCELL_SANITIZE_DIR:-build-sanitize}
+cmake -S . -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSORTCELL_SANITIZE=ON \
+  -DSORTCELL_BUILD_BENCHMARKS=OFF >/dev/null
+cmake --build "$build_dir" -j "$(nproc)"
+# Leaks count as findings; UBSan prints the stack of what it finds and stops the test.
+export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:abort_on_error=0:strict_string_checks=1}
+export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
+ctest --test-dir "$build_dir" -L unit --output-on-failure -j "$(nproc)"
