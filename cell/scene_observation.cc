@@ -1,6 +1,8 @@
 #include "cell/scene_observation.h"
 
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 #include "perception/descriptor.h"
 #include "perception/occlusion.h"
@@ -25,6 +27,11 @@ double TableHeightAt(const Eigen::Vector3d& p_W, const Eigen::Vector4d& plane_C,
 
 Observation ObserveScene(const perception::Cloud& cloud, const CameraCalibration& calibration,
                          const perception::SegmentationParams& params, const perception::RecognitionModel& model) {
+  // The cell's Kinect gives one point per pixel, and the occlusion check looks at pixels' neighbours.
+  if (!cloud.isOrganized()) {
+    throw std::invalid_argument("scene observation: the cloud is not organized (height " + std::to_string(cloud.height) +
+                                "): expected one point per pixel from the cell's Kinect");
+  }
   Observation observation;
   perception::SegmentationResult segmented =
       perception::SegmentObjects(cloud, calibration.X_WC, calibration.background.get(), params);

@@ -57,11 +57,11 @@ void JoinPiecesInsideOthers(const Cloud& voxels, const PlaneFrame& frame, const 
   std::vector<Volume> volumes;
   for (const auto& c : clusters) volumes.push_back(VolumeOf(voxels, c, frame));
   std::vector<bool> joined(clusters.size(), false);
-  for (size_t a = clusters.size(); a-- > 1;) {  // Largest first: a piece joins a larger cluster.
+  for (size_t a = clusters.size(); a-- > 1;) {  // Smallest first (clusters are sorted largest first); a piece joins a larger one.
     size_t best = a;
     double best_fraction = params.inside_fraction;
     for (size_t b = 0; b < a; ++b) {
-      if (joined[b] || volumes[b].hull.size() < 3) continue;
+      if (volumes[b].hull.size() < 3) continue;
       int inside = 0;
       for (int i : clusters[a].indices) {
         inside += frame.Height(voxels[i]) <= volumes[b].top + params.top_tolerance_m &&
@@ -123,7 +123,8 @@ std::vector<pcl::PointIndices> ConvexClusters(const Cloud::Ptr& voxels, const Ei
   std::sort(out.begin(), out.end(), larger);
   out.erase(std::remove_if(out.begin(), out.end(),
                            [&params](const pcl::PointIndices& c) {
-                             return static_cast<int>(c.indices.size()) < params.min_cluster_voxels;
+                             const int n = static_cast<int>(c.indices.size());
+                             return n < params.min_cluster_voxels || n > params.max_cluster_voxels;
                            }),
             out.end());
   return out;

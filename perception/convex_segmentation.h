@@ -21,7 +21,8 @@ struct ConvexClusteringParams {
   double voxel_m = 0.0075;       ///< Supervoxel voxel resolution.
   double seed_m = 0.03;          ///< Supervoxel seed resolution.
   double concavity_deg = 15;     ///< Connections more concave than this are cut.
-  int min_cluster_voxels = 25;   ///< Smaller segments are dropped (as the Euclidean ones).
+  /// Smaller and larger segments are dropped; SegmentObjects sets both from SegmentationParams.
+  int min_cluster_voxels = 25, max_cluster_voxels = 20000;
   double inside_fraction = 0.8;  ///< A piece with this share of its voxels inside another cluster's volume joins it.
   double top_tolerance_m = 0.01; ///< "Below the top": at most this much above the other cluster's highest voxel.
 };

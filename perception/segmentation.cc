@@ -189,6 +189,14 @@ std::vector<int> AbovePlane(const Cloud& cloud, const std::vector<int>& candidat
   return above;
 }
 
+// The convex clustering's settings with the cluster size limits of the segmentation's.
+ConvexClusteringParams ConvexParams(const SegmentationParams& params) {
+  ConvexClusteringParams convex = params.convex;
+  convex.min_cluster_voxels = params.min_cluster_voxels;
+  convex.max_cluster_voxels = params.max_cluster_voxels;
+  return convex;
+}
+
 // Euclidean clusters of `voxels`, largest first.
 std::vector<pcl::PointIndices> EuclideanClusters(const Cloud::Ptr& voxels, const SegmentationParams& params) {
   auto tree = std::make_shared<pcl::search::KdTree<PointT>>();
@@ -245,7 +253,7 @@ void ClusterObjects(const Cloud& cloud, const std::vector<int>& above, const std
 
   t = Clock::now();
   const std::vector<pcl::PointIndices> clusters = params.clustering == SegmentationParams::Clustering::kConvex
-                                                      ? ConvexClusters(voxels, result.plane_C, params.convex)
+                                                      ? ConvexClusters(voxels, result.plane_C, ConvexParams(params))
                                                       : EuclideanClusters(voxels, params);
   std::vector<int> cluster_of_voxel(voxels->size(), -1);
   for (size_t c = 0; c < clusters.size(); ++c) {

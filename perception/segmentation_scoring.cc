@@ -65,7 +65,11 @@ SegmentationScore ScoreSegmentation(const std::vector<int>& truth, const std::ve
   for (const auto& [key, shared] : o.shared) {
     pairs.emplace_back(Iou(shared, o.segment_size[key.first], objects.at(key.second)), key.first, key.second);
   }
-  std::sort(pairs.begin(), pairs.end(), [](const auto& a, const auto& b) { return std::get<0>(a) > std::get<0>(b); });
+  // Largest IoU first; ties by segment, then object (a fixed order, so equal IoUs always match alike).
+  std::sort(pairs.begin(), pairs.end(), [](const auto& a, const auto& b) {
+    return std::get<0>(a) != std::get<0>(b) ? std::get<0>(a) > std::get<0>(b)
+                                            : std::tie(std::get<1>(a), std::get<2>(a)) < std::tie(std::get<1>(b), std::get<2>(b));
+  });
   std::vector<bool> segment_used(segments.size(), false);
   std::map<int, double> matched_iou;  // Object -> the IoU of its one-to-one match.
   for (const auto& [iou, s, id] : pairs) {

@@ -27,7 +27,8 @@ struct SegmentationScore {
 
 /// `truth`: an object id per pixel of the frame (0 = not an object: nothing, the table, the floor);
 /// `segments`: each segment's pixel indices into the same frame. Objects with fewer than
-/// `min_object_pixels` pixels are not counted (nor their pixels).
+/// `min_object_pixels` pixels are not counted: their pixels are not true object pixels, and a segment's
+/// pixels on them count as predicted pixels that match nothing.
 /// @throws std::invalid_argument if a segment's pixel index lies outside the frame.
 SegmentationScore ScoreSegmentation(const std::vector<int>& truth, const std::vector<std::vector<int>>& segments,
                                     int min_object_pixels = 1);

@@ -86,8 +86,10 @@ std::vector<int> GroupFolds(const std::vector<int>& groups, int folds) {
 
 // The true class's one-vs-one margin for one sample: the smallest decision value, signed towards the
 // true class, over the pairs it takes part in (libsvm orders pairs (i, j), i < j, by model->label).
-double TrueClassMargin(const svm_model* model, const svm_node* x, double y, std::vector<double>& decision) {
-  svm_predict_values(model, x, decision.data());
+// `predicted` gets libsvm's vote (what svm_predict returns), from the same decision values.
+double TrueClassMargin(const svm_model* model, const svm_node* x, double y, std::vector<double>& decision,
+                       double& predicted) {
+  predicted = svm_predict_values(model, x, decision.data());
   const int k = model->nr_class;
   int truth = -1;
   for (int i = 0; i < k; ++i) {
@@ -127,8 +129,9 @@ CvScore CrossValidate(const NodeRows& x, const std::vector<double>& y, const std
     std::vector<double> decision(static_cast<size_t>(model->nr_class) * (model->nr_class - 1) / 2 + 1);
     for (size_t i = 0; i < y.size(); ++i) {
       if (fold[i] != f) continue;
-      if (svm_predict(model, x.rows[i]) == y[i]) ++correct;
-      margin_sum += std::min(1.0, TrueClassMargin(model, x.rows[i], y[i], decision));
+      double predicted = 0;
+      margin_sum += std::min(1.0, TrueClassMargin(model, x.rows[i], y[i], decision, predicted));
+      if (predicted == y[i]) ++correct;
     }
     svm_free_and_destroy_model(&model);
   }

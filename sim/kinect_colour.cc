@@ -3,7 +3,9 @@
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include <cmath>
 #include <cstdio>
+#include <utility>
 #include <stdexcept>
 #include <string>
 
@@ -37,10 +39,13 @@ KinectColourParams JitterColour(const KinectColourParams& params, std::mt19937_6
 
 cv::Mat ApplyKinectColour(const cv::Mat& rgb, const KinectColourParams& p, std::mt19937_64& rng) {
   Check(rgb.type() == CV_8UC3, "expected an 8-bit RGB image");
-  Check(p.exposure >= 0 && p.white_balance_r >= 0 && p.white_balance_g >= 0 && p.white_balance_b >= 0,
-        "gains must not be negative");
-  Check(p.saturation >= 0 && p.blur_sigma_px >= 0 && p.noise_sigma >= 0,
-        "saturation and sigmas must not be negative");
+  const std::pair<const char*, double> fields[] = {
+      {"exposure", p.exposure},         {"white_balance_r", p.white_balance_r}, {"white_balance_g", p.white_balance_g},
+      {"white_balance_b", p.white_balance_b}, {"saturation", p.saturation},   {"blur_sigma_px", p.blur_sigma_px},
+      {"noise_sigma", p.noise_sigma}};
+  for (const auto& [name, value] : fields) {
+    Check(value >= 0 && std::isfinite(value), std::string(name) + " must be finite and >= 0, got " + std::to_string(value));
+  }
   if (!p.enabled) return rgb.clone();
   // Gains, then saturation about the luma (Rec. 601 weights), as one 3x3 map: out = S * G * in.
   const cv::Matx33d gains(p.exposure * p.white_balance_r, 0, 0, 0, p.exposure * p.white_balance_g, 0, 0, 0,

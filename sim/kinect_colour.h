@@ -44,8 +44,8 @@ KinectColourParams JitterColour(const KinectColourParams& params, std::mt19937_6
 /// The Kinect's colour image of a clean render (CV_8UC3, RGB): white balance and exposure, saturation
 /// (one linear map per pixel), blur, then noise, clipped to 8 bits. Deterministic for a given rng state;
 /// the input is returned unchanged (a copy) when `params.enabled` is false.
-/// @throws std::invalid_argument if the image is not CV_8UC3 or a parameter is out of range (negative
-///         gains, sigmas or saturation).
+/// @throws std::invalid_argument if the image is not CV_8UC3 or a parameter is negative or not finite
+///         (the message names it and its value).
 cv::Mat ApplyKinectColour(const cv::Mat& rgb, const KinectColourParams& params, std::mt19937_64& rng);
 
 }  // namespace sortcell::sim

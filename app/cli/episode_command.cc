@@ -164,6 +164,10 @@ void AddEpisodeCommand(CLI::App& app, std::function<int()>& run, const std::vect
           EnsureDefaultModel(set);
         } else if (!std::filesystem::exists(options.model)) {
           throw std::invalid_argument("no trained model at " + options.model.string() + ": " + DefaultModelHint(set));
+        } else if (!DefaultModelIsCurrent(set)) {
+          throw std::invalid_argument("the cached model " + options.model.string() +
+                                      " was trained on other object models or another Kinect colour model: " +
+                                      DefaultModelHint(set));
         }
       }
       const EpisodeMetrics metrics = RunEpisode(options, command_line);

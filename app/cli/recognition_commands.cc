@@ -59,6 +59,8 @@ int ImportRgbdObjectsCommand(const DatasetOptions& o, const std::vector<std::str
 // categories (an out-of-set object), what they were called and how confidently (out_of_set.h).
 int EvalCommand(const perception::RecognitionModel& model, const Dataset& d, const EvalOptions& o,
                 const std::vector<std::string>& command_line) {
+  // Out-of-set samples are classified too: the descriptors must be the model's kind before either path.
+  CheckDescriptorParams(model, d, o.dataset.string());
   std::vector<int> in_set, out_of_set;
   SplitBySet(model, d, in_set, out_of_set);
   const std::string title = "Evaluation of " + o.model.string() + " on " + o.dataset.string();

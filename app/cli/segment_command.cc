@@ -97,6 +97,7 @@ int RunSegment(const SegmentOptions& options, const std::vector<std::string>& co
                        {"background", options.background.string()},
                        {"model", options.model.string()},
                        {"reject_below", options.reject_below},
+                       {"clustering", options.clustering},
                        {"organized", cloud->isOrganized()},
                        {"skipped", cloud->isOrganized() ? nlohmann::json::array()
                                                         : nlohmann::json{"overlay.png (an unorganized cloud has no image)"}},
@@ -112,11 +113,11 @@ void AddSegmentCommand(CLI::App& app, std::function<int()>& run, const std::vect
       "segment",
       "Segment the objects of an organized cloud (paper 2.1): invalid points out, workspace box (with --camera) "
       "and background subtraction (with --background), RANSAC supporting plane, 5 mm voxels, Euclidean "
-      "clusters. Writes segment_NN.pcd (camera frame, full resolution), segments.json (world frame with "
+      "(or, with --clustering convex, convex) clusters. Writes segment_NN.pcd (camera frame, full resolution), segments.json (world frame with "
       "--camera, else camera frame) and overlay.png. Works on real Kinect v1 PCDs (organized 640x480 "
       "XYZRGBA, any encoding) without --camera: the dominant plane is found and objects standing on it kept. "
       "Unorganized clouds are segmented too, without --background and without overlay.png.");
-  cmd->add_option("--pcd", options->pcd, "Organized cloud, e.g. cloud.pcd from sortcell capture")->required();
+  cmd->add_option("--pcd", options->pcd, "Cloud (organized, e.g. cloud.pcd from sortcell capture, or unorganized)")->required();
   cmd->add_option("--camera", options->camera, "camera.json with X_WC (from sortcell capture)");
   cmd->add_option("--background", options->background, "Organized cloud of the empty scene, same camera");
   cmd->add_option("--model", options->model,

@@ -24,7 +24,7 @@ inline constexpr int kDatasetFormatVersion = 1;
 struct Sample {
   int id = 0;
   std::string category, instance;
-  std::string source = "turntable";  ///< "turntable" or "scene".
+  std::string source = "turntable";  ///< "turntable", "turntable_occluded", "scene" or "rgbd-objects".
   double elevation_deg = 0;          ///< Turntable camera elevation (scenes: the cell's Kinect, 45).
   int frame = 0;                     ///< Turntable: view index in the revolution. Scene: object index.
   int scene = -1;                    ///< Scene number, -1 for turntable captures.

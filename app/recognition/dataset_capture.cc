@@ -94,7 +94,8 @@ class CaptureRig {
     mj_forward(model_.get(), data_.get());
     sim::KinectCamera& kinect = Camera(camera);
     kinect.SetLighting(RandomLighting(rng));
-    // Training captures vary the camera's colour too, so a model does not learn one exact exposure.
+    // Every dataset capture (turntable and scenes alike) varies the camera's colour, so a model does not
+    // learn one exact exposure, and a test set is seen through varied cameras too.
     sim::KinectNoiseParams noise;
     noise.colour = sim::JitterColour(noise.colour, rng);
     sim::FrameTruth shown;  // Training labels: the true camera pose and label image.

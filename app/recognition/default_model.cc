@@ -20,9 +20,14 @@ namespace {
 // The scenes the default model of `set` is trained on, next to the model.
 std::filesystem::path DefaultDatasetDir(const ObjectSet& set) { return ModelCacheDir() / (set.name + "_scenes"); }
 
-// Beside the model: the digest of the object models and the sensor's colour model it was trained on,
-// so that a cached model of objects or a sensor that have changed since is trained again, not reused.
-std::filesystem::path DigestPath(const std::filesystem::path& model) { return model.string() + ".objects"; }
+// Beside the model (<model>.trained_on): the digest of the object models and the sensor's colour model it
+// was trained on, so that a cached model of objects or a sensor that have changed since is trained again.
+std::filesystem::path DigestPath(const std::filesystem::path& model) { return model.string() + ".trained_on"; }
+
+// What the default model of `set` depends on: its objects' models and the sensor it sees them through.
+std::string TrainedOnDigest(const ObjectSet& set) {
+  return ObjectModelsDigest(set, ObjectTexturesDir()) + " colour " + sim::ToString(sim::KinectColourParams{});
+}
 
 std::string ReadDigest(const std::filesystem::path& file) {
   std::ifstream in(file);
@@ -55,14 +60,20 @@ std::string DefaultModelHint(const ObjectSet& set) {
          " (model cache " + ModelCacheDir().string() + "; set SORTCELL_MODEL_CACHE for another folder)";
 }
 
+bool DefaultModelIsCurrent(const ObjectSet& set) {
+  const std::filesystem::path path = DefaultModelPath(set);
+  // A model without a digest beside it was put there by hand (sortcell train): it is the user's.
+  return std::filesystem::exists(path) &&
+         (!std::filesystem::exists(DigestPath(path)) || ReadDigest(DigestPath(path)) == TrainedOnDigest(set));
+}
+
 std::filesystem::path EnsureDefaultModel(const ObjectSet& set) {
   const std::filesystem::path path = DefaultModelPath(set);
-  // The sensor the scenes are rendered through counts too.
-  const std::string digest = ObjectModelsDigest(set, ObjectTexturesDir()) + " colour " +
-                             sim::ToString(sim::KinectColourParams{});
-  if (std::filesystem::exists(path) && ReadDigest(DigestPath(path)) == digest) return path;
+  const std::string digest = TrainedOnDigest(set);
+  if (DefaultModelIsCurrent(set)) return path;
   spdlog::info("{} trained model at {}: training one on 150 random scenes of '{}' (about 20 s)",
-               std::filesystem::exists(path) ? "the objects have changed since the" : "no", path.string(), set.name);
+               std::filesystem::exists(path) ? "the objects or the Kinect colour model have changed since the" : "no",
+               path.string(), set.name);
   const std::filesystem::path data = DefaultDatasetDir(set);
   SceneOptions scenes;
   const Dataset dataset = CaptureScenes(set, scenes, data);
@@ -70,9 +81,15 @@ std::filesystem::path EnsureDefaultModel(const ObjectSet& set) {
   const perception::RecognitionModel model = TrainModel(dataset, {}, TrainRequest{});
   const std::filesystem::path temporary = path.string() + ".tmp" + std::to_string(::getpid());
   perception::SaveModel(temporary, model);
-  std::ofstream(temporary.string() + ".objects") << digest << "\n";
-  std::filesystem::rename(temporary.string() + ".objects", DigestPath(path));
+  // The model first, its digest last: a run stopped between the two leaves an old digest beside the
+  // new model (trained again next time), never a current digest beside an old model.
+  const std::filesystem::path digest_temporary = temporary.string() + ".trained_on";
+  std::ofstream(digest_temporary) << digest << "\n";
+  if (ReadDigest(digest_temporary) != digest) {
+    throw std::runtime_error("cannot write '" + digest_temporary.string() + "' (model cache " + ModelCacheDir().string() + ")");
+  }
   std::filesystem::rename(temporary, path);
+  std::filesystem::rename(digest_temporary, DigestPath(path));
   spdlog::info("trained {} (cross-validation accuracy {:.3f}) and cached it", path.string(), model.cv_accuracy);
   return path;
 }

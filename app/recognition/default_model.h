@@ -22,7 +22,13 @@ std::filesystem::path DefaultModelPath(const ObjectSet& set);
 /// The command that makes the default model, for error messages.
 std::string DefaultModelHint(const ObjectSet& set);
 
-/// Trains the default model of `set` if it is not there yet, or was trained on other object models (150 random scenes, seed 0; about 20 s;
+/// Whether the cached default model of `set` exists and was trained on the set's current object models
+/// and the current Kinect colour model (the digest beside it says so; a model without one was put there
+/// by hand, with sortcell train, and counts as current).
+bool DefaultModelIsCurrent(const ObjectSet& set);
+
+/// Trains the default model of `set` if it is not there yet, or was trained on other object models or
+/// another Kinect colour model (150 random scenes, seed 0; about 20 s;
 /// the scenes' dataset is kept next to it) and returns its path. Written to a temporary file and
 /// renamed, so concurrent runs never read a half-written model.
 std::filesystem::path EnsureDefaultModel(const ObjectSet& set);

@@ -245,14 +245,19 @@ perception::RecognitionModel TrainModel(const Dataset& dataset, std::vector<int>
   return model;
 }
 
-Evaluation EvaluateModel(const perception::RecognitionModel& model, const Dataset& dataset, std::vector<int> rows,
-                         const std::string& dataset_name) {
-  rows = AllRows(dataset, std::move(rows));
+void CheckDescriptorParams(const perception::RecognitionModel& model, const Dataset& dataset,
+                           const std::string& dataset_name) {
   if (!perception::SameDescriptorParams(model.params, dataset.params)) {
     throw std::invalid_argument("dataset '" + dataset_name +
                                 "': its descriptors were computed with other parameters than the model's (" +
                                 ParamsDifference(dataset.params, model.params) + ")");
   }
+}
+
+Evaluation EvaluateModel(const perception::RecognitionModel& model, const Dataset& dataset, std::vector<int> rows,
+                         const std::string& dataset_name) {
+  rows = AllRows(dataset, std::move(rows));
+  CheckDescriptorParams(model, dataset, dataset_name);
   Evaluation e{model.descriptor, perception::ConfusionMatrix(model.classes), {}, model.classifier.C(),
                model.classifier.gamma(), model.cv_accuracy, model.train_samples, static_cast<int>(rows.size()), 0};
   for (int r : rows) {

@@ -64,6 +64,11 @@ struct Evaluation {
 /// @throws std::invalid_argument naming the dataset if its descriptor parameters differ from the
 ///         model's (and which: "(<key>: dataset <value>, model <value>)"), or a sample's label is not
 ///         one of the model's classes.
+/// @throws std::invalid_argument naming the dataset if its descriptors were computed with other
+///         parameters than the model's.
+void CheckDescriptorParams(const perception::RecognitionModel& model, const Dataset& dataset,
+                           const std::string& dataset_name);
+
 Evaluation EvaluateModel(const perception::RecognitionModel& model, const Dataset& dataset, std::vector<int> rows,
                          const std::string& dataset_name);
 

@@ -81,13 +81,13 @@ TEST(EpisodeScenario, SixPaperObjectsAllSorted) {
   EXPECT_GT(profile["kinect_render"].get<double>(), 0.0);
   EXPECT_GT(profile["label_render"].get<double>(), 0.0);
   EXPECT_EQ(profile["video"].get<double>(), 0.0);
-  // Inside the steps (MuJoCo's timers): the stages add up to the steps' time, within the episode's wall
-  // time; one step per 2 ms of simulated time.
+  // Inside the steps (MuJoCo's timers): collision and constraints are parts of the steps' time, the rest
+  // is left over, all within the episode's wall time; one step per 2 ms of simulated time.
   const auto& physics = m["summary"]["physics_profile"];
-  EXPECT_NEAR(physics["collision_s"].get<double>() + physics["constraint_s"].get<double>() + physics["smooth_s"].get<double>(),
-              physics["step_s"].get<double>(), 1e-9);
   EXPECT_GT(physics["collision_s"].get<double>(), 0.0);
   EXPECT_GT(physics["constraint_s"].get<double>(), 0.0);
+  EXPECT_GT(physics["smooth_s"].get<double>(), 0.0);
+  EXPECT_LT(physics["collision_s"].get<double>() + physics["constraint_s"].get<double>(), physics["step_s"].get<double>());
   EXPECT_LT(physics["step_s"].get<double>(), m["summary"]["wall_time_s"].get<double>());
   EXPECT_NEAR(physics["steps"].get<double>(), m["summary"]["sim_time_s"].get<double>() / 0.002, 1.0);
   EXPECT_GT(physics["contacts_per_step"].get<double>(), 6.0);  // At least the objects resting on the table.

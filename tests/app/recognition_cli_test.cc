@@ -53,7 +53,7 @@ TEST(RecognitionCli, SegmentsAnUnorganizedRealCaptureWithoutAnOverlay) {
     const std::string out = Dir() + "/row_" + clustering;
     const auto r = RunSortcell("segment --pcd " + Dir() + "/row.pcd --clustering " + clustering + " --out " + out);
     ASSERT_EQ(r.exit_code, 0) << r.err;
-    EXPECT_NE(r.out.find("2 objects"), std::string::npos) << r.out;  // Two boxes, side by side.
+    EXPECT_NE(r.out.find(": 2 objects."), std::string::npos) << r.out;  // Two boxes, side by side.
     EXPECT_NE(r.out.find("no overlay.png"), std::string::npos) << r.out;
     EXPECT_FALSE(std::filesystem::exists(out + "/overlay.png"));
     EXPECT_TRUE(std::filesystem::exists(out + "/segment_01.pcd"));

@@ -114,10 +114,10 @@ TEST(KinectColour, BadInputIsRefused) {
   EXPECT_EQ(error(cv::Mat(4, 4, CV_8UC1, cv::Scalar(0)), {}), "Kinect colour model: expected an 8-bit RGB image");
   KinectColourParams p;
   p.saturation = -0.1;
-  EXPECT_EQ(error(Flat({1, 2, 3}), p), "Kinect colour model: saturation and sigmas must not be negative");
+  EXPECT_EQ(error(Flat({1, 2, 3}), p), "Kinect colour model: saturation must be finite and >= 0, got -0.100000");
   p = {};
   p.white_balance_g = -1;
-  EXPECT_EQ(error(Flat({1, 2, 3}), p), "Kinect colour model: gains must not be negative");
+  EXPECT_EQ(error(Flat({1, 2, 3}), p), "Kinect colour model: white_balance_g must be finite and >= 0, got -1.000000");
 }
 
 }  // namespace
