@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "app/common/data_dir.h"
+#include "app/recognition/rgbd_objects.h"
 #include "sim/kinect_camera.h"
 #include "sim/model.h"
 
@@ -33,12 +34,10 @@ struct Stats {
   double n = 0;
   cv::Vec3d rgb{0, 0, 0};
   double s = 0, v = 0;
-  void Add(const cv::Vec3b& p) {  // p in RGB order.
-    cv::Mat3b one(1, 1, p), hsv;
-    cv::cvtColor(one, hsv, cv::COLOR_RGB2HSV);
-    rgb += cv::Vec3d(p[0], p[1], p[2]);
-    s += hsv(0, 0)[1];
-    v += hsv(0, 0)[2];
+  void Add(const cv::Vec3b& rgb_pixel, const cv::Vec3b& hsv_pixel) {
+    rgb += cv::Vec3d(rgb_pixel[0], rgb_pixel[1], rgb_pixel[2]);
+    s += hsv_pixel[1];
+    v += hsv_pixel[2];
     ++n;
   }
   cv::Vec3d Rgb() const { return rgb / std::max(1.0, n); }
@@ -107,10 +106,15 @@ struct Measured {
   cv::Mat image, mask;  // Render only: the image and the objects' mask, to match the blur on.
 };
 
-void AddWhite(const cv::Mat& rgb, const cv::Mat& not_object, Stats& white) {
-  // The brightest third of the unsaturated pixels that are not the object: the white surface.
+cv::Mat Hsv(const cv::Mat& rgb) {
   cv::Mat hsv;
   cv::cvtColor(rgb, hsv, cv::COLOR_RGB2HSV);
+  return hsv;
+}
+
+void AddWhite(const cv::Mat& rgb, const cv::Mat& not_object, Stats& white) {
+  // The brightest third of the unsaturated pixels that are not the object: the white surface.
+  const cv::Mat hsv = Hsv(rgb);
   std::vector<double> values;
   for (int y = 0; y < rgb.rows; ++y)
     for (int x = 0; x < rgb.cols; ++x)
@@ -121,29 +125,26 @@ void AddWhite(const cv::Mat& rgb, const cv::Mat& not_object, Stats& white) {
   for (int y = 0; y < rgb.rows; ++y)
     for (int x = 0; x < rgb.cols; ++x)
       if (not_object.at<uint8_t>(y, x) && hsv.at<cv::Vec3b>(y, x)[1] < 40 && hsv.at<cv::Vec3b>(y, x)[2] >= threshold)
-        white.Add(rgb.at<cv::Vec3b>(y, x));
+        white.Add(rgb.at<cv::Vec3b>(y, x), hsv.at<cv::Vec3b>(y, x));
 }
 
 void AddObject(const cv::Mat& rgb, const cv::Mat& mask, Measured& m) {
   cv::Mat inner;
   cv::erode(mask, inner, cv::Mat(), cv::Point(-1, -1), 2);
+  const cv::Mat hsv = Hsv(rgb);
   for (int y = 0; y < rgb.rows; ++y)
     for (int x = 0; x < rgb.cols; ++x)
-      if (inner.at<uint8_t>(y, x)) m.object.Add(rgb.at<cv::Vec3b>(y, x));
+      if (inner.at<uint8_t>(y, x)) m.object.Add(rgb.at<cv::Vec3b>(y, x), hsv.at<cv::Vec3b>(y, x));
   m.sharpness.push_back(SharpnessRatio(rgb, mask));
   m.noises.push_back(InteriorNoise(rgb, mask));
 }
 
 Measured MeasureReal(const fs::path& dir) {
   Measured m;
-  for (const auto& entry : fs::recursive_directory_iterator(dir)) {
-    const std::string name = entry.path().filename().string();
-    const std::string suffix = "_crop.png";
-    if (name.size() <= suffix.size() || name.compare(name.size() - suffix.size(), suffix.size(), suffix) != 0) continue;
-    const std::string stem = entry.path().string().substr(0, entry.path().string().size() - suffix.size());
-    cv::Mat bgr = cv::imread(entry.path().string(), cv::IMREAD_COLOR);
-    cv::Mat mask = cv::imread(stem + "_maskcrop.png", cv::IMREAD_GRAYSCALE);
-    cv::Mat depth = cv::imread(stem + "_depthcrop.png", cv::IMREAD_UNCHANGED);
+  for (const auto& view : sortcell::app::FindRgbdObjectsViews(dir)) {
+    cv::Mat bgr = cv::imread(view.crop.string(), cv::IMREAD_COLOR);
+    cv::Mat mask = cv::imread(sortcell::app::Partner(view, "maskcrop.png").string(), cv::IMREAD_GRAYSCALE);
+    cv::Mat depth = cv::imread(sortcell::app::Partner(view, "depthcrop.png").string(), cv::IMREAD_UNCHANGED);
     if (bgr.empty() || mask.empty() || depth.empty() || mask.size() != bgr.size()) continue;
     cv::Mat rgb;
     cv::cvtColor(bgr, rgb, cv::COLOR_BGR2RGB);

@@ -5,9 +5,6 @@
 // missed, and the overlap precision / recall / F-measure under one-to-one matching; then pooled per
 // folder. Also the segmentation's wall time per frame.
 // Usage: segmentation_benchmark [FOLDER ...]   (default: ../shared/real/mosd-learn and mosd-hard)
-#include <pcl/io/pcd_io.h>
-#include <pcl/point_types.h>
-
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -23,16 +20,6 @@ namespace {
 
 namespace fs = std::filesystem;
 using namespace sortcell;
-
-// The capture's ground truth per pixel: mOSD labels 1-9 are (parts of) the table, 10k-10k+9 (parts
-// of) object k; 0 has no depth.
-std::vector<int> TruthIds(const fs::path& file) {
-  pcl::PointCloud<pcl::PointXYZRGBL> labelled;
-  if (pcl::io::loadPCDFile(file.string(), labelled) != 0) return {};
-  std::vector<int> ids(labelled.size(), 0);
-  for (size_t i = 0; i < labelled.size(); ++i) ids[i] = labelled[i].label >= 10 ? static_cast<int>(labelled[i].label / 10) : 0;
-  return ids;
-}
 
 void PrintScore(const char* name, const perception::SegmentationScore& s, double ms) {
   std::printf("  %-14s objects %3d found %3d (%5.1f %%) merged %3d split %3d missed %3d | segments %3d | overlap P %5.1f R %5.1f F %5.1f | %6.1f ms\n",
@@ -69,7 +56,7 @@ int main(int argc, char** argv) {
     std::vector<perception::SegmentationScore> scores;
     double total_ms = 0;
     for (const fs::path& file : files) {
-      const std::vector<int> truth = TruthIds(file);
+      const std::vector<int> truth = perception::LoadMosdObjectIds(file);
       const perception::Cloud::Ptr cloud = perception::LoadCloud(file, true);
       if (truth.size() != cloud->size()) {
         std::fprintf(stderr, "segmentation_benchmark: '%s': labels and points differ in number\n", file.c_str());

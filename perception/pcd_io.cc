@@ -18,6 +18,21 @@ bool HasField(const pcl::PCLPointCloud2& blob, const std::string& name) {
 
 }  // namespace
 
+std::vector<int> LoadMosdObjectIds(const std::filesystem::path& file) {
+  pcl::PCLPointCloud2 blob;
+  if (pcl::io::loadPCDFile(file.string(), blob) != 0) {
+    throw std::invalid_argument("PCD '" + file.string() + "': not a readable PCD file");
+  }
+  if (!HasField(blob, "label")) throw std::invalid_argument("PCD '" + file.string() + "': no 'label' field");
+  pcl::PointCloud<pcl::PointXYZL> labelled;
+  pcl::fromPCLPointCloud2(blob, labelled);
+  std::vector<int> ids(labelled.size(), 0);
+  for (size_t i = 0; i < labelled.size(); ++i) {
+    if (labelled[i].label >= 10) ids[i] = static_cast<int>(labelled[i].label / 10);
+  }
+  return ids;
+}
+
 Cloud::Ptr LoadCloud(const std::filesystem::path& file, bool organized) {
   const std::string where = "PCD '" + file.string() + "': ";
   std::error_code ec;

@@ -24,11 +24,6 @@ constexpr int kFrameWidth = 640, kFrameHeight = 480;
 // The dataset's three camera heights, lowest first.
 constexpr double kElevationsDeg[] = {30, 45, 60};
 
-std::filesystem::path Partner(const RgbdObjectsView& view, const std::string& suffix) {
-  const std::string name = view.crop.filename().string();
-  return view.crop.parent_path() / (name.substr(0, name.size() - std::string("crop.png").size()) + suffix);
-}
-
 [[noreturn]] void Refuse(const std::filesystem::path& file, const std::string& what) {
   throw std::invalid_argument("'" + file.string() + "': " + what);
 }
@@ -79,6 +74,11 @@ std::map<std::pair<std::string, int>, double> Elevations(const std::vector<RgbdO
 }
 
 }  // namespace
+
+std::filesystem::path Partner(const RgbdObjectsView& view, const std::string& suffix) {
+  const std::string name = view.crop.filename().string();
+  return view.crop.parent_path() / (name.substr(0, name.size() - std::string("crop.png").size()) + suffix);
+}
 
 std::vector<RgbdObjectsView> FindRgbdObjectsViews(const std::filesystem::path& root) {
   if (!std::filesystem::is_directory(root)) {

@@ -42,6 +42,9 @@ struct RgbdObjectsView {
 /// @throws std::invalid_argument "RGB-D Object Dataset folder '<root>': <what>" if it is not a folder.
 std::vector<RgbdObjectsView> FindRgbdObjectsViews(const std::filesystem::path& root);
 
+/// A view's partner file: `suffix` "depthcrop.png", "maskcrop.png" or "loc.txt" in place of "crop.png".
+std::filesystem::path Partner(const RgbdObjectsView& view, const std::string& suffix);
+
 /// One view's masked pixels with depth as a camera-frame cloud (m; optical frame, z forward),
 /// unorganized, coloured from the crop; pixels at depth edges or far from the object's median depth
 /// left out (RgbdObjectsCamera).

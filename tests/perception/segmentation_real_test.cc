@@ -2,9 +2,6 @@
 // where it is absent): touching objects, scored against the capture's own labels.
 #include <gtest/gtest.h>
 
-#include <pcl/io/pcd_io.h>
-#include <pcl/point_types.h>
-
 #include <filesystem>
 
 #include "perception/pcd_io.h"
@@ -19,10 +16,7 @@ namespace fs = std::filesystem;
 const fs::path kReal = fs::path(SORTCELL_SOURCE_DIR) / ".." / "shared" / "real";
 
 SegmentationScore Score(const fs::path& file, SegmentationParams::Clustering clustering) {
-  pcl::PointCloud<pcl::PointXYZRGBL> labelled;
-  EXPECT_EQ(pcl::io::loadPCDFile(file.string(), labelled), 0);
-  std::vector<int> truth(labelled.size(), 0);
-  for (size_t i = 0; i < labelled.size(); ++i) truth[i] = labelled[i].label >= 10 ? static_cast<int>(labelled[i].label / 10) : 0;
+  const std::vector<int> truth = LoadMosdObjectIds(file);
   SegmentationParams params;
   params.clustering = clustering;
   const SegmentationResult result = SegmentObjects(*LoadCloud(file, true), std::nullopt, nullptr, params);

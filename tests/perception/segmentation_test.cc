@@ -181,6 +181,19 @@ TEST(Segmentation, OkHasNoDetailAndStatusesHaveTheirSpellings) {
   EXPECT_STREQ(ToString(SegmentationStatus::kNoPlane), "no_plane");
 }
 
+TEST(PcdIo, MosdLabelsBecomeObjectIdsAndACloudWithoutLabelsIsNamed) {
+  pcl::PointCloud<pcl::PointXYZRGBL> labelled(4, 1);
+  const uint32_t labels[] = {0, 3, 21, 37};  // No depth, table, object 2, object 3.
+  for (int i = 0; i < 4; ++i) labelled[i].label = labels[i];
+  const sortcell_test::TempDir temp("mosd_ids");
+  pcl::io::savePCDFileBinaryCompressed(temp.str() + "/labelled.pcd", labelled);
+  EXPECT_EQ(LoadMosdObjectIds(temp.str() + "/labelled.pcd"), (std::vector<int>{0, 0, 2, 3}));
+  pcl::PointCloud<pcl::PointXYZRGB> plain(4, 1);
+  pcl::io::savePCDFileBinaryCompressed(temp.str() + "/plain.pcd", plain);
+  EXPECT_EQ(ErrorOf([&] { LoadMosdObjectIds(temp.str() + "/plain.pcd"); }),
+            "PCD '" + temp.str() + "/plain.pcd': no 'label' field");
+}
+
 TEST(PcdIo, ReadsAnOpenNiStyleXyzrgbaCaptureAndRejectsBadFiles) {
   const Scene s = TableWithBoxes({cv::Rect(20, 20, 25, 25)}, 0.08);
   pcl::PointCloud<pcl::PointXYZRGBA> grabber(160, 120);
