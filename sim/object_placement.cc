@@ -1,5 +1,7 @@
 #include "sim/object_placement.h"
 
+#include <Eigen/Geometry>
+
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -21,18 +23,22 @@ int FreeJointQposAddress(const Model& model, int body) {
   return m->jnt_qposadr[joint];
 }
 
-void SetFreePose(const Model& model, Data& data, int body, const Eigen::Vector3d& p, double yaw) {
+void SetFreePose(const Model& model, Data& data, int body, const Eigen::Vector3d& p, const Eigen::Quaterniond& q_WB) {
   const int q = FreeJointQposAddress(model, body);
   double* qpos = data->qpos + q;
   qpos[0] = p.x();
   qpos[1] = p.y();
   qpos[2] = p.z();
-  qpos[3] = std::cos(yaw / 2);
-  qpos[4] = 0;
-  qpos[5] = 0;
-  qpos[6] = std::sin(yaw / 2);
+  qpos[3] = q_WB.w();
+  qpos[4] = q_WB.x();
+  qpos[5] = q_WB.y();
+  qpos[6] = q_WB.z();
   const int v = model->jnt_dofadr[model->body_jntadr[body]];
   for (int i = 0; i < 6; ++i) data->qvel[v + i] = 0;
+}
+
+void SetFreePose(const Model& model, Data& data, int body, const Eigen::Vector3d& p, double yaw) {
+  SetFreePose(model, data, body, p, Eigen::Quaterniond(Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ())));
 }
 
 }  // namespace
@@ -41,33 +47,22 @@ void PlaceObject(const Model& model, Data& data, int body, double x, double y, d
   SetFreePose(model, data, body, Eigen::Vector3d(x, y, 0), yaw);
 }
 
+void PlaceObject(const Model& model, Data& data, int body, const TablePose& pose, const ObjectShape& shape) {
+  if (pose.lying && !shape.lying) {
+    throw std::invalid_argument("scene '" + model.source() + "': body " + std::to_string(body) +
+                                " cannot lie on its side (not taller than it is narrow)");
+  }
+  const RestingShape& resting = pose.lying ? *shape.lying : shape.upright;
+  const Eigen::Quaterniond q_WB = Eigen::Quaterniond(Eigen::AngleAxisd(pose.yaw, Eigen::Vector3d::UnitZ())) * resting.q_tilt;
+  SetFreePose(model, data, body, Eigen::Vector3d(pose.x, pose.y, resting.origin_z), q_WB.normalized());
+}
+
 void ParkObject(const Model& model, Data& data, int body, int slot) {
   SetFreePose(model, data, body, Eigen::Vector3d(0.5 * (slot % 10), 0.5 * (slot / 10), kParkHeight), 0);
 }
 
 void StowObject(const Model& model, Data& data, int body, int slot) {
   SetFreePose(model, data, body, Eigen::Vector3d(-2.5 - 0.4 * (slot % 10), -2.5 - 0.4 * (slot / 10), 0), 0);
-}
-
-double FootprintRadius(const Model& model, const Data& data, int body) {
-  const mjModel* m = model.get();
-  const Eigen::Vector2d origin(data->xpos[3 * body], data->xpos[3 * body + 1]);
-  double radius = 0;
-  for (int g = 0; g < m->ngeom; ++g) {
-    if (m->geom_bodyid[g] != body || (m->geom_contype[g] == 0 && m->geom_conaffinity[g] == 0)) continue;
-    const Eigen::Vector2d c(data->geom_xpos[3 * g], data->geom_xpos[3 * g + 1]);
-    const double* s = m->geom_size + 3 * g;
-    double r = m->geom_rbound[g];  // Meshes: the bounding sphere.
-    switch (m->geom_type[g]) {
-      case mjGEOM_SPHERE: case mjGEOM_CYLINDER: case mjGEOM_CAPSULE: r = s[0]; break;
-      case mjGEOM_ELLIPSOID: r = std::fmax(s[0], s[1]); break;
-      case mjGEOM_BOX: r = std::hypot(s[0], s[1]); break;
-      default: break;
-    }
-    // Capsules and cylinders stand upright in the object models; a tilted one is bounded by rbound.
-    radius = std::fmax(radius, (c - origin).norm() + r);
-  }
-  return radius;
 }
 
 namespace {

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "sim/model.h"
+#include "sim/object_shape.h"
 
 namespace sortcell::sim {
 
@@ -26,13 +27,17 @@ void ParkObject(const Model& model, Data& data, int body, int slot);
 /// every camera's view, at a spot of its own (`slot`) so stowed objects never touch.
 void StowObject(const Model& model, Data& data, int body, int slot);
 
-/// Radius of the object's footprint about its body origin (collision geoms, current pose).
-double FootprintRadius(const Model& model, const Data& data, int body);
-
-/// An object pose on the table: base centre and yaw.
+/// An object pose on the table: base centre (footprint origin) and yaw, upright or on its side.
 struct TablePose {
   double x = 0, y = 0, yaw = 0;
+  bool lying = false;  ///< Laid on its side (ObjectShape::lying) before the yaw.
 };
+
+/// Sets free body `body` resting on the table at `pose` as `shape` says (upright, or on its side
+/// when pose.lying), velocity zero.
+/// @throws std::invalid_argument naming the scene and body if it is not a free body, or if the pose
+///         lies and the shape cannot.
+void PlaceObject(const Model& model, Data& data, int body, const TablePose& pose, const ObjectShape& shape);
 
 /// Where random scenes put objects, for episodes and training scenes alike (one distribution by
 /// construction): the reachable middle of the workspace, with 3 cm of free table between footprints

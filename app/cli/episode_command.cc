@@ -15,28 +15,34 @@
 namespace sortcell::app {
 namespace {
 
-// "NAME=x,y" or "NAME=x,y,yaw".
+// "NAME=x,y", "NAME=x,y,yaw" or "NAME=x,y,yaw,lying".
 ObjectPlacement ParsePlacement(const std::string& text) {
   const auto fail = [&] {
-    return std::invalid_argument("--place: expected NAME=x,y[,yaw] (metres, radians), got '" + text + "'");
+    return std::invalid_argument("--place: expected NAME=x,y[,yaw[,lying]] (metres, radians), got '" + text + "'");
   };
   const size_t eq = text.find('=');
   if (eq == std::string::npos || eq == 0) throw fail();
   ObjectPlacement p;
   p.name = text.substr(0, eq);
-  std::vector<double> values;
+  std::vector<std::string> items;
   std::stringstream in(text.substr(eq + 1));
   std::string item;
-  while (std::getline(in, item, ',')) {
+  while (std::getline(in, item, ',')) items.push_back(item);
+  if (items.size() == 4 && items[3] == "lying") {
+    p.lying = true;
+    items.pop_back();
+  }
+  if (items.size() < 2 || items.size() > 3) throw fail();
+  std::vector<double> values;
+  for (const std::string& number : items) {
     try {
       size_t used = 0;
-      values.push_back(std::stod(item, &used));
-      if (used != item.size()) throw fail();
+      values.push_back(std::stod(number, &used));
+      if (used != number.size()) throw fail();
     } catch (const std::logic_error&) {
       throw fail();
     }
   }
-  if (values.size() < 2 || values.size() > 3) throw fail();
   p.x = values[0];
   p.y = values[1];
   p.yaw = values.size() == 3 ? values[2] : 0.0;
@@ -46,6 +52,7 @@ ObjectPlacement ParsePlacement(const std::string& text) {
 struct EpisodeCli {
   EpisodeOptions options;
   std::vector<std::string> placements;
+  std::string placement_mode = "sparse";
   std::string video_size = "1280x720";
   bool train_if_missing = false;
   std::vector<std::string> sets;  ///< Empty: ExpandEpisodeSets turned them into options before parsing.
@@ -125,7 +132,17 @@ void AddEpisodeCommand(CLI::App& app, std::function<int()>& run, const std::vect
   cmd->add_flag("--video-shadows", o.video_options.shadows,
                 "Draw the video with shadows and the floor's reflection (about 2.5x the rendering time)");
   cmd->add_option("--out", o.out, "Output folder (created if missing)")->required();
-  cmd->add_option("--place", cli->placements, "Put an object at NAME=x,y[,yaw] (world, m, rad) instead of at random");
+  cmd->add_option("--place", cli->placements,
+                  "Put an object at NAME=x,y[,yaw[,lying]] (world, m, rad; 'lying': on its side) instead of at random");
+  cmd->add_option("--placement", cli->placement_mode,
+                  "How the other objects are drawn: sparse (3 cm of table between them), dense (they may touch), "
+                  "clustered (groups of 2-4 touching objects)")
+      ->check(CLI::IsMember({"sparse", "dense", "clustered"}))
+      ->capture_default_str();
+  cmd->add_option("--lying-fraction", o.placement.lying_fraction,
+                  "Chance (0-1) that a drawn object which can lie (bottles, boxes) is laid on its side at random yaw")
+      ->check(CLI::Range(0.0, 1.0))
+      ->capture_default_str();
   cmd->add_option("--light-intensity", o.light_intensity, "Scale of the scene's lights")->capture_default_str();
   cmd->add_option("--noise-scale", o.noise_scale, "Scale of the Kinect's depth noise")->capture_default_str();
   cmd->add_option("--friction-scale", o.variation.friction_scale, "Scale of the objects' friction")->capture_default_str();
@@ -156,6 +173,7 @@ void AddEpisodeCommand(CLI::App& app, std::function<int()>& run, const std::vect
       if (!cli->sets.empty()) throw std::logic_error("episode: --set reached the parser (ExpandEpisodeSets not applied)");
       EpisodeOptions options = cli->options;
       for (const auto& p : cli->placements) options.placements.push_back(ParsePlacement(p));
+      options.placement.mode = *sim::ParsePlacementMode(cli->placement_mode);  // Checked by the parser.
       std::tie(options.video_options.width, options.video_options.height) = ParseVideoSize(cli->video_size);
       if (options.model.empty()) {
         const ObjectSet set = LoadObjectSet(options.object_set);

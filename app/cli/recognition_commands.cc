@@ -24,6 +24,8 @@ struct DatasetOptions {
   int scenes = 0;
   int occluded = 0;
   uint64_t seed = 0;
+  std::string placement = "sparse";
+  double lying_fraction = 0;
 };
 
 struct TrainOptions {
@@ -126,7 +128,17 @@ void AddDatasetCommand(CLI::App& app, std::function<int()>& run, const std::vect
                       "random straight edge (as a nearer object hides it in a scene)")
           ->check(CLI::Range(0, 10))->capture_default_str();
   occluded->excludes(scenes);
-  for (CLI::Option* simulated : {views, scenes, seed, occluded}) rgbd->excludes(simulated);
+  CLI::Option* placement =
+      cmd->add_option("--placement", o->placement,
+                      "Scenes: how objects stand, as in episodes: sparse (apart), dense (touching), clustered (groups of 2-4)")
+          ->check(CLI::IsMember({"sparse", "dense", "clustered"}))
+          ->capture_default_str();
+  CLI::Option* lying = cmd->add_option("--lying-fraction", o->lying_fraction,
+                                       "Scenes: chance (0-1) that a bottle or box lies on its side")
+                           ->check(CLI::Range(0.0, 1.0))
+                           ->capture_default_str();
+  for (CLI::Option* scene_only : {placement, lying}) scene_only->needs(scenes);
+  for (CLI::Option* simulated : {views, scenes, seed, occluded, placement, lying}) rgbd->excludes(simulated);
   cmd->callback([&run, o, command_line] {
     run = [o, command_line] {
       if (!o->rgbd_objects.empty()) return ImportRgbdObjectsCommand(*o, command_line);
@@ -142,6 +154,8 @@ void AddDatasetCommand(CLI::App& app, std::function<int()>& run, const std::vect
         options.seed = o->seed;
         options.max_objects = std::min<int>(options.max_objects, static_cast<int>(set.objects.size()));
         options.min_objects = std::min(options.min_objects, options.max_objects);
+        options.placement.mode = *sim::ParsePlacementMode(o->placement);  // Checked by the parser.
+        options.placement.lying_fraction = o->lying_fraction;
         d = CaptureScenes(set, options, o->out);
       } else {
         TurntableOptions options;

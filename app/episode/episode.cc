@@ -101,14 +101,15 @@ void EpisodeRun::BuildCell() {
 // The objects: chosen, then placed where asked or at random non-overlapping poses.
 void EpisodeRun::PlaceObjects() {
   const std::vector<ObjectSpec> chosen = ChooseObjects(set_, options_, rng_);
-  std::vector<double> radii;
-  for (const auto& spec : chosen) radii.push_back(sim::FootprintRadius(model_, *data_, model_.Id(mjOBJ_BODY, spec.name)));
-  const std::vector<sim::TablePose> poses = DrawPoses(options_.placements, radii, sim::PlacementArea(), rng_);
+  std::vector<sim::ObjectShape> shapes;
+  for (const auto& spec : chosen) shapes.push_back(sim::ObjectShapeOf(model_, model_.Id(mjOBJ_BODY, spec.name)));
+  const std::vector<sim::TablePose> poses =
+      DrawPoses(options_.placements, shapes, sim::PlacementArea(), options_.placement, rng_);
   const std::vector<std::string>& label_names = kinect_->object_names();
   std::vector<PlacedObject> placed;
   for (size_t i = 0; i < chosen.size(); ++i) {
     const int body = model_.Id(mjOBJ_BODY, chosen[i].name);
-    sim::PlaceObject(model_, *data_, body, poses[i].x, poses[i].y, poses[i].yaw);
+    sim::PlaceObject(model_, *data_, body, poses[i], shapes[i]);
     const int label = static_cast<int>(std::find(label_names.begin(), label_names.end(), chosen[i].name) -
                                        label_names.begin()) + 1;
     placed.push_back({chosen[i].name, chosen[i].category, body, label});

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "app/episode/episode_metrics.h"
+#include "sim/clutter_placement.h"
 #include "sim/scene_variation.h"
 #include "sim/video_recorder.h"
 
@@ -20,6 +21,7 @@ namespace sortcell::app {
 struct ObjectPlacement {
   std::string name;
   double x = 0, y = 0, yaw = 0;
+  bool lying = false;  ///< Laid on its side (objects taller than they are narrow).
 };
 
 struct EpisodeOptions {
@@ -32,6 +34,7 @@ struct EpisodeOptions {
   uint64_t seed = 0;
   int objects = 0;  ///< How many of the set's objects to place (0: all of them, at most 6).
   std::vector<ObjectPlacement> placements;  ///< Placed first, as given; the rest at random.
+  sim::PlacementOptions placement;          ///< How the rest are drawn: apart, touching, lying.
   // Variations (sweep axes).
   double light_intensity = 1.0;  ///< Scales the scene's lights (1 = as modelled).
   double noise_scale = 1.0;      ///< Scales the Kinect's depth noise (1 = the Kinect).

@@ -1,7 +1,6 @@
 #include "app/episode/episode_setup.h"
 
 #include <algorithm>
-#include <cmath>
 #include <set>
 #include <stdexcept>
 
@@ -43,29 +42,20 @@ std::vector<ObjectSpec> ChooseObjects(const ObjectSet& set, const EpisodeOptions
   return chosen;
 }
 
-std::vector<sim::TablePose> DrawPoses(const std::vector<ObjectPlacement>& placements, const std::vector<double>& radii,
-                                      const sim::PlacementArea& area, std::mt19937_64& rng) {
-  std::vector<sim::TablePose> poses;
-  for (const auto& p : placements) poses.push_back({p.x, p.y, p.yaw});
-  const size_t fixed = poses.size();
-  const std::vector<double> random_radii(radii.begin() + fixed, radii.end());
-  for (int tries = 0; tries < 50; ++tries) {
-    const auto drawn = sim::SampleTablePoses(random_radii, area, rng);
-    if (!drawn) break;
-    bool clear = true;
-    for (size_t i = 0; i < fixed && clear; ++i) {
-      for (size_t j = 0; j < drawn->size(); ++j) {
-        const double d = std::hypot(poses[i].x - (*drawn)[j].x, poses[i].y - (*drawn)[j].y);
-        if (d < radii[i] + random_radii[j] + area.gap_m) clear = false;
-      }
+std::vector<sim::TablePose> DrawPoses(const std::vector<ObjectPlacement>& placements,
+                                      const std::vector<sim::ObjectShape>& shapes, const sim::PlacementArea& area,
+                                      const sim::PlacementOptions& placement, std::mt19937_64& rng) {
+  std::vector<sim::TablePose> fixed;
+  for (size_t i = 0; i < placements.size(); ++i) {
+    const ObjectPlacement& p = placements[i];
+    if (p.lying && !shapes[i].lying) {
+      throw std::invalid_argument("--place: object '" + p.name + "' cannot lie on its side (not taller than it is narrow)");
     }
-    if (clear) {
-      poses.insert(poses.end(), drawn->begin(), drawn->end());
-      return poses;
-    }
+    fixed.push_back({p.x, p.y, p.yaw, p.lying});
   }
-  throw std::invalid_argument("--objects: " + std::to_string(radii.size()) +
-                              " objects do not fit the table area with the given placements");
+  if (auto poses = sim::SampleClutter(shapes, fixed, area, placement, rng)) return *poses;
+  throw std::invalid_argument("--objects: " + std::to_string(shapes.size()) + " objects do not fit the table area (" +
+                              sim::ToString(placement.mode) + " placement) with the given placements");
 }
 
 }  // namespace sortcell::app

@@ -7,7 +7,7 @@
 
 #include "app/common/object_set.h"
 #include "app/episode/episode.h"
-#include "sim/object_placement.h"
+#include "sim/clutter_placement.h"
 
 namespace sortcell::app {
 
@@ -21,11 +21,12 @@ int ObjectCount(const ObjectSet& set, const EpisodeOptions& options);
 ///         object placed twice, or a placement naming an object the set lacks.
 std::vector<ObjectSpec> ChooseObjects(const ObjectSet& set, const EpisodeOptions& options, std::mt19937_64& rng);
 
-/// Table poses for objects of footprint `radii`: the given placements first (as given), the rest drawn
-/// at random inside `area` with its gap to every other footprint (the training scenes' distribution).
-/// @throws std::invalid_argument "--objects: N objects do not fit the table area with the given
-///         placements" when no arrangement is found.
-std::vector<sim::TablePose> DrawPoses(const std::vector<ObjectPlacement>& placements, const std::vector<double>& radii,
-                                      const sim::PlacementArea& area, std::mt19937_64& rng);
+/// Table poses for objects of `shapes`: the given placements first (as given), the rest drawn at
+/// random inside `area` as `placement` says (sim::SampleClutter: the training scenes' distribution).
+/// @throws std::invalid_argument "--objects: N objects do not fit the table area ..." when no
+///         arrangement is found, "--place: ..." for a placement lying that cannot lie.
+std::vector<sim::TablePose> DrawPoses(const std::vector<ObjectPlacement>& placements,
+                                      const std::vector<sim::ObjectShape>& shapes, const sim::PlacementArea& area,
+                                      const sim::PlacementOptions& placement, std::mt19937_64& rng);
 
 }  // namespace sortcell::app

@@ -271,8 +271,8 @@ Dataset CaptureScenes(const ObjectSet& set, const SceneOptions& options, const s
   dataset.seed = options.seed;
   std::mt19937_64 background_rng = EpisodeRng(options.seed, 0xbac0);
   rig.CaptureBackground("kinect", background_rng);
-  std::vector<double> radii;
-  for (const auto& spec : set.objects) radii.push_back(sim::FootprintRadius(rig.model(), rig.data(), rig.Body(spec.name)));
+  std::vector<sim::ObjectShape> shapes;
+  for (const auto& spec : set.objects) shapes.push_back(sim::ObjectShapeOf(rig.model(), rig.Body(spec.name)));
 
   int placed = 0, missed = 0, spurious = 0, undescribed = 0;
   Progress progress("scenes " + set.name, options.scenes);
@@ -283,14 +283,13 @@ Dataset CaptureScenes(const ObjectSet& set, const SceneOptions& options, const s
     std::shuffle(order.begin(), order.end(), rng);
     const int count = std::uniform_int_distribution<int>(options.min_objects, options.max_objects)(rng);
     order.resize(count);
-    std::vector<double> chosen_radii;
-    for (int o : order) chosen_radii.push_back(radii[o]);
-    const auto poses = sim::SampleTablePoses(chosen_radii, options.area, rng);
+    std::vector<sim::ObjectShape> chosen_shapes;
+    for (int o : order) chosen_shapes.push_back(shapes[o]);
+    const auto poses = sim::SampleClutter(chosen_shapes, {}, options.area, options.placement, rng);
     if (!poses) throw std::invalid_argument("scene " + std::to_string(scene) + ": the objects do not fit the area");
     rig.ParkAll();
     for (int k = 0; k < count; ++k) {
-      sim::PlaceObject(rig.model(), rig.data(), rig.Body(set.objects[order[k]].name), (*poses)[k].x, (*poses)[k].y,
-                       (*poses)[k].yaw);
+      sim::PlaceObject(rig.model(), rig.data(), rig.Body(set.objects[order[k]].name), (*poses)[k], chosen_shapes[k]);
     }
     placed += count;
     const auto segments = rig.CaptureSegments("kinect", rng, nullptr);

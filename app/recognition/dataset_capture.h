@@ -18,7 +18,7 @@
 #include "app/recognition/dataset.h"
 #include "app/common/object_set.h"
 
-#include "sim/object_placement.h"
+#include "sim/clutter_placement.h"
 
 namespace sortcell::app {
 
@@ -42,7 +42,8 @@ struct SceneOptions {
   int scenes = 150;
   uint64_t seed = 0;
   int min_objects = 2, max_objects = 6;
-  sim::PlacementArea area;  ///< Where objects stand: the episodes' distribution.
+  sim::PlacementArea area;        ///< Where objects stand: the episodes' distribution.
+  sim::PlacementOptions placement;  ///< Apart, touching or in groups, some lying: as episodes draw them.
 };
 
 /// Renders, segments and describes the turntable views of every object of `set`; writes the clouds

@@ -180,9 +180,10 @@ std::vector<std::string> EpisodeArguments(const SweepSetup& s, const Worker& w) 
   static const std::map<std::string, std::string> kAxisOptions{
       {"light_intensity", "--light-intensity"}, {"noise_scale", "--noise-scale"},   {"friction_scale", "--friction-scale"},
       {"mass_scale", "--mass-scale"},           {"camera_shift_m", "--camera-shift"}, {"camera_turn_rad", "--camera-turn"},
-      {"reject_below", "--reject-below"}};
+      {"reject_below", "--reject-below"},       {"lying_fraction", "--lying-fraction"}};
   for (const auto& [axis, value] : w.axes.items()) {
     if (axis == "objects") args.insert(args.end(), {"--objects", std::to_string(value.get<int>())});
+    if (axis == "placement") args.insert(args.end(), {"--placement", value.get<std::string>()});
     const auto option = kAxisOptions.find(axis);
     if (option != kAxisOptions.end()) args.insert(args.end(), {option->second, fmt::format("{:.17g}", value.get<double>())});
   }

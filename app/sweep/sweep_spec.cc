@@ -7,6 +7,7 @@
 
 #include "app/common/seeding.h"
 #include "app/common/yaml_reader.h"
+#include "sim/clutter_placement.h"
 
 namespace sortcell::app {
 namespace {
@@ -144,18 +145,29 @@ nlohmann::json AxisValue(const SpecReader& r, const std::string& name, const YAM
     if (!v.IsScalar() || v.Scalar().empty()) y.Fail("key '" + where + "': expected a model file, found " + NodeKind(v));
     return r.File(where, v.Scalar()).string();
   }
+  if (name == "placement") {
+    if (!v.IsScalar() || !sim::ParsePlacementMode(v.Scalar())) {
+      y.Fail("key '" + where + "': expected sparse, dense or clustered, found " +
+             (v.IsScalar() ? "'" + v.Scalar() + "'" : NodeKind(v)));
+    }
+    return v.Scalar();
+  }
   if (name == "objects") {
     const long long k = y.Integer(v, where);
     if (k < 1) y.Fail("key '" + where + "': expected at least 1 object");
     return k;
   }
   const double x = y.Number(v, where);
+  if (name == "lying_fraction") {
+    if (!(x >= 0 && x <= 1)) y.Fail("key '" + where + "': expected a fraction in [0, 1]");
+    return x;
+  }
   const bool scale = name != "camera_shift_m" && name != "camera_turn_rad";
   if (scale ? !(x > 0) : !(x >= 0)) y.Fail("key '" + where + "': expected a value " + (scale ? "> 0" : ">= 0"));
   return x;
 }
 
-SweepAxis ReadAxis(const SpecReader& r, const std::string& name, const YAML::Node& node, bool grid) {
+SweepAxis ReadAxis(const SpecReader& r, const std::string& name, const YAML::Node& node) {
   const YamlReader& y = r.yaml();
   SweepAxis axis;
   axis.name = name;
@@ -165,8 +177,8 @@ SweepAxis ReadAxis(const SpecReader& r, const std::string& name, const YAML::Nod
     for (size_t i = 0; i < node.size(); ++i) axis.values.push_back(AxisValue(r, name, node[i], key + "[" + std::to_string(i) + "]"));
   } else if (node.IsMap()) {
     y.RejectUnknownKeys(node, key, {"min", "max"});
-    if (grid) y.Fail("key '" + key + "': a grid needs a list of values, not a range");
     if (name == "model") y.Fail("key '" + key + "': models are a list of files, not a range");
+    if (name == "placement") y.Fail("key '" + key + "': placements are a list of modes, not a range");
     if (!node["min"] || !node["max"]) y.Fail("key '" + key + "': a range needs min and max");
     axis.min = AxisValue(r, name, node["min"], key + ".min").get<double>();
     axis.max = AxisValue(r, name, node["max"], key + ".max").get<double>();
@@ -183,7 +195,7 @@ void ReadAxes(const SpecReader& r, const YAML::Node& root, SweepSpec& spec) {
   if (!axes.IsMap()) r.yaml().Fail("key 'axes': expected a map of axis names, found " + NodeKind(axes));
   const std::vector<std::string>& names = SweepAxisNames();
   r.yaml().RejectUnknownKeys(axes, "axes", std::set<std::string>(names.begin(), names.end()));
-  for (const auto& item : axes) spec.axes.push_back(ReadAxis(r, item.first.as<std::string>(), item.second, spec.grid));
+  for (const auto& item : axes) spec.axes.push_back(ReadAxis(r, item.first.as<std::string>(), item.second));
 }
 
 }  // namespace
@@ -191,7 +203,7 @@ void ReadAxes(const SpecReader& r, const YAML::Node& root, SweepSpec& spec) {
 const std::vector<std::string>& SweepAxisNames() {
   static const std::vector<std::string> names{"objects",     "light_intensity", "camera_shift_m", "camera_turn_rad",
                                                "noise_scale", "friction_scale",  "mass_scale",     "model",
-                                               "reject_below"};
+                                               "reject_below", "placement",      "lying_fraction"};
   return names;
 }
 
@@ -199,20 +211,37 @@ int SweepSpec::EpisodeCount() const {
   const int repeats = seeds.empty() ? episodes : static_cast<int>(seeds.size());
   if (!grid) return repeats;
   int cells = 1;
-  for (const auto& axis : axes) cells *= static_cast<int>(axis.values.size());
+  for (const auto& axis : axes) cells *= axis.is_range() ? 1 : static_cast<int>(axis.values.size());
   return cells * repeats;
 }
+
+namespace {
+
+// A value drawn from a range axis.
+nlohmann::json DrawFromRange(const SweepAxis& axis, std::mt19937_64& rng) {
+  if (axis.name == "objects") {
+    return std::uniform_int_distribution<int>(static_cast<int>(axis.min), static_cast<int>(axis.max))(rng);
+  }
+  return std::uniform_real_distribution<double>(axis.min, axis.max)(rng);
+}
+
+}  // namespace
 
 std::pair<uint64_t, nlohmann::json> SweepSpec::Episode(int index) const {
   const int repeats = seeds.empty() ? episodes : static_cast<int>(seeds.size());
   nlohmann::json values = nlohmann::json::object();
   int repeat = index;
   if (grid) {
-    // Grid cell = index / repeats (first axis slowest); every cell sees the same seeds, so cells
-    // differ only in their axis values.
+    // Grid cell = index / repeats (first axis slowest); every cell sees the same seeds and the same
+    // values drawn from range axes (by repeat), so cells differ only in their listed axis values.
     repeat = index % repeats;
     int cell = index / repeats;
+    std::mt19937_64 rng = EpisodeRng(seed, 0x5eed0000ULL + static_cast<uint64_t>(repeat));
+    for (const auto& axis : axes) {
+      if (axis.is_range()) values[axis.name] = DrawFromRange(axis, rng);
+    }
     for (auto axis = axes.rbegin(); axis != axes.rend(); ++axis) {
+      if (axis->is_range()) continue;
       const int n = static_cast<int>(axis->values.size());
       values[axis->name] = axis->values[cell % n];
       cell /= n;
@@ -222,10 +251,8 @@ std::pair<uint64_t, nlohmann::json> SweepSpec::Episode(int index) const {
     for (const auto& axis : axes) {
       if (!axis.is_range()) {
         values[axis.name] = axis.values[std::uniform_int_distribution<size_t>(0, axis.values.size() - 1)(rng)];
-      } else if (axis.name == "objects") {
-        values[axis.name] = std::uniform_int_distribution<int>(static_cast<int>(axis.min), static_cast<int>(axis.max))(rng);
       } else {
-        values[axis.name] = std::uniform_real_distribution<double>(axis.min, axis.max)(rng);
+        values[axis.name] = DrawFromRange(axis, rng);
       }
     }
   }

@@ -11,11 +11,15 @@
 ///   seeds: [3, 7]                       # instead of episodes: explicit episode seeds
 ///   mode: random                        # random | grid
 ///   episode_timeout_s: 900              # wall clock, per episode (a hung worker is killed)
-///   axes:                               # each a list of values, or (random only) {min: a, max: b}
+///   axes:                               # each a list of values, or a range {min: a, max: b}
 ///     objects: {min: 4, max: 6}         # integers
 ///     light_intensity: [0.8, 1.0, 1.2]
 ///     camera_shift_m, camera_turn_rad, noise_scale, friction_scale, mass_scale: numbers
 ///     model: [a.model.json, b.model.json]   # recognition models (descriptor axis)
+///     placement: [sparse, dense, clustered] # how objects stand: apart, touching, in groups
+///     lying_fraction: [0.3]             # chance a bottle or box lies on its side
+///
+/// In grid mode a range axis is drawn per repeat: every grid cell sees the same draws.
 
 #include <cstdint>
 #include <filesystem>

@@ -60,15 +60,29 @@ TEST(EpisodeSetup, PlacedObjectsComeFirstAndTheCountIsChecked) {
             "--objects: expected 1..3 (the objects of set 'three.yaml'), got 4");
 }
 
+// Upright objects of footprint radius r (sparse placement keeps their discs apart).
+std::vector<sim::ObjectShape> Discs(const std::vector<double>& radii) {
+  std::vector<sim::ObjectShape> shapes;
+  for (const double r : radii) {
+    sim::ObjectShape shape;
+    shape.disc_radius = r;
+    shapes.push_back(shape);
+  }
+  return shapes;
+}
+
 TEST(EpisodeSetup, ObjectsThatDoNotFitTheTableAreRefused) {
   std::mt19937_64 rng(1);
   const sim::PlacementArea area;  // 0.36 x 0.44 m
-  EXPECT_EQ(ErrorOf([&] { DrawPoses({}, {0.15, 0.15, 0.15}, area, rng); }),
-            "--objects: 3 objects do not fit the table area with the given placements");
+  const sim::PlacementOptions sparse;
+  EXPECT_EQ(ErrorOf([&] { DrawPoses({}, Discs({0.15, 0.15, 0.15}), area, sparse, rng); }),
+            "--objects: 3 objects do not fit the table area (sparse placement) with the given placements");
   // One placed by hand in the middle leaves no room for a second large one.
-  EXPECT_EQ(ErrorOf([&] { DrawPoses({{"a", 0.5, 0.0, 0.0}}, {0.15, 0.1}, area, rng); }),
-            "--objects: 2 objects do not fit the table area with the given placements");
-  const auto poses = DrawPoses({{"a", 0.5, 0.0, 0.3}}, {0.03, 0.03}, area, rng);
+  EXPECT_EQ(ErrorOf([&] { DrawPoses({{"a", 0.5, 0.0, 0.0}}, Discs({0.15, 0.1}), area, sparse, rng); }),
+            "--objects: 2 objects do not fit the table area (sparse placement) with the given placements");
+  EXPECT_EQ(ErrorOf([&] { DrawPoses({{"a", 0.5, 0.0, 0.0, true}}, Discs({0.03}), area, sparse, rng); }),
+            "--place: object 'a' cannot lie on its side (not taller than it is narrow)");
+  const auto poses = DrawPoses({{"a", 0.5, 0.0, 0.3}}, Discs({0.03, 0.03}), area, sparse, rng);
   ASSERT_EQ(poses.size(), 2u);
   EXPECT_EQ(poses[0].x, 0.5);
   EXPECT_EQ(poses[0].yaw, 0.3);

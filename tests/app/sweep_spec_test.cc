@@ -62,6 +62,28 @@ TEST(SweepSpec, GridCoversEveryCellWithTheSameSeeds) {
   EXPECT_EQ(cells.size(), 6u);
 }
 
+TEST(SweepSpec, GridRangesAreDrawnPerRepeatAlikeInEveryCell) {
+  const SweepSpec spec = LoadSweepSpec(WriteSpec("grid_range", "mode: grid\nepisodes: 5\naxes:\n"
+                                                               "  placement: [dense, clustered]\n"
+                                                               "  objects: {min: 4, max: 6}\n"
+                                                               "  lying_fraction: [0.3]\n"));
+  ASSERT_EQ(spec.EpisodeCount(), 10);
+  std::set<int> counts;
+  for (int repeat = 0; repeat < 5; ++repeat) {
+    const auto [seed_a, dense] = spec.Episode(repeat);
+    const auto [seed_b, clustered] = spec.Episode(5 + repeat);
+    EXPECT_EQ(seed_a, seed_b);
+    EXPECT_EQ(dense["placement"], "dense");
+    EXPECT_EQ(clustered["placement"], "clustered");
+    EXPECT_EQ(dense["objects"], clustered["objects"]);
+    EXPECT_EQ(dense["lying_fraction"], 0.3);
+    counts.insert(dense["objects"].get<int>());
+    EXPECT_GE(dense["objects"].get<int>(), 4);
+    EXPECT_LE(dense["objects"].get<int>(), 6);
+  }
+  EXPECT_GT(counts.size(), 1u);  // Drawn, not fixed.
+}
+
 TEST(SweepSpec, BadSpecsNameTheKey) {
   using sortcell_test::ErrorOf;
   const auto error = [](const std::string& name, const std::string& body) {
@@ -73,7 +95,11 @@ TEST(SweepSpec, BadSpecsNameTheKey) {
             std::string::npos);
   EXPECT_NE(error("number", "axes:\n  noise_scale: [1, loud]\n").find("key 'axes.noise_scale[1]': expected a number"),
             std::string::npos);
-  EXPECT_NE(error("range", "mode: grid\naxes:\n  noise_scale: {min: 1, max: 2}\n").find("a grid needs a list"),
+  EXPECT_NE(error("placement", "axes:\n  placement: [dense, heaped]\n")
+                .find("key 'axes.placement[1]': expected sparse, dense or clustered, found 'heaped'"),
+            std::string::npos);
+  EXPECT_NE(error("placement_range", "axes:\n  placement: {min: 1, max: 2}\n").find("not a range"), std::string::npos);
+  EXPECT_NE(error("lying", "axes:\n  lying_fraction: [1.5]\n").find("key 'axes.lying_fraction[0]': expected a fraction"),
             std::string::npos);
   EXPECT_NE(error("mode", "mode: sometimes\n").find("key 'mode': expected random or grid"), std::string::npos);
   EXPECT_NE(error("model", "model: nowhere.json\n").find("key 'model': file"), std::string::npos);

@@ -128,7 +128,7 @@ TEST(SegmentationScene, RandomArrangementsOfThePaperObjects) {
   std::vector<double> radii;
   for (const auto& o : set.objects) {
     bodies.push_back(model.Id(mjOBJ_BODY, o.name));
-    radii.push_back(sim::FootprintRadius(model, data, bodies.back()));
+    radii.push_back(sim::ObjectShapeOf(model, bodies.back()).disc_radius);
   }
   for (uint64_t seed = 1; seed <= 4; ++seed) {
     std::mt19937_64 rng(seed);
