@@ -52,6 +52,8 @@ Observation ObserveScene(const perception::Cloud& cloud, const CameraCalibration
     // One pinched along its narrowest direction (too wide across the view) keeps it: turned, the
     // fingers would close on its width.
     d.round = !estimate.prism && estimate.across_view;
+    d.lying = estimate.lying;
+    d.turned = estimate.turned;
     d.occluded = occluded_edge[s] >= kOccludedEdgePixels;
     for (size_t k = 0; k < p_W.size(); k += kOutlineStride) d.p_W_xy.push_back(p_W[k].head<2>());
     const perception::DescriptorParts parts = perception::ComputeDescriptorParts(*segment.cloud_C, model.params);

@@ -30,6 +30,10 @@ struct Detection {
   /// Round (not a prism, pinched across the view): the fingers may close on it from any side
   /// (robot::FootprintEstimate).
   bool round = false;
+  /// Lying on its side, long and low: pinched across its long axis only (robot::FootprintEstimate).
+  bool lying = false;
+  /// A prism pinched across its other pair of sides, where they fit the stroke.
+  std::optional<robot::ObjectFootprint> turned;
   /// Partly hidden behind something nearer the camera: what shows is less than the object, and its
   /// footprint is not to be trusted (perception::OccludedEdgePixels).
   bool occluded = false;

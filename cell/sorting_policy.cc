@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <utility>
 #include <stdexcept>
 
 #include "robot/gripper_geometry.h"
@@ -18,6 +19,15 @@ double WallSecondsSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
+// Open fingers this far from every neighbour are free to come down (m): beyond the Kinect's noise.
+constexpr double kFreeFingers = 0.004;
+
+robot::GraspOptions GraspOptionsFor(const robot::ObjectFootprint& object) {
+  robot::GraspOptions options;
+  options.finger_clearance = std::max(kMinClearance, std::min(kPerceivedClearance, 0.5 * (robot::kMaxGap - object.width)));
+  return options;
+}
+
 // Everything seen but detection `target`, as the fingers' obstacles.
 robot::Neighbours NeighboursOf(const std::vector<Detection>& detections, size_t target) {
   robot::Neighbours neighbours;
@@ -28,6 +38,16 @@ robot::Neighbours NeighboursOf(const std::vector<Detection>& detections, size_t 
     neighbours.discs.emplace_back(d.footprint.centre_xy, 0.5 * d.footprint.width);
   }
   return neighbours;
+}
+
+// The ways detection `i` may be pinched (round: from any side; a prism: across either pair of sides;
+// lying: across its axis), the one whose open fingers clear the neighbours.
+robot::ClearGrasp ClearestGraspOf(const std::vector<Detection>& detections, size_t i) {
+  const Detection& d = detections[i];
+  std::vector<robot::ObjectFootprint> ways{d.footprint};
+  if (d.round) ways = robot::RoundWays(d.footprint);
+  if (d.turned) ways.push_back(*d.turned);
+  return robot::ClearestGrasp(ways, GraspOptionsFor(d.footprint).finger_clearance, NeighboursOf(detections, i));
 }
 
 }  // namespace
@@ -52,6 +72,8 @@ SortingPolicy::SortingPolicy(CellIo& io, const CellLayout& layout, const CameraC
   for (const auto& c : model.classes) {
     if (!layout.p_W_bin.count(c)) throw std::invalid_argument("cell layout: no bin for the model's class '" + c + "'");
   }
+  // Touching objects come apart at the concave creases between them (Euclidean clusters would merge them).
+  segmentation_.clustering = perception::SegmentationParams::Clustering::kConvex;
   segmentation_.workspace_min_W = layout.workspace_min_W;
   segmentation_.workspace_max_W = layout.workspace_max_W;
 }
@@ -77,29 +99,34 @@ int SortingPolicy::Choose(const std::vector<Detection>& detections, robot::PickM
   for (const auto& d : detections) {
     if (!d.category) view.Skip(d.footprint.centre_xy, robot::SkipReason::kUnreachable);
   }
-  // An object partly hidden behind another waits until that one has gone; when nothing else is left,
-  // what shows of it is the best there is.
+  // An object partly hidden behind another waits until that one has gone, and so does one whose open
+  // fingers would land on a neighbour (blocked): picking the others changes the scene. When nothing
+  // else is left, the best of them is tried.
   robot::PickMemory unhidden = view;
   for (const auto& d : detections) {
     if (d.occluded) unhidden.Skip(d.footprint.centre_xy, robot::SkipReason::kUnreachable);
   }
+  robot::PickMemory free = unhidden, free_hidden = view;
+  int blocked_best = -1;  // The blocked candidate whose fingers clear the neighbours most.
+  robot::ClearGrasp blocked_grasp;
   while (true) {
-    int i = robot::ChooseNextPick(footprints, unhidden);
-    if (i < 0) i = robot::ChooseNextPick(footprints, view);
+    int i = robot::ChooseNextPick(footprints, free);
+    if (i < 0) i = robot::ChooseNextPick(footprints, free_hidden);
+    const bool fallback = i < 0;
+    if (fallback) i = std::exchange(blocked_best, -1);
     if (i < 0) return -1;
-    robot::GraspOptions grasp_options;
-    grasp_options.finger_clearance =
-        std::max(kMinClearance, std::min(kPerceivedClearance, 0.5 * (robot::kMaxGap - footprints[i].width)));
-    // A round object is pinched from the side where the open fingers clear its neighbours.
-    robot::ObjectFootprint target = footprints[i];
-    if (detections[i].round) {
-      target.pinch_yaw = robot::ClearestPinchYaw(target, target.width + 2 * grasp_options.finger_clearance,
-                                                 NeighboursOf(detections, i));
+    const robot::ClearGrasp grasp = fallback ? blocked_grasp : ClearestGraspOf(detections, i);
+    if (!fallback && grasp.clearance < kFreeFingers) {
+      for (robot::PickMemory* m : {&free, &free_hidden}) m->Skip(footprints[i].centre_xy, robot::SkipReason::kUnreachable);
+      if (blocked_best < 0 || grasp.clearance > blocked_grasp.clearance) blocked_best = i, blocked_grasp = grasp;
+      continue;
     }
     // The IK branch nearest to the observe pose (the natural one for picking), wherever the arm is now.
-    plan = robot::PlanTopDownGrasp(target, layout_.q_observe, grasp_options);
+    plan = robot::PlanTopDownGrasp(grasp.footprint, layout_.q_observe, GraspOptionsFor(grasp.footprint));
     if (plan.status == robot::GraspStatus::kOk) return i;
-    for (robot::PickMemory* m : {&memory, &view, &unhidden}) m->Skip(footprints[i].centre_xy, robot::SkipReason::kUnreachable);
+    for (robot::PickMemory* m : {&memory, &view, &unhidden, &free, &free_hidden}) {
+      m->Skip(footprints[i].centre_xy, robot::SkipReason::kUnreachable);
+    }
     observer_.Skipped(i, detections[i], plan.status);
   }
 }

@@ -1,5 +1,6 @@
 #include "perception/convex_segmentation.h"
 
+#include <pcl/common/angles.h>
 #include <pcl/segmentation/lccp_segmentation.h>
 #include <pcl/segmentation/supervoxel_clustering.h>
 // LCCP's template bodies: PCL 1.13 does not instantiate it for every point type.
@@ -8,16 +9,18 @@
 #include <opencv2/imgproc.hpp>
 
 #include <algorithm>
+#include <cmath>
+#include <iterator>
 #include <map>
 
 namespace sortcell::perception {
 namespace {
 
 // A cluster's volume over the plane: its footprint (the convex hull of its voxels projected onto the
-// plane, in plane coordinates) and its top (the largest height above the plane).
+// plane, in plane coordinates), its top and bottom (the largest and smallest height above the plane).
 struct Volume {
   std::vector<cv::Point2f> hull;
-  float top = 0;
+  float top = 0, bottom = 0;
 };
 
 struct PlaneFrame {
@@ -43,12 +46,43 @@ Volume VolumeOf(const Cloud& voxels, const pcl::PointIndices& cluster, const Pla
   std::vector<cv::Point2f> footprint;
   Volume volume;
   volume.top = -1e9f;
+  volume.bottom = 1e9f;
   for (int i : cluster.indices) {
     footprint.push_back(frame.Project(voxels[i]));
     volume.top = std::max(volume.top, frame.Height(voxels[i]));
+    volume.bottom = std::min(volume.bottom, frame.Height(voxels[i]));
   }
   cv::convexHull(footprint, volume.hull);
   return volume;
+}
+
+// The largest distance between two points of a convex footprint.
+float Diameter(const std::vector<cv::Point2f>& hull) {
+  float diameter = 0;
+  for (size_t i = 0; i < hull.size(); ++i) {
+    for (size_t j = i + 1; j < hull.size(); ++j) diameter = std::max(diameter, static_cast<float>(cv::norm(hull[i] - hull[j])));
+  }
+  return diameter;
+}
+
+// Whether `inner` is the inside of the hollow object whose outer wall is `wall`, seen over the rim: the
+// wall stands on the plane, the inside floats above it (its lower part hidden by the wall), reaches up
+// to the rim (the far side of it) but not above, and widens the wall's footprint no further than the object's own width (a neighbour would).
+bool IsInsideOfHollow(const Volume& inner, const Volume& wall, const ConvexClusteringParams& params) {
+  if (wall.hull.size() < 3 || inner.hull.empty()) return false;
+  if (wall.bottom > params.hollow_lift_m || inner.bottom <= params.hollow_lift_m) return false;
+  if (inner.top > wall.top + params.top_tolerance_m || inner.top < wall.top - params.rim_tolerance_m) return false;
+  // Seen over the near rim, the inside lies beyond the wall from the camera (at the plane frame's origin).
+  const auto range = [](const std::vector<cv::Point2f>& hull) {
+    cv::Point2f c(0, 0);
+    for (const auto& p : hull) c += p;
+    return cv::norm(c / static_cast<float>(hull.size()));
+  };
+  if (range(inner.hull) <= range(wall.hull)) return false;
+  std::vector<cv::Point2f> both = wall.hull, hull;
+  both.insert(both.end(), inner.hull.begin(), inner.hull.end());
+  cv::convexHull(both, hull);
+  return Diameter(hull) <= (1 + params.hollow_widening) * Diameter(wall.hull);
 }
 
 // Joins each cluster that lies mostly inside a larger one's volume to it (smallest first).
@@ -61,6 +95,10 @@ void JoinPiecesInsideOthers(const Cloud& voxels, const PlaneFrame& frame, const 
     size_t best = a;
     double best_fraction = params.inside_fraction;
     for (size_t b = 0; b < a; ++b) {
+      if (IsInsideOfHollow(volumes[a], volumes[b], params) || IsInsideOfHollow(volumes[b], volumes[a], params)) {
+        best = b;
+        break;
+      }
       if (volumes[b].hull.size() < 3) continue;
       int inside = 0;
       for (int i : clusters[a].indices) {
@@ -81,22 +119,68 @@ void JoinPiecesInsideOthers(const Cloud& voxels, const PlaneFrame& frame, const 
   clusters = std::move(kept);
 }
 
-}  // namespace
+using Supervoxels = std::map<std::uint32_t, pcl::Supervoxel<PointT>::Ptr>;
+using Adjacency = std::multimap<std::uint32_t, std::uint32_t>;
 
-std::vector<pcl::PointIndices> ConvexClusters(const Cloud::Ptr& voxels, const Eigen::Vector4d& plane_C,
-                                              const ConvexClusteringParams& params) {
-  if (voxels->empty()) return {};
-  pcl::SupervoxelClustering<PointT> supervoxels(static_cast<float>(params.voxel_m), static_cast<float>(params.seed_m));
+// CIE L*a*b* colour of each supervoxel's mean colour (Euclidean distance ~ perceived difference).
+std::map<std::uint32_t, Eigen::Vector3f> LabColours(const Supervoxels& supervoxels) {
+  cv::Mat rgb(static_cast<int>(supervoxels.size()), 1, CV_32FC3);
+  int row = 0;
+  for (const auto& [label, sv] : supervoxels) {
+    rgb.at<cv::Vec3f>(row++) = cv::Vec3f(sv->centroid_.r, sv->centroid_.g, sv->centroid_.b) / 255.0f;
+  }
+  cv::Mat lab;
+  cv::cvtColor(rgb, lab, cv::COLOR_RGB2Lab);
+  std::map<std::uint32_t, Eigen::Vector3f> colours;
+  row = 0;
+  for (const auto& [label, sv] : supervoxels) {
+    const cv::Vec3f c = lab.at<cv::Vec3f>(row++);
+    colours[label] = {c[0], c[1], c[2]};
+  }
+  return colours;
+}
+
+// LCCP's convexity test (Stein et al. 2014, eq. 3): the connection a-b is concave when the normals
+// open towards each other; then its concavity is the angle between the normals (else 0).
+double ConcavityDeg(const pcl::Supervoxel<PointT>& a, const pcl::Supervoxel<PointT>& b) {
+  const Eigen::Vector3f n_a = a.normal_.getNormalVector3fMap().normalized();
+  const Eigen::Vector3f n_b = b.normal_.getNormalVector3fMap().normalized();
+  const Eigen::Vector3f b_to_a = (a.centroid_.getVector3fMap() - b.centroid_.getVector3fMap()).normalized();
+  const auto angle = [](const Eigen::Vector3f& x, const Eigen::Vector3f& y) {
+    return std::acos(std::clamp(x.dot(y), -1.0f, 1.0f));
+  };
+  if (angle(b_to_a, n_a) - angle(b_to_a, n_b) <= 0) return 0;
+  return pcl::rad2deg(angle(n_a, n_b));
+}
+
+// Removes the connections between differently coloured supervoxels that are even slightly concave:
+// two touching objects of different colour come apart where their surfaces meet at a shallow crease,
+// while a label or print on one object (a colour edge across a flat or convex surface) stays joined.
+void CutColourCreases(const Supervoxels& supervoxels, const ConvexClusteringParams& params, Adjacency& adjacency) {
+  const std::map<std::uint32_t, Eigen::Vector3f> lab = LabColours(supervoxels);
+  for (auto it = adjacency.begin(); it != adjacency.end();) {
+    const auto a = supervoxels.find(it->first), b = supervoxels.find(it->second);
+    const bool cut = a != supervoxels.end() && b != supervoxels.end() &&
+                     (lab.at(it->first) - lab.at(it->second)).norm() > params.colour_edge_delta_e &&
+                     ConcavityDeg(*a->second, *b->second) > params.colour_edge_concavity_deg;
+    it = cut ? adjacency.erase(it) : std::next(it);
+  }
+}
+
+// Voxel i's LCCP segment label (0: none), in the input's order.
+pcl::PointCloud<pcl::PointXYZL>::Ptr LccpLabels(const Cloud::Ptr& voxels, const ConvexClusteringParams& params) {
+  pcl::SupervoxelClustering<PointT> clustering(static_cast<float>(params.voxel_m), static_cast<float>(params.seed_m));
   // The input is unorganized (voxel centres): no single-camera depth transform.
-  supervoxels.setUseSingleCameraTransform(false);
-  supervoxels.setInputCloud(voxels);
-  supervoxels.setColorImportance(0.0f);
-  supervoxels.setSpatialImportance(1.0f);
-  supervoxels.setNormalImportance(4.0f);
-  std::map<std::uint32_t, pcl::Supervoxel<PointT>::Ptr> clusters;
-  supervoxels.extract(clusters);
-  std::multimap<std::uint32_t, std::uint32_t> adjacency;
-  supervoxels.getSupervoxelAdjacency(adjacency);
+  clustering.setUseSingleCameraTransform(false);
+  clustering.setInputCloud(voxels);
+  clustering.setColorImportance(static_cast<float>(params.colour_importance));
+  clustering.setSpatialImportance(1.0f);
+  clustering.setNormalImportance(static_cast<float>(params.normal_importance));
+  Supervoxels supervoxels;
+  clustering.extract(supervoxels);
+  Adjacency adjacency;
+  clustering.getSupervoxelAdjacency(adjacency);
+  CutColourCreases(supervoxels, params, adjacency);
 
   pcl::LCCPSegmentation<PointT> lccp;
   lccp.setConcavityToleranceThreshold(static_cast<float>(params.concavity_deg));
@@ -104,11 +188,19 @@ std::vector<pcl::PointIndices> ConvexClusters(const Cloud::Ptr& voxels, const Ei
   lccp.setSmoothnessCheck(true, static_cast<float>(params.voxel_m), static_cast<float>(params.seed_m), 0.1f);
   lccp.setKFactor(0);
   lccp.setMinSegmentSize(3);
-  lccp.setInputSupervoxels(clusters, adjacency);
+  lccp.setInputSupervoxels(supervoxels, adjacency);
   lccp.segment();
-  pcl::PointCloud<pcl::PointXYZL>::Ptr labelled = supervoxels.getLabeledCloud();
+  pcl::PointCloud<pcl::PointXYZL>::Ptr labelled = clustering.getLabeledCloud();
   lccp.relabelCloud(*labelled);
+  return labelled;
+}
 
+}  // namespace
+
+std::vector<pcl::PointIndices> ConvexClusters(const Cloud::Ptr& voxels, const Eigen::Vector4d& plane_C,
+                                              const ConvexClusteringParams& params) {
+  if (voxels->empty()) return {};
+  const pcl::PointCloud<pcl::PointXYZL>::Ptr labelled = LccpLabels(voxels, params);
   // getLabeledCloud keeps the input's order: point i of `labelled` is voxel i (label 0: none).
   std::map<std::uint32_t, pcl::PointIndices> by_label;
   for (size_t i = 0; i < labelled->size() && i < voxels->size(); ++i) {

@@ -3,10 +3,14 @@
 /// Clusters that stop at concave creases: supervoxels (PCL's SupervoxelClustering) joined across convex
 /// or flat connections and cut across concave ones (PCL's LCCP, Stein et al. 2014). Two objects that
 /// touch meet in a concave crease (box on box, can beside box) and come apart; one object's own faces
-/// meet convexly and stay together, whatever is printed on them (colour plays no part). The inside of
-/// a hollow object (a bowl, a mug, a pot) is concave, so LCCP cuts it into pieces: a piece that lies
-/// mostly inside another cluster's volume (within its footprint on the supporting plane and below its
-/// top) joins that cluster; an object stacked on another is above the lower one's top and stays apart.
+/// meet convexly and stay together, whatever is printed on them. Colour only tightens the concavity
+/// test: differently coloured supervoxels are cut at a shallower crease (colour_edge_concavity_deg) than
+/// same-coloured ones (concavity_deg), so a print across a flat or convex face never splits an object.
+/// The inside of a hollow object (a bowl, a mug, a pot) is concave, so LCCP cuts it into pieces: a
+/// piece that lies mostly inside another cluster's volume (within its footprint on the supporting plane
+/// and below its top) joins that cluster, and so does the inside seen over a wall's rim
+/// (IsInsideOfHollow in the source); an object stacked on another is above the lower one's top and
+/// stays apart.
 
 #include <Eigen/Core>
 #include <pcl/PointIndices.h>
@@ -20,11 +24,24 @@ namespace sortcell::perception {
 struct ConvexClusteringParams {
   double voxel_m = 0.0075;       ///< Supervoxel voxel resolution.
   double seed_m = 0.03;          ///< Supervoxel seed resolution.
-  double concavity_deg = 15;     ///< Connections more concave than this are cut.
+  double concavity_deg = 25;     ///< Connections more concave than this are cut.
+  /// Colour edges: supervoxels whose mean colours differ by more than this CIE76 delta E (L*a*b*)...
+  double colour_edge_delta_e = 10;
+  /// ...are cut apart at a connection more concave than this (tighter than concavity_deg).
+  double colour_edge_concavity_deg = 5;
+  double colour_importance = 0;  ///< Supervoxels: weight of colour against space (1) and normals (normal_importance).
+  double normal_importance = 4;
   /// Smaller and larger segments are dropped; SegmentObjects sets both from SegmentationParams.
   int min_cluster_voxels = 25, max_cluster_voxels = 20000;
   double inside_fraction = 0.8;  ///< A piece with this share of its voxels inside another cluster's volume joins it.
   double top_tolerance_m = 0.01; ///< "Below the top": at most this much above the other cluster's highest voxel.
+  /// The inside of a hollow object seen over its rim (a piece whose lowest voxel is more than
+  /// hollow_lift_m above the plane, next to a wall standing on it) joins the wall when both together
+  /// are at most hollow_widening (a fraction) wider than the wall alone and the piece's top is within
+  /// rim_tolerance_m of the wall's (the far rim).
+  double hollow_lift_m = 0.02;
+  double rim_tolerance_m = 0.015;
+  double hollow_widening = 0.15;
 };
 
 /// Clusters of `voxels` (camera frame) standing on the plane `plane_C` (n.p + d = 0, camera frame, n

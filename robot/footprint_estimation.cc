@@ -4,6 +4,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include <Eigen/Eigenvalues>
+
 namespace sortcell::robot {
 namespace {
 
@@ -37,6 +39,37 @@ double YawOf(const Eigen::Vector2d& d) {
   return yaw;
 }
 
+// The direction of the points' largest spread on the table.
+Eigen::Vector2d MajorAxis(const std::vector<Eigen::Vector3d>& p_W, const Eigen::Vector2d& mean) {
+  Eigen::Matrix2d covariance = Eigen::Matrix2d::Zero();
+  for (const auto& p : p_W) {
+    const Eigen::Vector2d r = p.head<2>() - mean;
+    covariance += r * r.transpose();
+  }
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> solver(covariance);
+  return solver.eigenvectors().col(1);  // Eigenvalues ascend.
+}
+
+// A long, low object on its side, pinched across its long axis; nullopt if it is not one or too wide.
+// `v`: the horizontal line of sight.
+std::optional<ObjectFootprint> LyingFootprint(const std::vector<Eigen::Vector3d>& p_W, const Eigen::Vector2d& mean,
+                                              const Eigen::Vector2d& v, double height, const FootprintOptions& options,
+                                              std::vector<double>& scratch) {
+  const Eigen::Vector2d e = MajorAxis(p_W, mean), d(-e.y(), e.x());
+  const Extent length = ExtentAlong(p_W, e, options, scratch), across = ExtentAlong(p_W, d, options, scratch);
+  if (length.width() < options.lying_elongation * std::max(across.width(), height)) return std::nullopt;
+  // A round section is as wide as it is high; the camera may not see its far side.
+  const double width = std::max(across.width(), height);
+  if (width > options.max_width) return std::nullopt;
+  Extent section = across;
+  (d.dot(v) >= 0 ? section.high : section.low) += (d.dot(v) >= 0 ? 1 : -1) * (width - across.width());
+  ObjectFootprint f;
+  f.centre_xy = section.mid() * d + e.dot(mean) * e;
+  f.pinch_yaw = YawOf(d);
+  f.width = width;
+  return f;
+}
+
 }  // namespace
 
 FootprintEstimate EstimateFootprint(const std::vector<Eigen::Vector3d>& p_W, const Eigen::Vector3d& p_W_camera,
@@ -64,6 +97,16 @@ FootprintEstimate EstimateFootprint(const std::vector<Eigen::Vector3d>& p_W, con
 
   FootprintEstimate estimate;
   ObjectFootprint& f = estimate.footprint;
+  f.top_z = top_z;
+  f.base_z = table_z;
+  if (const auto lying = LyingFootprint(p_W, mean, v, top_z - table_z, options, scratch)) {
+    estimate.footprint = *lying;
+    estimate.footprint.top_z = top_z;
+    estimate.footprint.base_z = table_z;
+    estimate.lying = true;
+    estimate.across_view = false;
+    return estimate;
+  }
   const Extent across = ExtentAlong(p_W, u, options, scratch);
   // A prism (box, cup) shows its whole footprint in its top face; a tapered object (bottle, ball)
   // shows only a cap there, and its back stays hidden.
@@ -86,6 +129,11 @@ FootprintEstimate EstimateFootprint(const std::vector<Eigen::Vector3d>& p_W, con
     f.centre_xy = across.mid() * u + (along.low + 0.5 * depth) * v;
     f.pinch_yaw = YawOf(u);
     f.width = across.width();
+    if (prism && along.width() <= options.max_width) {  // Its top face shows its depth.
+      estimate.turned = f;
+      estimate.turned->pinch_yaw = YawOf(v);
+      estimate.turned->width = along.width();
+    }
   } else {
     if (!prism) {  // Tapered and too wide across: the narrowest visible direction is all there is.
       for (double yaw = 0; yaw < M_PI; yaw += options.yaw_step) {
@@ -101,11 +149,14 @@ FootprintEstimate EstimateFootprint(const std::vector<Eigen::Vector3d>& p_W, con
     f.centre_xy = pinch.mid() * d + length.mid() * e;
     f.pinch_yaw = narrowest_yaw;
     f.width = pinch.width();
+    if (prism && length.width() <= options.max_width) {
+      estimate.turned = f;
+      estimate.turned->pinch_yaw = YawOf(e);
+      estimate.turned->width = length.width();
+    }
   }
   estimate.across_view = use_across;
   estimate.prism = prism;
-  f.top_z = top_z;
-  f.base_z = table_z;
   return estimate;
 }
 

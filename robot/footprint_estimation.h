@@ -10,11 +10,17 @@
 /// narrower in another direction is pinched there instead, centred on its visible extents, as is
 /// anything too wide for the stroke across the line of sight.
 ///
+/// An object lying on its side (a bottle, a can: long, and low for its length) is pinched across its
+/// long axis (the principal axes of its points on the table), at the mean of its points along the axis
+/// (towards the heavier, thicker end), its width across the axis at least its height (a round
+/// section), the hidden far side completed as above.
+///
 /// Why not the centroid of the points (the paper's grasp point): it lies on the visible half, biased
 /// towards the camera by up to a radius (~2 cm for a bottle), more than the finger clearance.
 
 #include <Eigen/Core>
 
+#include <optional>
 #include <vector>
 
 #include "robot/grasp_planner.h"
@@ -35,12 +41,18 @@ struct FootprintOptions {
   double across_preference = 1.1;
   /// Candidate pinch directions (rad step).
   double yaw_step = 2.5 * 3.14159265358979323846 / 180;
+  /// Lying: at least this many times as long as it is wide and as it is high.
+  double lying_elongation = 1.6;
 };
 
 struct FootprintEstimate {
   ObjectFootprint footprint;
   bool across_view = true;  ///< Fingers close across the line of sight (else along the narrowest direction).
   bool prism = false;       ///< The top face spans the object's width.
+  bool lying = false;       ///< Long and low: pinched across its long axis, never turned.
+  /// A prism pinched the other way (a quarter turn, across its other pair of sides) where that fits
+  /// the stroke: a second grasp when a neighbour stands in the first one's way.
+  std::optional<ObjectFootprint> turned;
 };
 
 /// @param p_W        The object's points in the world frame (z up, table at `table_z`).

@@ -88,20 +88,22 @@ double FingerClearance(const Eigen::Vector2d& centre_xy, double yaw, double open
   return clearance;
 }
 
-double ClearestPinchYaw(const ObjectFootprint& object, double open_gap, const Neighbours& neighbours, double enough) {
-  constexpr int kDirections = 12;  // Over half a turn: the other half is the same pair of fingers.
-  double best_yaw = object.pinch_yaw;
-  double best = FingerClearance(object.centre_xy, best_yaw, open_gap, neighbours);
-  if (best >= enough) return best_yaw;
-  for (int k = 1; k < kDirections; ++k) {
-    const double yaw = object.pinch_yaw + k * M_PI / kDirections;
-    const double clearance = FingerClearance(object.centre_xy, yaw, open_gap, neighbours);
-    if (clearance > best + 1e-4) {
-      best = clearance;
-      best_yaw = yaw;
-    }
+std::vector<ObjectFootprint> RoundWays(const ObjectFootprint& object, int directions) {
+  std::vector<ObjectFootprint> ways(directions, object);
+  for (int k = 1; k < directions; ++k) ways[k].pinch_yaw = object.pinch_yaw + k * M_PI / directions;
+  return ways;
+}
+
+ClearGrasp ClearestGrasp(const std::vector<ObjectFootprint>& ways, double side_clearance, const Neighbours& neighbours,
+                         double enough) {
+  if (ways.empty()) throw std::invalid_argument("clearest grasp: no way to pinch the object given");
+  ClearGrasp best{ways.front(), -INFINITY};
+  for (const ObjectFootprint& way : ways) {
+    const double clearance = FingerClearance(way.centre_xy, way.pinch_yaw, way.width + 2 * side_clearance, neighbours);
+    if (&way == &ways.front() && clearance >= enough) return {way, clearance};
+    if (clearance > best.clearance + 1e-4) best = {way, clearance};
   }
-  return best_yaw;
+  return best;
 }
 
 int ChooseNextPick(const std::vector<ObjectFootprint>& candidates, const PickMemory& memory) {

@@ -59,12 +59,22 @@ struct Neighbours {
 /// where a finger reaches into a neighbour's footprint disc.
 double FingerClearance(const Eigen::Vector2d& centre_xy, double yaw, double open_gap, const Neighbours& neighbours);
 
-/// For a round object (the fingers may close on it from any side), the direction to close along:
-/// its own pinch_yaw while the open fingers clear the neighbours by `enough` there, else the one of
-/// twelve (15 degree steps) with the most clearance. A neighbour standing where a finger comes down
-/// is knocked over or keeps the finger from closing.
-double ClearestPinchYaw(const ObjectFootprint& object, double open_gap, const Neighbours& neighbours,
-                        double enough = 0.015);
+/// A round object (the fingers may close on it from any side) pinched from `directions` directions
+/// over half a turn (the other half is the same pair of fingers), its own pinch_yaw first.
+std::vector<ObjectFootprint> RoundWays(const ObjectFootprint& object, int directions = 12);
+
+/// One way to grasp an object and how far its open fingers stay from the neighbours (m).
+struct ClearGrasp {
+  ObjectFootprint footprint;
+  double clearance = 0;
+};
+
+/// Of the ways to pinch one object (`ways`: the same object, other pinch directions; the first is the
+/// preferred one), the preferred one while its open fingers (its width plus `side_clearance` per side)
+/// clear the neighbours by `enough`, else the one that clears them most.
+/// @throws std::invalid_argument if `ways` is empty.
+ClearGrasp ClearestGrasp(const std::vector<ObjectFootprint>& ways, double side_clearance, const Neighbours& neighbours,
+                         double enough = 0.015);
 
 /// The candidate to pick next: of those not given up, the one with the most free room around it
 /// (distance from its centre to the nearest other object's centre, less both half-widths), so the

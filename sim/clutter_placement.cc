@@ -148,36 +148,52 @@ std::optional<std::vector<TablePose>> ArrangeOnce(const std::vector<ObjectShape>
   return poses;
 }
 
-// Sparse: discs (ObjectShape::disc_radius, or the outline's radius when lying) the area's gap apart,
-// drawn as today's scenes always were (SampleTablePoses) and redrawn where they meet a fixed one.
+// Sparse: discs (ObjectShape::disc_radius about the origin; lying, the disc about the outline's middle)
+// the area's gap apart, drawn as today's scenes always were (SampleTablePoses) and redrawn where they
+// meet a fixed one.
 std::optional<std::vector<TablePose>> SampleSparse(const std::vector<ObjectShape>& shapes,
                                                    const std::vector<TablePose>& fixed, const PlacementArea& area,
                                                    const PlacementOptions& options, std::mt19937_64& rng,
                                                    int max_tries) {
   std::uniform_real_distribution<double> unit(0.0, 1.0);
-  const auto radius = [&](size_t i, bool lying) { return lying ? shapes[i].lying->radius : shapes[i].disc_radius; };
-  std::vector<bool> lying;
-  std::vector<double> radii;
-  for (size_t i = fixed.size(); i < shapes.size(); ++i) {
-    lying.push_back(shapes[i].lying && options.lying_fraction > 0 && unit(rng) < options.lying_fraction);
-    radii.push_back(radius(i, lying.back()));
-  }
+  const auto radius = [&](size_t i, bool lying) { return lying ? shapes[i].lying->middle_radius : shapes[i].disc_radius; };
+  // Where a lying object's disc is centred, from its origin.
+  const auto middle = [&](size_t i, const TablePose& p) -> Eigen::Vector2d {
+    return p.lying ? Eigen::Rotation2Dd(p.yaw) * shapes[i].lying->middle : Eigen::Vector2d::Zero();
+  };
   for (int tries = 0; tries < kArrangements; ++tries) {
+    // Which lie, drawn afresh for each arrangement: long lying objects may not fit together.
+    std::vector<bool> lying;
+    std::vector<double> radii;
+    for (size_t i = fixed.size(); i < shapes.size(); ++i) {
+      lying.push_back(shapes[i].lying && options.lying_fraction > 0 && unit(rng) < options.lying_fraction);
+      radii.push_back(radius(i, lying.back()));
+    }
     auto drawn = SampleTablePoses(radii, area, rng, max_tries);
-    if (!drawn) return std::nullopt;
+    if (!drawn) {
+      if (options.lying_fraction > 0) continue;
+      return std::nullopt;
+    }
     bool clear = true;
+    for (size_t j = 0; j < drawn->size(); ++j) {  // Drawn: the discs' centres; the origins from them.
+      TablePose& p = (*drawn)[j];
+      p.lying = lying[j];
+      const Eigen::Vector2d origin = Eigen::Vector2d(p.x, p.y) - middle(fixed.size() + j, p);
+      p.x = origin.x();
+      p.y = origin.y();
+    }
     for (size_t i = 0; i < fixed.size() && clear; ++i) {
+      const TablePose f{fixed[i].x, fixed[i].y, fixed[i].yaw, fixed[i].lying && shapes[i].lying.has_value()};
+      const Eigen::Vector2d c_i = Eigen::Vector2d(f.x, f.y) + middle(i, f);
       for (size_t j = 0; j < drawn->size() && clear; ++j) {
-        const double d = std::hypot(fixed[i].x - (*drawn)[j].x, fixed[i].y - (*drawn)[j].y);
-        clear = d >= radius(i, fixed[i].lying && shapes[i].lying) + radii[j] + area.gap_m;
+        const TablePose& p = (*drawn)[j];
+        const Eigen::Vector2d c_j = Eigen::Vector2d(p.x, p.y) + middle(fixed.size() + j, p);
+        clear = (c_i - c_j).norm() >= radius(i, f.lying) + radii[j] + area.gap_m;
       }
     }
     if (!clear) continue;
     std::vector<TablePose> poses = fixed;
-    for (size_t j = 0; j < drawn->size(); ++j) {
-      (*drawn)[j].lying = lying[j];
-      poses.push_back((*drawn)[j]);
-    }
+    poses.insert(poses.end(), drawn->begin(), drawn->end());
     return poses;
   }
   return std::nullopt;

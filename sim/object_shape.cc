@@ -117,7 +117,14 @@ RestingShape Resting(const std::vector<Swollen>& parts, const Eigen::Quaterniond
   shape.origin_z = -low;
   shape.height = high - low;
   shape.outline = ConvexOutline(parts, q_tilt);
-  for (const auto& v : shape.outline) shape.radius = std::max(shape.radius, v.norm());
+  Eigen::Vector2d corner_low = Eigen::Vector2d::Constant(INFINITY), corner_high = -corner_low;
+  for (const auto& v : shape.outline) {
+    shape.radius = std::max(shape.radius, v.norm());
+    corner_low = corner_low.cwiseMin(v);
+    corner_high = corner_high.cwiseMax(v);
+  }
+  shape.middle = 0.5 * (corner_low + corner_high);
+  for (const auto& v : shape.outline) shape.middle_radius = std::max(shape.middle_radius, (v - shape.middle).norm());
   return shape;
 }
 

@@ -23,6 +23,10 @@ struct RestingShape {
   /// Its footprint seen from above at yaw 0, body origin at (0, 0): convex, counter-clockwise (m).
   std::vector<Eigen::Vector2d> outline;
   double radius = 0;  ///< Largest distance of the outline from the origin (m).
+  /// The middle of the outline's bounding box (at yaw 0), and the outline's largest distance from it:
+  /// the disc it fits in (m). A lying bottle's origin is at its base, a bottle's length from its cap.
+  Eigen::Vector2d middle = Eigen::Vector2d::Zero();
+  double middle_radius = 0;
 };
 
 struct ObjectShape {

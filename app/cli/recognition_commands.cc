@@ -24,7 +24,7 @@ struct DatasetOptions {
   int scenes = 0;
   int occluded = 0;
   uint64_t seed = 0;
-  std::string placement = "sparse";
+  std::vector<std::string> placement{"sparse"};
   double lying_fraction = 0;
 };
 
@@ -130,7 +130,9 @@ void AddDatasetCommand(CLI::App& app, std::function<int()>& run, const std::vect
   occluded->excludes(scenes);
   CLI::Option* placement =
       cmd->add_option("--placement", o->placement,
-                      "Scenes: how objects stand, as in episodes: sparse (apart), dense (touching), clustered (groups of 2-4)")
+                      "Scenes: how objects stand, as in episodes: sparse (apart), dense (touching), clustered (groups "
+                      "of 2-4); a comma list takes turns scene by scene, e.g. sparse,dense,clustered")
+          ->delimiter(',')
           ->check(CLI::IsMember({"sparse", "dense", "clustered"}))
           ->capture_default_str();
   CLI::Option* lying = cmd->add_option("--lying-fraction", o->lying_fraction,
@@ -154,7 +156,8 @@ void AddDatasetCommand(CLI::App& app, std::function<int()>& run, const std::vect
         options.seed = o->seed;
         options.max_objects = std::min<int>(options.max_objects, static_cast<int>(set.objects.size()));
         options.min_objects = std::min(options.min_objects, options.max_objects);
-        options.placement.mode = *sim::ParsePlacementMode(o->placement);  // Checked by the parser.
+        options.modes.clear();
+        for (const auto& mode : o->placement) options.modes.push_back(*sim::ParsePlacementMode(mode));  // Checked.
         options.placement.lying_fraction = o->lying_fraction;
         d = CaptureScenes(set, options, o->out);
       } else {

@@ -89,8 +89,8 @@ class CaptureRig {
 
   // Captures the current state and labels each segment from the ground-truth label image. A capture
   // that cannot be segmented (no table or no depth in view) has no segments; `failure` says why.
-  std::vector<LabelledSegment> CaptureSegments(const std::string& camera, std::mt19937_64& rng,
-                                               std::string* failure) {
+  std::vector<LabelledSegment> CaptureSegments(const std::string& camera, std::mt19937_64& rng, std::string* failure,
+                                               const perception::SegmentationParams& params = {}) {
     mj_forward(model_.get(), data_.get());
     sim::KinectCamera& kinect = Camera(camera);
     kinect.SetLighting(RandomLighting(rng));
@@ -101,7 +101,8 @@ class CaptureRig {
     sim::FrameTruth shown;  // Training labels: the true camera pose and label image.
     const sim::KinectFrame frame = kinect.Capture(data_, &noise, &rng, &shown);
     const auto cloud = sim::ToOrganizedCloud(frame);
-    perception::SegmentationResult result = perception::SegmentObjects(*cloud, shown.X_WC, background_.at(camera).get());
+    perception::SegmentationResult result =
+        perception::SegmentObjects(*cloud, shown.X_WC, background_.at(camera).get(), params);
     if (failure != nullptr) *failure = result.detail;
     std::vector<LabelledSegment> out;
     for (auto& segment : result.segments) {
@@ -257,7 +258,14 @@ Dataset CaptureTurntable(const ObjectSet& set, const TurntableOptions& options, 
   return dataset;
 }
 
+std::string PlacementModesText(const std::vector<sim::PlacementMode>& modes) {
+  std::string text;
+  for (const sim::PlacementMode mode : modes) text += (text.empty() ? "" : ",") + std::string(sim::ToString(mode));
+  return text;
+}
+
 Dataset CaptureScenes(const ObjectSet& set, const SceneOptions& options, const std::filesystem::path& dir) {
+  if (options.modes.empty()) throw std::invalid_argument("scene capture: no placement mode given");
   if (options.min_objects < 1 || options.max_objects < options.min_objects ||
       options.max_objects > static_cast<int>(set.objects.size())) {
     throw std::invalid_argument("scene object count range [" + std::to_string(options.min_objects) + ", " +
@@ -285,14 +293,18 @@ Dataset CaptureScenes(const ObjectSet& set, const SceneOptions& options, const s
     order.resize(count);
     std::vector<sim::ObjectShape> chosen_shapes;
     for (int o : order) chosen_shapes.push_back(shapes[o]);
-    const auto poses = sim::SampleClutter(chosen_shapes, {}, options.area, options.placement, rng);
+    sim::PlacementOptions placement = options.placement;
+    placement.mode = options.modes[scene % options.modes.size()];
+    const auto poses = sim::SampleClutter(chosen_shapes, {}, options.area, placement, rng);
     if (!poses) throw std::invalid_argument("scene " + std::to_string(scene) + ": the objects do not fit the area");
     rig.ParkAll();
     for (int k = 0; k < count; ++k) {
       sim::PlaceObject(rig.model(), rig.data(), rig.Body(set.objects[order[k]].name), (*poses)[k], chosen_shapes[k]);
     }
     placed += count;
-    const auto segments = rig.CaptureSegments("kinect", rng, nullptr);
+    perception::SegmentationParams segmentation;
+    segmentation.clustering = options.clustering;
+    const auto segments = rig.CaptureSegments("kinect", rng, nullptr, segmentation);
     std::vector<bool> found(rig.object_names().size() + 1, false);
     for (const auto& l : segments) {
       if (l.label == 0) {
@@ -327,7 +339,9 @@ Dataset CaptureScenes(const ObjectSet& set, const SceneOptions& options, const s
   dataset.capture = {{"kind", "scenes"}, {"scenes", options.scenes}, {"objects_placed", placed},
                      {"objects_not_segmented", missed}, {"segments_without_object", spurious},
                      {"segments_not_described", undescribed}, {"samples", dataset.samples.size()},
-                     {"objects_per_scene", {options.min_objects, options.max_objects}}};
+                     {"objects_per_scene", {options.min_objects, options.max_objects}},
+                     {"placement", PlacementModesText(options.modes)},
+                     {"lying_fraction", options.placement.lying_fraction}};
   return dataset;
 }
 

@@ -18,6 +18,7 @@
 #include "app/recognition/dataset.h"
 #include "app/common/object_set.h"
 
+#include "perception/segmentation.h"
 #include "sim/clutter_placement.h"
 
 namespace sortcell::app {
@@ -43,8 +44,16 @@ struct SceneOptions {
   uint64_t seed = 0;
   int min_objects = 2, max_objects = 6;
   sim::PlacementArea area;        ///< Where objects stand: the episodes' distribution.
-  sim::PlacementOptions placement;  ///< Apart, touching or in groups, some lying: as episodes draw them.
+  /// Apart, touching or in groups, some lying, as episodes draw them: scene k is placed in mode
+  /// modes[k % modes.size()] (placement.mode is not used).
+  std::vector<sim::PlacementMode> modes{sim::PlacementMode::kSparse};
+  sim::PlacementOptions placement;
+  /// How scenes are segmented: as the cell segments them, so touching objects come apart.
+  perception::SegmentationParams::Clustering clustering = perception::SegmentationParams::Clustering::kConvex;
 };
+
+/// "sparse,dense,clustered": the modes as the dataset command takes them.
+std::string PlacementModesText(const std::vector<sim::PlacementMode>& modes);
 
 /// Renders, segments and describes the turntable views of every object of `set`; writes the clouds
 /// into `dir`/clouds (the caller saves the rest with SaveDataset). Deterministic for a seed.

@@ -25,8 +25,24 @@ std::filesystem::path DefaultDatasetDir(const ObjectSet& set) { return ModelCach
 std::filesystem::path DigestPath(const std::filesystem::path& model) { return model.string() + ".trained_on"; }
 
 // What the default model of `set` depends on: its objects' models and the sensor it sees them through.
+// The default model's training scenes: every placement mode the cell meets, some objects lying.
+SceneOptions DefaultTrainingScenes() {
+  SceneOptions scenes;
+  scenes.modes = {sim::PlacementMode::kSparse, sim::PlacementMode::kDense, sim::PlacementMode::kClustered};
+  scenes.placement.lying_fraction = 0.3;
+  return scenes;
+}
+
+// The same as `sortcell dataset` options.
+std::string DefaultTrainingSceneArguments() {
+  const SceneOptions scenes = DefaultTrainingScenes();
+  return "--scenes " + std::to_string(scenes.scenes) + " --placement " + PlacementModesText(scenes.modes) +
+         " --lying-fraction " + fmt::format("{:g}", scenes.placement.lying_fraction);
+}
+
 std::string TrainedOnDigest(const ObjectSet& set) {
-  return ObjectModelsDigest(set, ObjectTexturesDir()) + " colour " + sim::ToString(sim::KinectColourParams{});
+  return ObjectModelsDigest(set, ObjectTexturesDir()) + " colour " + sim::ToString(sim::KinectColourParams{}) +
+         " scenes " + DefaultTrainingSceneArguments();
 }
 
 std::string ReadDigest(const std::filesystem::path& file) {
@@ -55,7 +71,7 @@ std::filesystem::path DefaultModelPath(const ObjectSet& set) {
 std::string DefaultModelHint(const ObjectSet& set) {
   const std::string data = DefaultDatasetDir(set).string();
   return "make one with --train-if-missing, or: sortcell dataset --objects " + set.source.string() +
-         " --scenes 150 --out " + data + " && sortcell train --dataset " + data +
+         " " + DefaultTrainingSceneArguments() + " --out " + data + " && sortcell train --dataset " + data +
          " --descriptor color-cvfh-norm --out " + DefaultModelPath(set).string() +
          " (model cache " + ModelCacheDir().string() + "; set SORTCELL_MODEL_CACHE for another folder)";
 }
@@ -72,11 +88,10 @@ std::filesystem::path EnsureDefaultModel(const ObjectSet& set) {
   const std::string digest = TrainedOnDigest(set);
   if (DefaultModelIsCurrent(set)) return path;
   spdlog::info("{} trained model at {}: training one on 150 random scenes of '{}' (about 20 s)",
-               std::filesystem::exists(path) ? "the objects or the Kinect colour model have changed since the" : "no",
+               std::filesystem::exists(path) ? "the objects, the Kinect colour model or the training scenes have changed since the" : "no",
                path.string(), set.name);
   const std::filesystem::path data = DefaultDatasetDir(set);
-  SceneOptions scenes;
-  const Dataset dataset = CaptureScenes(set, scenes, data);
+  const Dataset dataset = CaptureScenes(set, DefaultTrainingScenes(), data);
   SaveDataset(data, dataset);
   const perception::RecognitionModel model = TrainModel(dataset, {}, TrainRequest{});
   const std::filesystem::path temporary = path.string() + ".tmp" + std::to_string(::getpid());

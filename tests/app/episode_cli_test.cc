@@ -54,7 +54,7 @@ TEST(EpisodeCli, BadSceneCountAndPlacement) {
   ExpectOneLineError(RunSortcell("episode --scene /nonexistent.xml --model x --out " + Temp("d")),
                      "scene '/nonexistent.xml': file not found");
   ExpectOneLineError(RunSortcell("episode --scene " + kScene + " --place bottle1=0.5 --model x --out " + Temp("e")),
-                     "--place: expected NAME=x,y[,yaw]");
+                     "--place: expected NAME=x,y[,yaw[,lying]]");
   ExpectOneLineError(RunSortcell("episode --scene " + kScene + " --seed -1 --out " + Temp("f")), "--seed");
 }
 

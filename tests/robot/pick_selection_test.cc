@@ -59,21 +59,42 @@ TEST(PickSelection, ARoundObjectIsPinchedFromTheSideItsNeighbourLeavesFree) {
   }
   const double open_gap = 0.062 + 2 * 0.008;
   EXPECT_LT(FingerClearance(bottle.centre_xy, 0.0, open_gap, neighbours), 0.0);
-  const double yaw = ClearestPinchYaw(bottle, open_gap, neighbours);
+  const ClearGrasp grasp = ClearestGrasp(RoundWays(bottle), 0.008, neighbours);
+  const double yaw = grasp.footprint.pinch_yaw;
   EXPECT_NEAR(std::abs(std::cos(yaw)), 0.0, 1e-9) << yaw;
   EXPECT_GT(FingerClearance(bottle.centre_xy, yaw, open_gap, neighbours), 0.0);
+  EXPECT_DOUBLE_EQ(grasp.clearance, FingerClearance(bottle.centre_xy, yaw, open_gap, neighbours));
 }
 
 TEST(PickSelection, APinchThatIsClearAlreadyIsKept) {
   ObjectFootprint bottle = At(0.5, 0.0);
   bottle.width = 0.062;
   bottle.pinch_yaw = 0.3;
-  EXPECT_DOUBLE_EQ(ClearestPinchYaw(bottle, 0.078, Neighbours{}), 0.3);
+  EXPECT_DOUBLE_EQ(ClearestGrasp(RoundWays(bottle), 0.008, Neighbours{}).footprint.pinch_yaw, 0.3);
   Neighbours far;
   far.discs.emplace_back(Eigen::Vector2d(0.7, 0.0), 0.03);
-  EXPECT_DOUBLE_EQ(ClearestPinchYaw(bottle, 0.078, far), 0.3);
+  EXPECT_DOUBLE_EQ(ClearestGrasp(RoundWays(bottle), 0.008, far).footprint.pinch_yaw, 0.3);
   // The finger reaches 3 cm beyond its pad and 2 cm to either side.
   EXPECT_NEAR(FingerClearance(bottle.centre_xy, 0.0, 0.078, far), 0.2 - 0.03 - 0.039 - 0.03, 1e-9);
+}
+
+// A box between two neighbours along its pinch direction: its turned grasp (across its other sides)
+// is the free one; with neighbours all round, the one that clears them most is returned.
+TEST(PickSelection, ABlockedPrismIsPinchedTheOtherWay) {
+  ObjectFootprint box = At(0.5, 0.0);
+  box.width = 0.06;
+  box.pinch_yaw = 0.0;
+  ObjectFootprint turned = box;
+  turned.width = 0.09;
+  turned.pinch_yaw = M_PI / 2;
+  Neighbours neighbours;
+  for (const double x : {0.44, 0.56}) neighbours.p_xy.emplace_back(x, 0.0);
+  const ClearGrasp grasp = ClearestGrasp({box, turned}, 0.008, neighbours);
+  EXPECT_DOUBLE_EQ(grasp.footprint.pinch_yaw, M_PI / 2);
+  EXPECT_GE(grasp.clearance, 0.015);
+  for (const double y : {-0.06, 0.06}) neighbours.p_xy.emplace_back(0.5, y);
+  EXPECT_LT(ClearestGrasp({box, turned}, 0.008, neighbours).clearance, 0.015);
+  EXPECT_THROW(ClearestGrasp({}, 0.008, neighbours), std::invalid_argument);
 }
 
 TEST(PickSelection, RejectsBadMemoryParameters) {
