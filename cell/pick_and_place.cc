@@ -101,6 +101,8 @@ PickReport PickAndPlace(MotionSequencer& run, const PickRequest& request, const 
   }
   robot::GraspOptions place_options;
   place_options.place_yaw_step = request.place_yaw_step;
+  place_options.place_yaw_offset = request.place_yaw_offset;
+  place_options.release_clearance = request.release_clearance;
   const robot::PlacePlan place = robot::PlanPlacement(request.p_W_release, plan.grasp_height, transfer.end(), place_options);
   if (place.ok) {
     transfer.JointMove("carry", place.q_above);
@@ -140,9 +142,12 @@ PickReport PickAndPlace(MotionSequencer& run, const PickRequest& request, const 
   }
   Notify(hooks.lowered);
   if (!run.Gripper("release", release_gap)) return Fail(run, request, report);
-  // Still caught by the fingers: open as wide as for the approach, or the next motion takes it along.
-  if (robot::CaughtAfterOpening(run.io().ReadGripper(), release_gap) && !run.Gripper("release", plan.open_gap)) {
-    return Fail(run, request, report);
+  // Still caught by the fingers: open as wide as for the approach, then all the way (an object turned
+  // in the grasp may span the fingers corner to corner), or the next motion takes it along.
+  for (const double gap : {plan.open_gap, robot::kMaxGap}) {
+    if (robot::CaughtAfterOpening(run.io().ReadGripper(), release_gap) && !run.Gripper("release", gap)) {
+      return Fail(run, request, report);
+    }
   }
   report.reached_bin = true;
   report.X_WT_exit = place.X_WT_above;

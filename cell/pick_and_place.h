@@ -27,6 +27,8 @@ struct PickRequest {
   robot::GraspPlan grasp;  ///< A plan with status kOk.
   Eigen::Vector3d p_W_release = Eigen::Vector3d::Zero();  ///< The floor point the object is released over.
   double place_yaw_step = CellLayout().place_yaw_step;    ///< Yaws tried for the placement (robot::PlanPlacement).
+  double place_yaw_offset = 0;                            ///< The first of them (robot::GraspOptions).
+  double release_clearance = robot::GraspOptions().release_clearance;  ///< Object bottom above the floor at the release (m).
   robot::Joints q_home = CellLayout().q_observe;          ///< Where the arm goes after a miss or a failure.
   /// Where the last attempt left the arm: it first goes straight up to here (out of a bin); empty:
   /// the arm is free to move (at home).

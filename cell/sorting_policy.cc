@@ -22,9 +22,14 @@ double WallSecondsSince(std::chrono::steady_clock::time_point start) {
 // Open fingers this far from every neighbour are free to come down (m): beyond the Kinect's noise.
 constexpr double kFreeFingers = 0.004;
 
-robot::GraspOptions GraspOptionsFor(const robot::ObjectFootprint& object) {
+// A lying object's middle across its axis is the least certain (its far side is hidden, its neighbours
+// hide more of it), and a finger landing on it rolls it away: more room per side where the stroke allows.
+constexpr double kLyingClearance = 0.015;
+
+robot::GraspOptions GraspOptionsFor(const robot::ObjectFootprint& object, bool lying) {
   robot::GraspOptions options;
-  options.finger_clearance = std::max(kMinClearance, std::min(kPerceivedClearance, 0.5 * (robot::kMaxGap - object.width)));
+  const double wanted = lying ? kLyingClearance : kPerceivedClearance;
+  options.finger_clearance = std::max(kMinClearance, std::min(wanted, 0.5 * (robot::kMaxGap - object.width)));
   return options;
 }
 
@@ -47,7 +52,7 @@ robot::ClearGrasp ClearestGraspOf(const std::vector<Detection>& detections, size
   std::vector<robot::ObjectFootprint> ways{d.footprint};
   if (d.round) ways = robot::RoundWays(d.footprint);
   if (d.turned) ways.push_back(*d.turned);
-  return robot::ClearestGrasp(ways, GraspOptionsFor(d.footprint).finger_clearance, NeighboursOf(detections, i));
+  return robot::ClearestGrasp(ways, GraspOptionsFor(d.footprint, d.lying).finger_clearance, NeighboursOf(detections, i));
 }
 
 }  // namespace
@@ -122,7 +127,7 @@ int SortingPolicy::Choose(const std::vector<Detection>& detections, robot::PickM
       continue;
     }
     // The IK branch nearest to the observe pose (the natural one for picking), wherever the arm is now.
-    plan = robot::PlanTopDownGrasp(grasp.footprint, layout_.q_observe, GraspOptionsFor(grasp.footprint));
+    plan = robot::PlanTopDownGrasp(grasp.footprint, layout_.q_observe, GraspOptionsFor(grasp.footprint, detections[i].lying));
     if (plan.status == robot::GraspStatus::kOk) return i;
     for (robot::PickMemory* m : {&memory, &view, &unhidden, &free, &free_hidden}) {
       m->Skip(footprints[i].centre_xy, robot::SkipReason::kUnreachable);
@@ -145,6 +150,13 @@ AttemptReport SortingPolicy::Attempt(const Detection& seen, int index, int attem
   request.grasp = plan;
   request.p_W_release = BinSlot(layout_, *seen.category, filled);
   request.place_yaw_step = layout_.place_yaw_step;
+  // A lying object hangs along the TCP's x axis, longer than a bin is wide: along the bin's diagonal,
+  // in its middle, let go above its walls (lowered in, its ends would catch on them).
+  if (seen.lying) {
+    request.place_yaw_offset = M_PI / 4;
+    request.p_W_release = layout_.p_W_bin.at(*seen.category);
+    request.release_clearance = layout_.bin_wall_height + 0.01;
+  }
   request.q_home = layout_.q_observe;
   request.X_WT_exit = X_WT_exit;
   request.speeds = layout_.speeds;

@@ -85,6 +85,20 @@ bool IsInsideOfHollow(const Volume& inner, const Volume& wall, const ConvexClust
   return Diameter(hull) <= (1 + params.hollow_widening) * Diameter(wall.hull);
 }
 
+// Whether `piece` (of `piece_voxels`) is the top of the object `base` (of `base_voxels`) stands for, cut
+// off at a concave crease of its own (a bottle's neck and cap over its shoulder): much smaller, it
+// begins at the base's top, and its footprint's middle lies over the base's footprint. An object
+// stacked on another is about as large as it (boxes on boxes) and stays apart.
+bool IsCapOf(const Volume& piece, size_t piece_voxels, const Volume& base, size_t base_voxels,
+             const ConvexClusteringParams& params) {
+  if (base.hull.size() < 3 || piece.hull.empty()) return false;
+  if (piece_voxels > params.cap_fraction * base_voxels) return false;
+  if (piece.bottom < base.top - params.cap_overlap_m || piece.bottom > base.top + params.top_tolerance_m) return false;
+  cv::Point2f middle(0, 0);
+  for (const auto& p : piece.hull) middle += p;
+  return cv::pointPolygonTest(base.hull, middle / static_cast<float>(piece.hull.size()), false) >= 0;
+}
+
 // Joins each cluster that lies mostly inside a larger one's volume to it (smallest first).
 void JoinPiecesInsideOthers(const Cloud& voxels, const PlaneFrame& frame, const ConvexClusteringParams& params,
                             std::vector<pcl::PointIndices>& clusters) {
@@ -95,7 +109,8 @@ void JoinPiecesInsideOthers(const Cloud& voxels, const PlaneFrame& frame, const 
     size_t best = a;
     double best_fraction = params.inside_fraction;
     for (size_t b = 0; b < a; ++b) {
-      if (IsInsideOfHollow(volumes[a], volumes[b], params) || IsInsideOfHollow(volumes[b], volumes[a], params)) {
+      if (IsInsideOfHollow(volumes[a], volumes[b], params) || IsInsideOfHollow(volumes[b], volumes[a], params) ||
+          IsCapOf(volumes[a], clusters[a].indices.size(), volumes[b], clusters[b].indices.size(), params)) {
         best = b;
         break;
       }

@@ -9,8 +9,9 @@
 /// The inside of a hollow object (a bowl, a mug, a pot) is concave, so LCCP cuts it into pieces: a
 /// piece that lies mostly inside another cluster's volume (within its footprint on the supporting plane
 /// and below its top) joins that cluster, and so does the inside seen over a wall's rim
-/// (IsInsideOfHollow in the source); an object stacked on another is above the lower one's top and
-/// stays apart.
+/// (IsInsideOfHollow in the source); so does a small piece on top of a cluster's own top (a bottle's
+/// neck and cap, cut off at the shoulder's crease); an object stacked on another is above the lower
+/// one's top, about as large as it, and stays apart (a small object on a large one joins it).
 
 #include <Eigen/Core>
 #include <pcl/PointIndices.h>
@@ -42,6 +43,10 @@ struct ConvexClusteringParams {
   double hollow_lift_m = 0.02;
   double rim_tolerance_m = 0.015;
   double hollow_widening = 0.15;
+  /// A small piece (at most cap_fraction of another's voxels) that begins within cap_overlap_m below
+  /// that other's top and stands over its footprint is its top (a bottle's neck and cap) and joins it.
+  double cap_fraction = 0.25;
+  double cap_overlap_m = 0.025;
 };
 
 /// Clusters of `voxels` (camera frame) standing on the plane `plane_C` (n.p + d = 0, camera frame, n

@@ -81,7 +81,8 @@ PlacePlan PlanPlacement(const Eigen::Vector3d& p_W_floor, double grasp_height, c
   PlacePlan plan;
   for (double clearance = options.lift_clearance; clearance >= options.min_lift_clearance - 1e-9; clearance -= 0.02) {
     const Eigen::Vector3d p_above = p_W_floor + Eigen::Vector3d(0, 0, clearance + grasp_height);
-    if (!NearestTopDownPose(p_above, q_current, options.selection, plan.X_WT_above, plan.q_above, options.place_yaw_step)) {
+    if (!NearestTopDownPose(p_above, q_current, options.selection, plan.X_WT_above, plan.q_above, options.place_yaw_step,
+                            options.place_yaw_offset)) {
       continue;
     }
     plan.X_WT_release = plan.X_WT_above;
@@ -95,12 +96,12 @@ PlacePlan PlanPlacement(const Eigen::Vector3d& p_W_floor, double grasp_height, c
 }
 
 bool NearestTopDownPose(const Eigen::Vector3d& p_W, const Joints& q_current, const SelectionOptions& selection,
-                        Eigen::Isometry3d& X_WT, Joints& q, double yaw_step) {
+                        Eigen::Isometry3d& X_WT, Joints& q, double yaw_step, double yaw_offset) {
   bool found = false;
   double best_distance = 0;
   const int steps = std::max(1, static_cast<int>(std::lround(2 * M_PI / yaw_step)));
   for (int k = 0; k < steps; ++k) {
-    const Eigen::Isometry3d X = TopDownTcpPose(p_W, k * 2 * M_PI / steps);
+    const Eigen::Isometry3d X = TopDownTcpPose(p_W, yaw_offset + k * 2 * M_PI / steps);
     const auto chosen = SelectNearest(SolveTcpIk(X, q_current[5]), q_current, selection);
     if (!chosen) continue;
     const double distance = (chosen->q - q_current).norm();

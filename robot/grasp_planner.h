@@ -39,6 +39,9 @@ struct GraspOptions {
   double release_clearance = 0.03;
   /// Yaws tried for the placement, in steps of this (rad); pi/2 keeps a held box square to the bin.
   double place_yaw_step = M_PI / 8;
+  /// The first of those yaws (rad): pi/4 with steps of pi/2 lays a long held object (a lying bottle,
+  /// held across its axis) along the bin's diagonal, the only way it fits.
+  double place_yaw_offset = 0;
   SelectionOptions selection;
 };
 
@@ -80,9 +83,9 @@ struct PlacePlan {
 PlacePlan PlanPlacement(const Eigen::Vector3d& p_W_floor, double grasp_height, const Joints& q_current,
                         const GraspOptions& options = {});
 
-/// The top-down TCP pose at p_W (any yaw in steps of `yaw_step`) whose valid IK lies nearest to
+/// The top-down TCP pose at p_W (any yaw yaw_offset + k yaw_step) whose valid IK lies nearest to
 /// q_current; false if none is reachable.
 bool NearestTopDownPose(const Eigen::Vector3d& p_W, const Joints& q_current, const SelectionOptions& selection,
-                        Eigen::Isometry3d& X_WT, Joints& q, double yaw_step = M_PI / 8);
+                        Eigen::Isometry3d& X_WT, Joints& q, double yaw_step = M_PI / 8, double yaw_offset = 0);
 
 }  // namespace sortcell::robot

@@ -135,15 +135,17 @@ struct AxisGroup {
 };
 
 // The label of a record's value of `axis`: a range axis is cut into 4 equal bins, a model shows its
-// file name.
+// file name, a placement its mode.
 std::string ValueLabel(const SweepAxis& axis, const SweepRecord& record) {
   const nlohmann::json& value = record.axes.at(axis.name);
-  const bool model = axis.name == "model";
-  if (model ? !value.is_string() : !value.is_number()) {
+  const bool model = axis.name == "model", text = model || axis.name == "placement";
+  if (text ? !value.is_string() : !value.is_number()) {
     throw std::invalid_argument("episode " + std::to_string(record.episode) + ": axes." + axis.name + ": expected " +
-                                (model ? "a file name" : "a number") + ", found " + value.dump());
+                                (model ? "a file name" : text ? "a placement mode" : "a number") + ", found " +
+                                value.dump());
   }
   if (model) return std::filesystem::path(value.get<std::string>()).filename().string();
+  if (text) return value.get<std::string>();
   if (axis.is_range() && axis.name != "objects" && axis.max > axis.min) {
     const double width = (axis.max - axis.min) / 4;
     const int bin = std::min(3, static_cast<int>((value.get<double>() - axis.min) / width));
