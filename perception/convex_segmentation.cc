@@ -99,6 +99,25 @@ bool IsCapOf(const Volume& piece, size_t piece_voxels, const Volume& base, size_
   return cv::pointPolygonTest(base.hull, middle / static_cast<float>(piece.hull.size()), false) >= 0;
 }
 
+// Whether `piece` is the end of a long object lying on its side (`base`: a bottle's neck and cap, cut
+// off at the shoulder's crease): much smaller, no higher, and its middle on the base's long axis just
+// beyond the base's end.
+bool IsNeckOf(const Volume& piece, size_t piece_voxels, const Volume& base, size_t base_voxels,
+              const ConvexClusteringParams& params) {
+  if (base.hull.size() < 3 || piece.hull.empty()) return false;
+  if (piece_voxels > params.cap_fraction * base_voxels || piece.top > base.top + params.top_tolerance_m) return false;
+  const cv::RotatedRect box = cv::minAreaRect(base.hull);
+  const float length = std::max(box.size.width, box.size.height), width = std::min(box.size.width, box.size.height);
+  if (length < params.lying_elongation * width) return false;
+  const float angle = static_cast<float>(box.angle * M_PI / 180) + (box.size.width >= box.size.height ? 0.0f : static_cast<float>(M_PI / 2));
+  const cv::Point2f along(std::cos(angle), std::sin(angle));
+  cv::Point2f middle(0, 0);
+  for (const auto& p : piece.hull) middle += p;
+  const cv::Point2f r = middle / static_cast<float>(piece.hull.size()) - box.center;
+  const float u = std::abs(r.dot(along)), v = std::abs(r.x * along.y - r.y * along.x);
+  return v <= 0.5f * width && u >= 0.5f * length - params.top_tolerance_m && u <= 0.5f * length + params.neck_length_m;
+}
+
 // Joins each cluster that lies mostly inside a larger one's volume to it (smallest first).
 void JoinPiecesInsideOthers(const Cloud& voxels, const PlaneFrame& frame, const ConvexClusteringParams& params,
                             std::vector<pcl::PointIndices>& clusters) {
@@ -110,7 +129,8 @@ void JoinPiecesInsideOthers(const Cloud& voxels, const PlaneFrame& frame, const 
     double best_fraction = params.inside_fraction;
     for (size_t b = 0; b < a; ++b) {
       if (IsInsideOfHollow(volumes[a], volumes[b], params) || IsInsideOfHollow(volumes[b], volumes[a], params) ||
-          IsCapOf(volumes[a], clusters[a].indices.size(), volumes[b], clusters[b].indices.size(), params)) {
+          IsCapOf(volumes[a], clusters[a].indices.size(), volumes[b], clusters[b].indices.size(), params) ||
+          IsNeckOf(volumes[a], clusters[a].indices.size(), volumes[b], clusters[b].indices.size(), params)) {
         best = b;
         break;
       }

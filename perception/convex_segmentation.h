@@ -11,7 +11,8 @@
 /// and below its top) joins that cluster, and so does the inside seen over a wall's rim
 /// (IsInsideOfHollow in the source); so does a small piece on top of a cluster's own top (a bottle's
 /// neck and cap, cut off at the shoulder's crease); an object stacked on another is above the lower
-/// one's top, about as large as it, and stays apart (a small object on a large one joins it).
+/// one's top, about as large as it, and stays apart (a small object on a large one joins it); and so does
+/// a small piece at the end of a long object lying on its side, on its axis (a lying bottle's neck).
 
 #include <Eigen/Core>
 #include <pcl/PointIndices.h>
@@ -47,6 +48,11 @@ struct ConvexClusteringParams {
   /// that other's top and stands over its footprint is its top (a bottle's neck and cap) and joins it.
   double cap_fraction = 0.25;
   double cap_overlap_m = 0.025;
+  /// The same for a long object lying on its side (a footprint at least lying_elongation times as long
+  /// as wide): a small piece no higher than it, its middle on its long axis up to neck_length_m beyond
+  /// its end, is its neck and cap.
+  double lying_elongation = 1.6;
+  double neck_length_m = 0.06;
 };
 
 /// Clusters of `voxels` (camera frame) standing on the plane `plane_C` (n.p + d = 0, camera frame, n

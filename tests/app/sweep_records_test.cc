@@ -254,6 +254,23 @@ TEST(SweepReport, CsvQuotesAValueWithAComma) {
   EXPECT_NE(Read(dir / "summary.md").find("| a,b.model.json | 1 | 2 | 50.0 % |"), std::string::npos);
 }
 
+TEST(SweepReport, APlacementAxisIsGroupedByMode) {
+  const TempDir dir("report_placement");
+  SweepSpec spec;
+  spec.source = "/specs/clutter.yaml";
+  spec.grid = true;
+  spec.episodes = 1;
+  SweepAxis axis;
+  axis.name = "placement";
+  axis.values = {"dense", "clustered"};
+  spec.axes.push_back(axis);
+  const std::vector<SweepRecord> records{OkRecord(0, {{"placement", "dense"}}), OkRecord(1, {{"placement", "clustered"}})};
+  const nlohmann::json summary = WriteSweepReport(dir.path(), spec, records);
+  EXPECT_EQ(summary["by_axis"]["placement"]["dense"]["items"], 2);
+  EXPECT_NE(Read(dir / "summary.md").find("| clustered | 1 | 2 | 50.0 % |"), std::string::npos) << Read(dir / "summary.md");
+  EXPECT_THROW(WriteSweepReport(dir.path(), spec, {OkRecord(0, {{"placement", 3}})}), std::invalid_argument);
+}
+
 TEST(SweepReport, PicksPerHourAndTheCycleByPhasePooledOverEpisodes) {
   const TempDir dir("report_phases");
   std::vector<SweepRecord> records{OkRecord(0, {}), OkRecord(1, {})};
