@@ -224,14 +224,15 @@ TEST(SweepResults, ACutShortLastLineIsNoRecord) {
 
 // ---- The report ----
 
-SweepSpec ModelAxisSpec(const std::vector<std::string>& models) {
+// A one-episode grid over one axis of text values.
+SweepSpec TextAxisSpec(const std::string& name, const std::vector<std::string>& values) {
   SweepSpec spec;
-  spec.source = "/specs/commas.yaml";
+  spec.source = "/specs/" + name + ".yaml";
   spec.grid = true;
   spec.episodes = 1;
   SweepAxis axis;
-  axis.name = "model";
-  for (const auto& m : models) axis.values.push_back(m);
+  axis.name = name;
+  for (const auto& v : values) axis.values.push_back(v);
   spec.axes.push_back(axis);
   return spec;
 }
@@ -239,7 +240,7 @@ SweepSpec ModelAxisSpec(const std::vector<std::string>& models) {
 TEST(SweepReport, CsvQuotesAValueWithAComma) {
   const TempDir dir("report_csv");
   const std::vector<std::string> models{"/models/a,b.model.json", "/models/plain.model.json", "/models/say \"hi\".model.json"};
-  const SweepSpec spec = ModelAxisSpec(models);
+  const SweepSpec spec = TextAxisSpec("model", models);
   std::vector<SweepRecord> records;
   for (int i = 0; i < 3; ++i) records.push_back(OkRecord(i, {{"model", models[i]}}));
   const nlohmann::json summary = WriteSweepReport(dir.path(), spec, records);
@@ -256,14 +257,7 @@ TEST(SweepReport, CsvQuotesAValueWithAComma) {
 
 TEST(SweepReport, APlacementAxisIsGroupedByMode) {
   const TempDir dir("report_placement");
-  SweepSpec spec;
-  spec.source = "/specs/clutter.yaml";
-  spec.grid = true;
-  spec.episodes = 1;
-  SweepAxis axis;
-  axis.name = "placement";
-  axis.values = {"dense", "clustered"};
-  spec.axes.push_back(axis);
+  const SweepSpec spec = TextAxisSpec("placement", {"dense", "clustered"});
   const std::vector<SweepRecord> records{OkRecord(0, {{"placement", "dense"}}), OkRecord(1, {{"placement", "clustered"}})};
   const nlohmann::json summary = WriteSweepReport(dir.path(), spec, records);
   EXPECT_EQ(summary["by_axis"]["placement"]["dense"]["items"], 2);
