@@ -39,6 +39,19 @@ double YawOf(const Eigen::Vector2d& d) {
   return yaw;
 }
 
+// Narrows `width` (the points' extent along `yaw`) to the narrowest extent over half a turn in
+// yaw_step steps, and `yaw` to its direction.
+void Narrowest(const std::vector<Eigen::Vector3d>& p_W, const FootprintOptions& options, std::vector<double>& scratch,
+               double& width, double& yaw) {
+  for (double candidate = 0; candidate < M_PI; candidate += options.yaw_step) {
+    const double w = ExtentAlong(p_W, Eigen::Vector2d(std::cos(candidate), std::sin(candidate)), options, scratch).width();
+    if (w < width) {
+      width = w;
+      yaw = candidate;
+    }
+  }
+}
+
 // The direction of the points' largest spread on the table.
 Eigen::Vector2d MajorAxis(const std::vector<Eigen::Vector3d>& p_W, const Eigen::Vector2d& mean) {
   Eigen::Matrix2d covariance = Eigen::Matrix2d::Zero();
@@ -112,15 +125,7 @@ FootprintEstimate EstimateFootprint(const std::vector<Eigen::Vector3d>& p_W, con
   // shows only a cap there, and its back stays hidden.
   const bool prism = top.size() >= 10 && ExtentAlong(top, u, options, scratch).width() >= options.prism_ratio * across.width();
   double narrowest = across.width(), narrowest_yaw = YawOf(u);
-  if (prism) {
-    for (double yaw = 0; yaw < M_PI; yaw += options.yaw_step) {
-      const double width = ExtentAlong(p_W, Eigen::Vector2d(std::cos(yaw), std::sin(yaw)), options, scratch).width();
-      if (width < narrowest) {
-        narrowest = width;
-        narrowest_yaw = yaw;
-      }
-    }
-  }
+  if (prism) Narrowest(p_W, options, scratch, narrowest, narrowest_yaw);
   const bool use_across = across.width() <= options.max_width &&
                           (!prism || across.width() <= options.across_preference * narrowest);
   if (use_across) {
@@ -135,15 +140,8 @@ FootprintEstimate EstimateFootprint(const std::vector<Eigen::Vector3d>& p_W, con
       estimate.turned->width = along.width();
     }
   } else {
-    if (!prism) {  // Tapered and too wide across: the narrowest visible direction is all there is.
-      for (double yaw = 0; yaw < M_PI; yaw += options.yaw_step) {
-        const double width = ExtentAlong(p_W, Eigen::Vector2d(std::cos(yaw), std::sin(yaw)), options, scratch).width();
-        if (width < narrowest) {
-          narrowest = width;
-          narrowest_yaw = yaw;
-        }
-      }
-    }
+    // Tapered and too wide across: the narrowest visible direction is all there is.
+    if (!prism) Narrowest(p_W, options, scratch, narrowest, narrowest_yaw);
     const Eigen::Vector2d d(std::cos(narrowest_yaw), std::sin(narrowest_yaw)), e(-d.y(), d.x());
     const Extent pinch = ExtentAlong(p_W, d, options, scratch), length = ExtentAlong(p_W, e, options, scratch);
     f.centre_xy = pinch.mid() * d + length.mid() * e;

@@ -45,6 +45,38 @@ std::vector<Eigen::Vector3d> VisibleBox(const Eigen::Vector2d& c, double a, doub
   return p;
 }
 
+// The camera-facing part of a cylinder (radius r, length l) lying on the table along `yaw`, its axis
+// r above the table: the surface points whose normal faces the camera.
+std::vector<Eigen::Vector3d> VisibleLyingCylinder(const Eigen::Vector2d& c, double r, double l, double yaw) {
+  std::vector<Eigen::Vector3d> p;
+  const Eigen::Vector3d axis(std::cos(yaw), std::sin(yaw), 0), side(-std::sin(yaw), std::cos(yaw), 0);
+  const Eigen::Vector3d centre(c.x(), c.y(), r);
+  for (int i = 0; i < 180; ++i) {
+    const double a = 2 * M_PI * i / 180;
+    const Eigen::Vector3d n = std::cos(a) * side + std::sin(a) * Eigen::Vector3d::UnitZ();
+    for (double t = -0.5 * l; t <= 0.5 * l; t += 0.005) {
+      const Eigen::Vector3d q = centre + t * axis + r * n;
+      if (q.z() > 0.002 && n.dot(kCamera - q) > 0) p.push_back(q);
+    }
+  }
+  return p;
+}
+
+TEST(FootprintEstimation, ALyingCylinderIsPinchedAcrossItsAxisAtItsMiddle) {
+  for (const double yaw : {0.0, 0.6, 1.57, 2.5}) {
+    const Eigen::Vector2d centre(0.5, -0.1);
+    const FootprintEstimate e = EstimateFootprint(VisibleLyingCylinder(centre, 0.033, 0.2, yaw), kCamera, 0.0);
+    EXPECT_TRUE(e.lying) << yaw;
+    EXPECT_FALSE(e.across_view) << yaw;
+    EXPECT_FALSE(e.turned.has_value());
+    const Eigen::Vector2d pinch(std::cos(e.footprint.pinch_yaw), std::sin(e.footprint.pinch_yaw));
+    EXPECT_LT(std::abs(pinch.dot(Eigen::Vector2d(std::cos(yaw), std::sin(yaw)))), 0.05) << yaw;
+    EXPECT_NEAR(e.footprint.width, 0.066, 0.004) << yaw;
+    EXPECT_LT((e.footprint.centre_xy - centre).norm(), 0.006) << yaw;
+    EXPECT_NEAR(e.footprint.top_z, 0.066, 0.002) << yaw;
+  }
+}
+
 TEST(FootprintEstimation, CylinderIsPinchedAcrossTheLineOfSightAtItsTrueCentre) {
   const Eigen::Vector2d centre(0.5, 0.1);
   const FootprintEstimate e = EstimateFootprint(VisibleCylinder(centre, 0.033, 0.16, 0.015), kCamera, 0.0);
@@ -90,6 +122,11 @@ TEST(FootprintEstimation, TurnedBoxIsPinchedAcrossItsNarrowSide) {
   // The narrow side (x_B) direction, modulo pi.
   EXPECT_NEAR(std::abs(std::cos(e.footprint.pinch_yaw - yaw)), 1.0, 0.01);
   EXPECT_LT((e.footprint.centre_xy - centre).norm(), 0.004);
+  // Its other pair of sides (0.09 m) fits the stroke too: the turned grasp, a quarter turn round.
+  ASSERT_TRUE(e.turned.has_value());
+  EXPECT_NEAR(e.turned->width, 0.090, 0.004);
+  EXPECT_NEAR(std::abs(std::sin(e.turned->pinch_yaw - yaw)), 1.0, 0.01);
+  EXPECT_FALSE(e.lying);
 }
 
 TEST(FootprintEstimation, RejectsTooFewPointsAndACameraAbove) {
