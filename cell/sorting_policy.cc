@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <tuple>
 #include <utility>
 #include <stdexcept>
 
@@ -52,7 +53,9 @@ robot::ClearGrasp ClearestGraspOf(const std::vector<Detection>& detections, size
   std::vector<robot::ObjectFootprint> ways{d.footprint};
   if (d.round) ways = robot::RoundWays(d.footprint);
   if (d.turned) ways.push_back(*d.turned);
-  return robot::ClearestGrasp(ways, GraspOptionsFor(d.footprint, d.lying).finger_clearance, NeighboursOf(detections, i));
+  std::vector<double> side_clearances;  // As the grasp will open for each (GraspOptionsFor).
+  for (const auto& way : ways) side_clearances.push_back(GraspOptionsFor(way, d.lying).finger_clearance);
+  return robot::ClearestGrasp(ways, side_clearances, NeighboursOf(detections, i));
 }
 
 }  // namespace
@@ -112,19 +115,27 @@ int SortingPolicy::Choose(const std::vector<Detection>& detections, robot::PickM
     if (d.occluded) unhidden.Skip(d.footprint.centre_xy, robot::SkipReason::kUnreachable);
   }
   robot::PickMemory free = unhidden, free_hidden = view;
-  int blocked_best = -1;  // The blocked candidate whose fingers clear the neighbours most.
-  robot::ClearGrasp blocked_grasp;
+  // Blocked candidates with their freest grasp, tried freest first when no free one is left.
+  std::vector<std::pair<int, robot::ClearGrasp>> blocked;
   while (true) {
     int i = robot::ChooseNextPick(footprints, free);
     if (i < 0) i = robot::ChooseNextPick(footprints, free_hidden);
-    const bool fallback = i < 0;
-    if (fallback) i = std::exchange(blocked_best, -1);
-    if (i < 0) return -1;
-    const robot::ClearGrasp grasp = fallback ? blocked_grasp : ClearestGraspOf(detections, i);
-    if (!fallback && grasp.clearance < kFreeFingers) {
-      for (robot::PickMemory* m : {&free, &free_hidden}) m->Skip(footprints[i].centre_xy, robot::SkipReason::kUnreachable);
-      if (blocked_best < 0 || grasp.clearance > blocked_grasp.clearance) blocked_best = i, blocked_grasp = grasp;
-      continue;
+    robot::ClearGrasp grasp;
+    if (i >= 0) {
+      grasp = ClearestGraspOf(detections, i);
+      if (grasp.clearance < kFreeFingers) {
+        for (robot::PickMemory* m : {&free, &free_hidden}) m->Skip(footprints[i].centre_xy, robot::SkipReason::kUnreachable);
+        blocked.emplace_back(i, grasp);
+        continue;
+      }
+    } else {
+      const auto freest = std::max_element(blocked.begin(), blocked.end(), [](const auto& a, const auto& b) {
+        return a.second.clearance < b.second.clearance;
+      });
+      if (freest == blocked.end()) return -1;
+      std::tie(i, grasp) = *freest;
+      blocked.erase(freest);
+      if (view.Skipped(footprints[i].centre_xy) != robot::SkipReason::kNone) continue;  // Given up meanwhile.
     }
     // The IK branch nearest to the observe pose (the natural one for picking), wherever the arm is now.
     plan = robot::PlanTopDownGrasp(grasp.footprint, layout_.q_observe, GraspOptionsFor(grasp.footprint, detections[i].lying));

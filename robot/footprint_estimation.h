@@ -11,9 +11,10 @@
 /// anything too wide for the stroke across the line of sight.
 ///
 /// An object lying on its side (a bottle, a can: long, and low for its length) is pinched across its
-/// long axis (the principal axes of its points on the table), at the mean of its points along the axis
-/// (towards the heavier, thicker end), its width across the axis at least its height (a round
-/// section), the hidden far side completed as above.
+/// long axis (the principal axes of its points on the table), in the middle of the stretch along the
+/// axis where it stands at its full height (a bottle's body, not its neck: the thick part, near its
+/// mass's centre), its width across the axis at least its height (a round section), the hidden far
+/// side completed as above.
 ///
 /// Why not the centroid of the points (the paper's grasp point): it lies on the visible half, biased
 /// towards the camera by up to a radius (~2 cm for a bottle), more than the finger clearance.

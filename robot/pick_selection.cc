@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <stdexcept>
+#include <string>
 
 #include "robot/gripper_geometry.h"
 
@@ -96,11 +97,22 @@ std::vector<ObjectFootprint> RoundWays(const ObjectFootprint& object, int direct
 
 ClearGrasp ClearestGrasp(const std::vector<ObjectFootprint>& ways, double side_clearance, const Neighbours& neighbours,
                          double enough) {
+  return ClearestGrasp(ways, std::vector<double>(ways.size(), side_clearance), neighbours, enough);
+}
+
+ClearGrasp ClearestGrasp(const std::vector<ObjectFootprint>& ways, const std::vector<double>& side_clearances,
+                         const Neighbours& neighbours, double enough) {
   if (ways.empty()) throw std::invalid_argument("clearest grasp: no way to pinch the object given");
+  if (side_clearances.size() != ways.size()) {
+    throw std::invalid_argument("clearest grasp: " + std::to_string(side_clearances.size()) + " clearances for " +
+                                std::to_string(ways.size()) + " ways");
+  }
   ClearGrasp best{ways.front(), -INFINITY};
-  for (const ObjectFootprint& way : ways) {
-    const double clearance = FingerClearance(way.centre_xy, way.pinch_yaw, way.width + 2 * side_clearance, neighbours);
-    if (&way == &ways.front() && clearance >= enough) return {way, clearance};
+  for (size_t k = 0; k < ways.size(); ++k) {
+    const ObjectFootprint& way = ways[k];
+    const double clearance =
+        FingerClearance(way.centre_xy, way.pinch_yaw, way.width + 2 * side_clearances[k], neighbours);
+    if (k == 0 && clearance >= enough) return {way, clearance};
     if (clearance > best.clearance + 1e-4) best = {way, clearance};
   }
   return best;

@@ -75,6 +75,11 @@ struct ClearGrasp {
 /// @throws std::invalid_argument if `ways` is empty.
 ClearGrasp ClearestGrasp(const std::vector<ObjectFootprint>& ways, double side_clearance, const Neighbours& neighbours,
                          double enough = 0.015);
+/// The same with each way's own clearance per side (`side_clearances`, one per way: a wider way opens
+/// less beyond the object within the stroke).
+/// @throws std::invalid_argument if `ways` is empty or the counts differ.
+ClearGrasp ClearestGrasp(const std::vector<ObjectFootprint>& ways, const std::vector<double>& side_clearances,
+                         const Neighbours& neighbours, double enough = 0.015);
 
 /// The candidate to pick next: of those not given up, the one with the most free room around it
 /// (distance from its centre to the nearest other object's centre, less both half-widths), so the

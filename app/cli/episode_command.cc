@@ -83,6 +83,19 @@ std::string SetToOption(const std::string& text, const std::vector<std::string>&
   return "--" + text;
 }
 
+// --placement and --lying-fraction: how the objects not placed by hand are drawn.
+void AddPlacementOptions(CLI::App& cmd, EpisodeCli& cli) {
+  cmd.add_option("--placement", cli.placement_mode,
+                 "How the other objects are drawn: sparse (3 cm of table between them), dense (they may touch), "
+                 "clustered (groups of 2-4 touching objects)")
+      ->check(CLI::IsMember({"sparse", "dense", "clustered"}))
+      ->capture_default_str();
+  cmd.add_option("--lying-fraction", cli.options.placement.lying_fraction,
+                 "Chance (0-1) that a drawn object which can lie (bottles, boxes) is laid on its side at random yaw")
+      ->check(CLI::Range(0.0, 1.0))
+      ->capture_default_str();
+}
+
 }  // namespace
 
 std::vector<std::string> ExpandEpisodeSets(const CLI::App& episode, const std::vector<std::string>& args) {
@@ -134,15 +147,7 @@ void AddEpisodeCommand(CLI::App& app, std::function<int()>& run, const std::vect
   cmd->add_option("--out", o.out, "Output folder (created if missing)")->required();
   cmd->add_option("--place", cli->placements,
                   "Put an object at NAME=x,y[,yaw[,lying]] (world, m, rad; 'lying': on its side) instead of at random");
-  cmd->add_option("--placement", cli->placement_mode,
-                  "How the other objects are drawn: sparse (3 cm of table between them), dense (they may touch), "
-                  "clustered (groups of 2-4 touching objects)")
-      ->check(CLI::IsMember({"sparse", "dense", "clustered"}))
-      ->capture_default_str();
-  cmd->add_option("--lying-fraction", o.placement.lying_fraction,
-                  "Chance (0-1) that a drawn object which can lie (bottles, boxes) is laid on its side at random yaw")
-      ->check(CLI::Range(0.0, 1.0))
-      ->capture_default_str();
+  AddPlacementOptions(*cmd, *cli);
   cmd->add_option("--light-intensity", o.light_intensity, "Scale of the scene's lights")->capture_default_str();
   cmd->add_option("--noise-scale", o.noise_scale, "Scale of the Kinect's depth noise")->capture_default_str();
   cmd->add_option("--friction-scale", o.variation.friction_scale, "Scale of the objects' friction")->capture_default_str();

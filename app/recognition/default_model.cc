@@ -24,7 +24,6 @@ std::filesystem::path DefaultDatasetDir(const ObjectSet& set) { return ModelCach
 // was trained on, so that a cached model of objects or a sensor that have changed since is trained again.
 std::filesystem::path DigestPath(const std::filesystem::path& model) { return model.string() + ".trained_on"; }
 
-// What the default model of `set` depends on: its objects' models and the sensor it sees them through.
 // The default model's training scenes: every placement mode the cell meets, some objects lying.
 SceneOptions DefaultTrainingScenes() {
   SceneOptions scenes;
@@ -40,9 +39,21 @@ std::string DefaultTrainingSceneArguments() {
          " --lying-fraction " + fmt::format("{:g}", scenes.placement.lying_fraction);
 }
 
+// How those scenes are segmented (the cell's convex clusters and their settings).
+std::string SegmentationDigest() {
+  const perception::ConvexClusteringParams c = perception::SegmentationParams().convex;
+  return fmt::format("convex {:g} {:g} {:g} {:g} {:g} {:g} {:g} {:g} {:g} {:g} {:g} {:g} {:g} {:g} {:g}", c.voxel_m, c.seed_m,
+                     c.concavity_deg, c.colour_edge_delta_e, c.colour_edge_concavity_deg, c.colour_importance,
+                     c.normal_importance, c.inside_fraction, c.top_tolerance_m, c.hollow_lift_m, c.rim_tolerance_m,
+                     c.hollow_widening, c.cap_fraction, c.cap_overlap_m, c.neck_length_m) +
+         fmt::format(" {:g}", c.lying_elongation);
+}
+
+// What the default model of `set` depends on: its objects' models, the sensor it sees them through, and
+// the scenes it is trained on and how they are segmented.
 std::string TrainedOnDigest(const ObjectSet& set) {
   return ObjectModelsDigest(set, ObjectTexturesDir()) + " colour " + sim::ToString(sim::KinectColourParams{}) +
-         " scenes " + DefaultTrainingSceneArguments();
+         " scenes " + DefaultTrainingSceneArguments() + " segmentation " + SegmentationDigest();
 }
 
 std::string ReadDigest(const std::filesystem::path& file) {

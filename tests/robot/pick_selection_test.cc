@@ -95,6 +95,7 @@ TEST(PickSelection, ABlockedPrismIsPinchedTheOtherWay) {
   for (const double y : {-0.06, 0.06}) neighbours.p_xy.emplace_back(0.5, y);
   EXPECT_LT(ClearestGrasp({box, turned}, 0.008, neighbours).clearance, 0.015);
   EXPECT_THROW(ClearestGrasp({}, 0.008, neighbours), std::invalid_argument);
+  EXPECT_THROW(ClearestGrasp({box, turned}, std::vector<double>{0.008}, neighbours), std::invalid_argument);
 }
 
 TEST(PickSelection, RejectsBadMemoryParameters) {
