@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "cell/scene_observation.h"
 #include "perception/recognition_model.h"
 #include "perception/segmentation.h"
 #include "sim/clutter_placement.h"
@@ -169,8 +170,7 @@ int main(int argc, char** argv) {
     recogniser = perception::LoadModel(argv[1], perception::DescriptorKind::kColorCvfhNorm);
     have_model = true;
   }
-  perception::SegmentationParams params;  // As cell::SortingPolicy segments.
-  params.clustering = perception::SegmentationParams::Clustering::kConvex;
+  const perception::SegmentationParams params = cell::CellSegmentation(cell::CellLayout());
   for (const Frame& frame : frames) {
     StageTimes t;
     for (int rep = 0; rep < repetitions + 1; ++rep) {

@@ -21,6 +21,7 @@
 #include <string>
 #include <vector>
 
+#include "cell/scene_observation.h"
 #include "perception/pcd_io.h"
 #include "perception/segmentation.h"
 #include "perception/segmentation_scoring.h"
@@ -134,7 +135,7 @@ void RunSim(const sim::Model& model, int scenes, bool verbose) {
     std::printf("sim, %s scenes (%zu frames, 30 %% of bottles and boxes lying), cell segmentation "
                 "(calibrated pose, background):\n", sim::ToString(mode), frames.size());
     for (const Clustering clustering : {Clustering::kEuclidean, Clustering::kConvex}) {
-      perception::SegmentationParams params;
+      perception::SegmentationParams params = cell::CellSegmentation(cell::CellLayout());
       params.clustering = clustering;
       std::vector<perception::SegmentationScore> scores;
       double total_ms = 0;

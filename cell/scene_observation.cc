@@ -25,6 +25,14 @@ double TableHeightAt(const Eigen::Vector3d& p_W, const Eigen::Vector4d& plane_C,
 
 }  // namespace
 
+perception::SegmentationParams CellSegmentation(const CellLayout& layout) {
+  perception::SegmentationParams params;
+  params.clustering = perception::SegmentationParams::Clustering::kConvex;
+  params.workspace_min_W = layout.workspace_min_W;
+  params.workspace_max_W = layout.workspace_max_W;
+  return params;
+}
+
 Observation ObserveScene(const perception::Cloud& cloud, const CameraCalibration& calibration,
                          const perception::SegmentationParams& params, const perception::RecognitionModel& model) {
   // The cell's Kinect gives one point per pixel, and the occlusion check looks at pixels' neighbours.

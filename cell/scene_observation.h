@@ -9,6 +9,7 @@
 
 #include <Eigen/Geometry>
 
+#include "cell/cell_layout.h"
 #include "perception/cloud.h"
 #include "perception/recognition_model.h"
 #include "perception/segmentation.h"
@@ -48,6 +49,10 @@ struct Observation {
   perception::SegmentationStatus status = perception::SegmentationStatus::kOk;
   std::vector<Detection> detections;  ///< Largest cluster first; empty unless status is kOk.
 };
+
+/// How the cell segments its captures: inside the layout's workspace box, into convex clusters, so that
+/// touching objects come apart at the concave creases between them (Euclidean clusters would merge them).
+perception::SegmentationParams CellSegmentation(const CellLayout& layout);
 
 /// Segments `cloud` (organized, camera frame) within `params`' workspace, estimates each cluster's
 /// footprint on the fitted table plane and classifies it. Clusters of fewer than 10 points are left

@@ -64,7 +64,7 @@ SortingPolicy::SortingPolicy(CellIo& io, const CellLayout& layout, const CameraC
                              const perception::RecognitionModel& model, const PolicyOptions& options,
                              PolicyObserver* observer)
     : io_(io), layout_(layout), calibration_(calibration), model_(model), options_(options),
-      observer_(observer ? *observer : no_observer_), motions_(io),
+      observer_(observer ? *observer : no_observer_), motions_(io), segmentation_(CellSegmentation(layout)),
       view_(calibration, layout.workspace_min_W, layout.workspace_max_W) {
   if (options.max_attempts_per_position < 1 || options.max_attempts < 1) {
     throw std::invalid_argument("policy options: attempt limits must be at least 1");
@@ -80,10 +80,6 @@ SortingPolicy::SortingPolicy(CellIo& io, const CellLayout& layout, const CameraC
   for (const auto& c : model.classes) {
     if (!layout.p_W_bin.count(c)) throw std::invalid_argument("cell layout: no bin for the model's class '" + c + "'");
   }
-  // Touching objects come apart at the concave creases between them (Euclidean clusters would merge them).
-  segmentation_.clustering = perception::SegmentationParams::Clustering::kConvex;
-  segmentation_.workspace_min_W = layout.workspace_min_W;
-  segmentation_.workspace_max_W = layout.workspace_max_W;
 }
 
 Observation SortingPolicy::Observe() {

@@ -10,6 +10,13 @@ constexpr int kArrangements = 50;  // Fresh starts before giving up: early objec
 constexpr int kBisections = 30;    // Sliding an object against another: 2^-30 of the start distance.
 constexpr double kTouching = 0.001;  // Footprints this much beyond the contact gap still touch (m).
 
+// Whether an object is laid on its side: only one that can lie, with the options' chance (no draw at
+// all when the fraction is 0, so scenes without lying objects draw as they always did).
+bool DrawLying(const ObjectShape& shape, const PlacementOptions& options, std::uniform_real_distribution<double>& unit,
+               std::mt19937_64& rng) {
+  return shape.lying && options.lying_fraction > 0 && unit(rng) < options.lying_fraction;
+}
+
 struct Placed {
   std::vector<Eigen::Vector2d> outline;  // In the world.
   Eigen::Vector2d centre;
@@ -123,15 +130,15 @@ std::optional<std::vector<TablePose>> ArrangeOnce(const std::vector<ObjectShape>
   const bool dense = options.mode == PlacementMode::kDense;
   for (size_t i = 0; i < fixed.size(); ++i) {
     const ObjectShape& s = shapes[i];
-    arrangement.Add(fixed[i].lying && s.lying ? *s.lying : s.upright, fixed[i], dense ? 0 : static_cast<int>(i));
+    arrangement.Add(s.Resting(fixed[i].lying), fixed[i], dense ? 0 : static_cast<int>(i));
   }
   const int drawn = static_cast<int>(shapes.size() - fixed.size());
   const std::vector<int> groups = Groups(drawn, static_cast<int>(fixed.size()), options.mode, rng);
   for (int k = 0; k < drawn; ++k) {
     const ObjectShape& shape = shapes[fixed.size() + k];
     TablePose pose;
-    pose.lying = shape.lying && options.lying_fraction > 0 && unit(rng) < options.lying_fraction;
-    const RestingShape& resting = pose.lying ? *shape.lying : shape.upright;
+    pose.lying = DrawLying(shape, options, unit, rng);
+    const RestingShape& resting = shape.Resting(pose.lying);
     std::optional<Eigen::Vector2d> centre;
     for (int attempt = 0; attempt < max_tries && !centre; ++attempt) {
       pose.yaw = 2 * M_PI * unit(rng);
@@ -166,7 +173,7 @@ std::optional<std::vector<TablePose>> SampleSparse(const std::vector<ObjectShape
     std::vector<bool> lying;
     std::vector<double> radii;
     for (size_t i = fixed.size(); i < shapes.size(); ++i) {
-      lying.push_back(shapes[i].lying && options.lying_fraction > 0 && unit(rng) < options.lying_fraction);
+      lying.push_back(DrawLying(shapes[i], options, unit, rng));
       radii.push_back(radius(i, lying.back()));
     }
     auto drawn = SampleTablePoses(radii, area, rng, max_tries);

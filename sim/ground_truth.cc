@@ -28,14 +28,6 @@ double SupportHalfExtent(const mjModel* m, const mjData* d, int g, const Eigen::
   }
 }
 
-std::vector<int> CollisionGeoms(const mjModel* m, int body) {
-  std::vector<int> geoms;
-  for (int g = 0; g < m->ngeom; ++g) {
-    if (m->geom_bodyid[g] == body && (m->geom_contype[g] != 0 || m->geom_conaffinity[g] != 0)) geoms.push_back(g);
-  }
-  return geoms;
-}
-
 void ExtentAlong(const mjModel* m, const mjData* d, const std::vector<int>& geoms, const Eigen::Vector3d& u,
                  double& lo, double& hi) {
   lo = std::numeric_limits<double>::infinity();
@@ -49,6 +41,14 @@ void ExtentAlong(const mjModel* m, const mjData* d, const std::vector<int>& geom
 }
 
 }  // namespace
+
+std::vector<int> CollisionGeoms(const mjModel* m, int body) {
+  std::vector<int> geoms;
+  for (int g = 0; g < m->ngeom; ++g) {
+    if (m->geom_bodyid[g] == body && (m->geom_contype[g] != 0 || m->geom_conaffinity[g] != 0)) geoms.push_back(g);
+  }
+  return geoms;
+}
 
 ObjectExtent ObjectExtentOf(const Model& model, const Data& data, int body) {
   const mjModel* m = model.get();

@@ -23,6 +23,9 @@ struct ObjectExtent {
 /// @throws std::invalid_argument naming the scene and body if `body` has no collision geom.
 ObjectExtent ObjectExtentOf(const Model& model, const Data& data, int body);
 
+/// The geoms of `body` that collide (contype or conaffinity set): what the object is to the physics.
+std::vector<int> CollisionGeoms(const mjModel* m, int body);
+
 /// Pose of a body in the world frame (after mj_kinematics / a step).
 Eigen::Isometry3d BodyPose(const Data& data, int body);
 /// Pose of a site in the world frame.

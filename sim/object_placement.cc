@@ -52,7 +52,7 @@ void PlaceObject(const Model& model, Data& data, int body, const TablePose& pose
     throw std::invalid_argument("scene '" + model.source() + "': body " + std::to_string(body) +
                                 " cannot lie on its side (not taller than it is narrow)");
   }
-  const RestingShape& resting = pose.lying ? *shape.lying : shape.upright;
+  const RestingShape& resting = shape.Resting(pose.lying);
   const Eigen::Quaterniond q_WB = Eigen::Quaterniond(Eigen::AngleAxisd(pose.yaw, Eigen::Vector3d::UnitZ())) * resting.q_tilt;
   SetFreePose(model, data, body, Eigen::Vector3d(pose.x, pose.y, resting.origin_z), q_WB.normalized());
 }

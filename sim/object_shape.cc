@@ -7,6 +7,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "sim/ground_truth.h"
+
 namespace sortcell::sim {
 namespace {
 
@@ -64,10 +66,8 @@ void AddGeom(const mjModel* m, int g, std::vector<Swollen>& parts) {
 std::vector<Swollen> CollisionParts(const Model& model, int body) {
   const mjModel* m = model.get();
   std::vector<Swollen> parts;
-  for (int g = 0; g < m->ngeom; ++g) {
-    if (m->geom_bodyid[g] != body || (m->geom_contype[g] == 0 && m->geom_conaffinity[g] == 0)) continue;
-    if (m->geom_type[g] == mjGEOM_PLANE) continue;
-    AddGeom(m, g, parts);
+  for (const int g : CollisionGeoms(m, body)) {
+    if (m->geom_type[g] != mjGEOM_PLANE) AddGeom(m, g, parts);
   }
   if (parts.empty()) {
     throw std::invalid_argument("scene '" + model.source() + "': body " + std::to_string(body) +
@@ -149,8 +149,7 @@ double NarrowestWidth(const std::vector<Eigen::Vector2d>& outline) {
 // models; a tilted one is bounded by its bounding sphere).
 double DiscRadius(const mjModel* m, int body) {
   double radius = 0;
-  for (int g = 0; g < m->ngeom; ++g) {
-    if (m->geom_bodyid[g] != body || (m->geom_contype[g] == 0 && m->geom_conaffinity[g] == 0)) continue;
+  for (const int g : CollisionGeoms(m, body)) {
     const double* s = m->geom_size + 3 * g;
     double r = m->geom_rbound[g];
     switch (m->geom_type[g]) {

@@ -38,6 +38,9 @@ struct ObjectShape {
   /// Laid on its side (the side that rests lowest, the stablest), for objects clearly taller than they
   /// are narrow (bottles, boxes, cans); none for balls, fruit and squat objects such as the cup.
   std::optional<RestingShape> lying;
+
+  /// On its side when `lying` and it can lie, else upright.
+  const RestingShape& Resting(bool lying_down) const { return lying_down && lying ? *lying : upright; }
 };
 
 /// The shape of free body `body` from its collision geoms.

@@ -10,6 +10,7 @@
 #include <map>
 #include <random>
 
+#include "cell/scene_observation.h"
 #include "perception/segmentation.h"
 #include "perception/segmentation_scoring.h"
 #include "sim/clutter_placement.h"
@@ -65,8 +66,7 @@ class TouchingBoxes : public ::testing::Test {
     mj_forward(model_->get(), data_->get());
     sim::FrameTruth truth;
     const sim::KinectFrame frame = kinect_->Capture(*data_, &noise_, &rng_, &truth);
-    perception::SegmentationParams params;
-    params.clustering = perception::SegmentationParams::Clustering::kConvex;  // As the cell segments.
+    const perception::SegmentationParams params = cell::CellSegmentation(cell::CellLayout());
     const auto result = perception::SegmentObjects(*sim::ToOrganizedCloud(frame), truth.X_WC, background_.get(), params);
     std::vector<std::vector<int>> segments;
     for (const auto& s : result.segments) segments.push_back(s.indices);

@@ -46,7 +46,7 @@ Model* PaperCell::model_ = nullptr;
 std::vector<std::string> PaperCell::names_;
 
 std::vector<Eigen::Vector2d> Outline(const ObjectShape& shape, const TablePose& pose) {
-  return PlacedOutline(pose.lying ? shape.lying->outline : shape.upright.outline, {pose.x, pose.y}, pose.yaw);
+  return PlacedOutline(shape.Resting(pose.lying).outline, {pose.x, pose.y}, pose.yaw);
 }
 
 TEST_F(PaperCell, ShapesRestUprightOrOnTheirLongSide) {
