@@ -59,6 +59,7 @@ struct CellLayout {
   /// The bins' walls (models/cell/cell.inc.xml): 0.2 m square inside, this high (m). An object longer
   /// than that (a bottle lying, 0.224 m) goes in along the diagonal, in the middle, let go above the walls.
   double bin_wall_height = 0.10;
+  double bin_inner_half_width = 0.10;
 
   /// The pick area the camera watches (world box, m): the table in front of the robot up to its far
   /// edge (objects out of reach there are seen and reported unreachable), between the bins, up to

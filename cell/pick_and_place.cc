@@ -55,7 +55,6 @@ bool ApproachAndGrasp(MotionSequencer& run, const PickRequest& request) {
     X_WT_clear.translation().z() += kSlowPlacing;
     if (!run.MoveL("retreat", X_WT_clear, lines.slow, lines.slow_acceleration)) return false;
   }
-  run.StartFingers(plan.open_gap);
   MotionChain approach(run.io().CommandedJoints(), MotionChain::Load::kEmptyHanded, lines.empty_joints);
   // Up out of the bin as if still holding: what was just released may still touch a finger, and a
   // fast pull flings it out of the bin.
@@ -64,7 +63,15 @@ bool ApproachAndGrasp(MotionSequencer& run, const PickRequest& request) {
   }
   approach.JointMove("approach", plan.q_lift);
   approach.Line("descend", plan.X_WT_pregrasp, lines.empty_transit, lines.empty_transit_acceleration);
-  return run.Run(approach) && run.MoveL("reach", plan.X_WT_grasp, lines.reach, lines.reach_acceleration) &&
+  // The fingers go to the next opening once out of the bin: closing them to a narrower one in it
+  // caught an object that had tipped against them and carried it off to the next pick.
+  ChainHooks fingers;
+  fingers.after_phase = [&](const std::string& phase) {
+    if (phase == "retreat") run.StartFingers(plan.open_gap);
+    return true;
+  };
+  if (!request.X_WT_exit) run.StartFingers(plan.open_gap);
+  return run.Run(approach, fingers) && run.MoveL("reach", plan.X_WT_grasp, lines.reach, lines.reach_acceleration) &&
          run.Grasp("grasp");
 }
 

@@ -65,7 +65,8 @@ SortingPolicy::SortingPolicy(CellIo& io, const CellLayout& layout, const CameraC
                              PolicyObserver* observer)
     : io_(io), layout_(layout), calibration_(calibration), model_(model), options_(options),
       observer_(observer ? *observer : no_observer_), motions_(io), segmentation_(CellSegmentation(layout)),
-      view_(calibration, layout.workspace_min_W, layout.workspace_max_W) {
+      view_(calibration, layout.workspace_min_W, layout.workspace_max_W),
+      bins_(layout) {
   if (options.max_attempts_per_position < 1 || options.max_attempts < 1) {
     throw std::invalid_argument("policy options: attempt limits must be at least 1");
   }
@@ -82,11 +83,12 @@ SortingPolicy::SortingPolicy(CellIo& io, const CellLayout& layout, const CameraC
   }
 }
 
-Observation SortingPolicy::Observe() {
+Observation SortingPolicy::Observe(const std::optional<HeldObject>& held) {
   observer_.Observing();
   const perception::Cloud::Ptr cloud = io_.Capture();
   const auto start = std::chrono::steady_clock::now();
   Observation observation = ObserveScene(*cloud, calibration_, segmentation_, model_);
+  bins_.See(*cloud, calibration_.X_WC, ArmCapsules(io_.ReadJoints(), held));
   for (Detection& d : observation.detections) {
     if (d.category && d.confidence < options_.reject_below) d.category = options_.reject_bin;
   }
@@ -155,15 +157,13 @@ AttemptReport SortingPolicy::Attempt(const Detection& seen, int index, int attem
   int& filled = released_into_[*seen.category];
   PickRequest request;
   request.grasp = plan;
-  request.p_W_release = BinSlot(layout_, *seen.category, filled);
-  request.place_yaw_step = layout_.place_yaw_step;
-  // A lying object hangs along the TCP's x axis, longer than a bin is wide: along the bin's diagonal,
-  // in its middle, let go above its walls (lowered in, its ends would catch on them).
-  if (seen.lying) {
-    request.place_yaw_offset = M_PI / 4;
-    request.p_W_release = layout_.p_W_bin.at(*seen.category);
-    request.release_clearance = layout_.bin_wall_height + 0.01;
-  }
+  const BinRelease release = seen.lying ? bins_.Lying(*seen.category)
+                                        : bins_.Upright(*seen.category, filled, request.release_clearance);
+  request.p_W_release = release.p_W_floor;
+  request.place_yaw_step = release.yaw_step;
+  request.place_yaw_offset = release.yaw_offset;
+  request.release_clearance = release.clearance;
+  report.release = release;
   request.q_home = layout_.q_observe;
   request.X_WT_exit = X_WT_exit;
   request.speeds = layout_.speeds;
@@ -174,13 +174,16 @@ AttemptReport SortingPolicy::Attempt(const Detection& seen, int index, int attem
   hooks.out_of_view = [&](const robot::Joints& q) {
     return !view_.ArmInView(q, held);
   };
-  hooks.left_view = [&] { next_view = Observe(); };
+  hooks.left_view = [&] { next_view = Observe(held); };
   hooks.grasped = [&] { observer_.Grasped(); };
   hooks.lowered = [&] { observer_.Lowered(); };
   const size_t first_phase = motions_.phases().size();
   report.pick = PickAndPlace(motions_, request, hooks);
   report.phases.assign(motions_.phases().begin() + first_phase, motions_.phases().end());
-  if (report.pick.reached_bin) ++filled;
+  if (report.pick.reached_bin) {
+    ++filled;
+    bins_.Released(*seen.category, release, seen.footprint.top_z - seen.footprint.base_z);
+  }
   report.end_s = io_.Now();
   observer_.AttemptEnded(report);
   return report;

@@ -18,6 +18,7 @@
 #include <string>
 
 #include "cell/arm_view.h"
+#include "cell/bin_fill.h"
 #include "cell/cell_io.h"
 #include "cell/cell_layout.h"
 #include "cell/motion_sequencer.h"
@@ -47,6 +48,7 @@ struct AttemptReport {
   int attempt = 0;         ///< 1 for the first attempt at this position.
   double start_s = 0, end_s = 0;  ///< The cell's clock from leaving where the arm was (home or the last
                                   ///< bin) to the release into the bin (or back home after a miss).
+  BinRelease release;  ///< Where in its bin it was to be let go.
   PickReport pick;
   std::vector<PhaseSpan> phases;  ///< The attempt's motion phases, in order (filled when it ended).
 };
@@ -93,7 +95,8 @@ class SortingPolicy {
   const MotionSequencer& motions() const { return motions_; }
 
  private:
-  Observation Observe();
+  // Captures and observes; `held`: what the arm holds if it is carrying something.
+  Observation Observe(const std::optional<HeldObject>& held = std::nullopt);
   // The detection to pick next and its grasp plan, or -1. Detections without a plan are given up in
   // `memory` (and reported); undescribed ones are never chosen.
   int Choose(const std::vector<Detection>& detections, robot::PickMemory& memory, robot::GraspPlan& plan);
@@ -111,6 +114,7 @@ class SortingPolicy {
   perception::SegmentationParams segmentation_;
   WorkspaceView view_;  // Whether the arm hides the workspace from the camera.
   std::map<std::string, int> released_into_;  // Objects released into each category's bin so far.
+  BinFill bins_;                               // What is in the bins already.
 };
 
 }  // namespace sortcell::cell

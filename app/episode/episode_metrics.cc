@@ -188,6 +188,8 @@ void to_json(nlohmann::json& j, const AttemptLogEntry& v) {
   j["pinch_yaw"] = OrNull(v.pinch_yaw);
   j["width_m"] = OrNull(v.width_m);
   j["top_z_m"] = OrNull(v.top_z_m);
+  j["lying"] = OrNull(v.lying);
+  j["release_clearance_m"] = OrNull(v.release_clearance_m);
   j["truth_object"] = OrNull(v.truth_object);
   j["truth_centre_error_m"] = OrNull(v.truth_centre_error_m);
   j["truth_width_error_m"] = OrNull(v.truth_width_error_m);

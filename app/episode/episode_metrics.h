@@ -84,6 +84,8 @@ struct AttemptLogEntry {
   std::optional<double> confidence;
   std::array<double, 2> xy{};
   std::optional<double> pinch_yaw, width_m, top_z_m;
+  std::optional<bool> lying;                  ///< Seen lying on its side.
+  std::optional<double> release_clearance_m;  ///< Its bottom above the bin floor when let go (planned).
   std::string result;  ///< An attempt result (cell::ToString) or "skipped: <grasp status>".
   std::optional<std::string> truth_object;  ///< Scoring: the object the cluster really was.
   std::optional<double> truth_centre_error_m, truth_width_error_m;
