@@ -11,6 +11,8 @@
 #include <string>
 #include <vector>
 
+#include "app/episode/sim_layout.h"
+#include "cell/bin_fill.h"
 #include "cell/scene_observation.h"
 #include "perception/recognition_model.h"
 #include "perception/segmentation.h"
@@ -90,12 +92,14 @@ std::vector<Frame> Frames(const sim::Model& model, perception::Cloud::Ptr& backg
 
 struct StageTimes {
   std::vector<double> crop, plane, voxel, cluster, normals, cvfh, hsv, svm, total;
+  std::vector<double> bins;  // The cell's look into its bins (cell::BinFill::See), besides the chain.
   size_t objects = 0, points = 0;
 };
 
 // One pass of the chain over `frame`; false if it does not segment.
 bool TimeOnce(const Frame& frame, const perception::Cloud& background, const perception::SegmentationParams& params,
-              perception::RecognitionModel& recogniser, bool& have_model, StageTimes& t) {
+              const cell::CellLayout& layout, perception::RecognitionModel& recogniser, bool& have_model,
+              StageTimes& t) {
   const auto start = Clock::now();
   const auto r = perception::SegmentObjects(*frame.cloud, frame.X_WC, &background, params);
   if (r.status != perception::SegmentationStatus::kOk) {
@@ -122,6 +126,10 @@ bool TimeOnce(const Frame& frame, const perception::Cloud& background, const per
     s += std::chrono::duration<double>(Clock::now() - t0).count();
   }
   t.total.push_back(std::chrono::duration<double>(Clock::now() - start).count());
+  cell::BinFill bins(layout);
+  const auto bins_start = Clock::now();
+  bins.See(*frame.cloud, frame.X_WC, cell::ArmCapsules(layout.q_observe, std::nullopt));
+  t.bins.push_back(std::chrono::duration<double>(Clock::now() - bins_start).count());
   t.crop.push_back(r.timings.crop_s);
   t.plane.push_back(r.timings.plane_s);
   t.voxel.push_back(r.timings.voxel_s);
@@ -155,6 +163,8 @@ void PrintTable(const Frame& frame, const StageTimes& t, int repetitions, int su
   std::printf("| **total (measured end to end)** | **%.2f** |\n", 1000 * Median(t.total));
   std::printf("\nSum of the stages %.2f ms; the Kinect delivers a frame every 33.3 ms: the chain is %s.\n",
               1000 * sum, Median(t.total) < 1.0 / 30 ? "inside one frame period" : "slower than the frame rate");
+  std::printf("Besides the chain, the cell's look into its bins from the same frame (height maps, cell::BinFill::See): "
+              "%.2f ms.\n", 1000 * Median(t.bins));
 }
 
 }  // namespace
@@ -170,11 +180,12 @@ int main(int argc, char** argv) {
     recogniser = perception::LoadModel(argv[1], perception::DescriptorKind::kColorCvfhNorm);
     have_model = true;
   }
-  const perception::SegmentationParams params = cell::CellSegmentation(cell::CellLayout());
+  const cell::CellLayout layout = app::ReadCellLayout(model);
+  const perception::SegmentationParams params = cell::CellSegmentation(layout);
   for (const Frame& frame : frames) {
     StageTimes t;
     for (int rep = 0; rep < repetitions + 1; ++rep) {
-      if (!TimeOnce(frame, *background, params, recogniser, have_model, t)) return 1;
+      if (!TimeOnce(frame, *background, params, layout, recogniser, have_model, t)) return 1;
     }
     PrintTable(frame, t, static_cast<int>(t.total.size()), recogniser.classifier.support_vectors());
   }

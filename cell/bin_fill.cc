@@ -7,13 +7,16 @@
 namespace sortcell::cell {
 namespace {
 
-constexpr double kSlotHalfWidth = 0.05;   // A slot's square: a quadrant of the 0.2 m bin (m).
-constexpr double kWallMargin = 0.015;     // Points this near a wall may be the wall's edge (m).
+constexpr double kCell = 0.02;            // Height map cells (m): ~100 Kinect points on a top face.
+constexpr double kWallMargin = 0.012;     // Points this near a wall may be the wall's edge (m).
 constexpr double kAboveFloor = 0.012;     // Lower points are the floor, with the depth noise (m).
+constexpr double kBelowFloor = -0.01;     // Lower still: not in the bin (m).
 constexpr double kTallest = 0.40;         // Higher points are not in the bin (the arm passing) (m).
-constexpr int kTopRank = 8;               // The slot's height: its 8th-highest point (stray pixels aside).
-constexpr double kAboveContents = 0.015;  // Let go this far above what is already in the slot (m).
+constexpr int kTopRank = 3;               // A cell's height: its 3rd-highest point (stray pixels aside).
+constexpr double kAboveContents = 0.015;  // Let go this far above what is already there (m).
 constexpr double kArmMargin = 0.02;       // Points this near the arm's capsules are the arm (m).
+constexpr double kLyingHalfWidth = 0.04;   // A lying object's band: a bottle's radius and 5 mm (m).
+constexpr double kAxisHalfWidth = 0.02;    // Of that, the band along its axis: what decides the diagonal.
 
 double DistanceToSegment(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
   const Eigen::Vector3d ab = b - a;
@@ -26,106 +29,136 @@ bool OnArm(const Eigen::Vector3d& p_W, const std::vector<Capsule>& arm) {
                      [&](const Capsule& c) { return DistanceToSegment(p_W, c.a, c.b) < c.radius + kArmMargin; });
 }
 
-// The slots of the layout on the diagonal along (1, sign) through the middle, middle included.
-std::vector<int> DiagonalSlots(const CellLayout& layout, double sign) {
-  std::vector<int> slots;
-  for (size_t k = 0; k < layout.bin_slots.size(); ++k) {
-    const Eigen::Vector3d& o = layout.bin_slots[k];
-    if (std::abs(o.y() - sign * o.x()) < 1e-6) slots.push_back(static_cast<int>(k));
-  }
-  return slots;
+double DistanceToLine(const Eigen::Vector2d& p, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+  const Eigen::Vector2d ab = b - a;
+  const double t = ab.squaredNorm() > 0 ? std::clamp((p - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0) : 0.0;
+  return (p - (a + t * ab)).norm();
 }
 
 }  // namespace
 
-BinFill::BinFill(const CellLayout& layout) : layout_(layout) {
-  if (layout.bin_slots.empty()) throw std::invalid_argument("BinFill: the cell layout has no bin slots");
-  for (const auto& [category, p] : layout.p_W_bin) heights_[category].assign(layout.bin_slots.size(), 0.0);
+BinFill::BinFill(const CellLayout& layout)
+    : layout_(layout), n_(static_cast<int>(std::lround(2 * layout.bin_inner_half_width / kCell))) {
+  for (const auto& [category, p] : layout.p_W_bin) maps_[category].height.assign(n_ * n_, 0.0);
+}
+
+Eigen::Vector2d BinFill::CellCentre(int i, int j) const {
+  const double h = layout_.bin_inner_half_width;
+  return {-h + (i + 0.5) * kCell, -h + (j + 0.5) * kCell};
 }
 
 void BinFill::See(const perception::Cloud& cloud, const Eigen::Isometry3d& X_WC, const std::vector<Capsule>& arm) {
-  const double inside = layout_.bin_inner_half_width - kWallMargin;
-  std::map<std::string, std::vector<std::vector<double>>> seen;  // Per bin, per slot: point heights.
-  for (const auto& [category, p] : layout_.p_W_bin) seen[category].resize(layout_.bin_slots.size());
+  const double h = layout_.bin_inner_half_width, inside = h - kWallMargin;
+  std::map<std::string, std::vector<std::vector<double>>> seen;  // Per bin, per cell: point heights.
+  for (const auto& [category, p] : layout_.p_W_bin) seen[category].resize(n_ * n_);
   for (const perception::PointT& point : cloud.points) {
     if (!std::isfinite(point.z)) continue;
     const Eigen::Vector3d p_W = X_WC * Eigen::Vector3d(point.x, point.y, point.z);
     for (const auto& [category, p_W_bin] : layout_.p_W_bin) {
       const Eigen::Vector3d d = p_W - p_W_bin;
-      if (std::abs(d.x()) > inside || std::abs(d.y()) > inside || d.z() < kAboveFloor || d.z() > kTallest) continue;
-      if (OnArm(p_W, arm)) break;
-      for (size_t k = 0; k < layout_.bin_slots.size(); ++k) {
-        const Eigen::Vector3d& o = layout_.bin_slots[k];
-        if (std::abs(d.x() - o.x()) <= kSlotHalfWidth && std::abs(d.y() - o.y()) <= kSlotHalfWidth) {
-          seen[category][k].push_back(d.z());
-        }
+      if (std::abs(d.x()) > inside || std::abs(d.y()) > inside || d.z() < kBelowFloor || d.z() > kTallest) continue;
+      if (!OnArm(p_W, arm)) {
+        const int i = std::clamp(static_cast<int>((d.x() + h) / kCell), 0, n_ - 1);
+        const int j = std::clamp(static_cast<int>((d.y() + h) / kCell), 0, n_ - 1);
+        seen[category][i * n_ + j].push_back(d.z() < kAboveFloor ? 0.0 : d.z());  // The floor: nothing on it.
       }
       break;  // Bins do not overlap.
     }
   }
-  for (auto& [category, slots] : seen) {
-    for (size_t k = 0; k < slots.size(); ++k) {
-      std::vector<double>& z = slots[k];
+  for (auto& [category, cells] : seen) {
+    std::vector<double>& height = maps_[category].height;
+    for (size_t c = 0; c < cells.size(); ++c) {
+      std::vector<double>& z = cells[c];
       if (static_cast<int>(z.size()) < kTopRank) continue;
       std::nth_element(z.begin(), z.begin() + (kTopRank - 1), z.end(), std::greater<>());
-      heights_[category][k] = std::max(heights_[category][k], z[kTopRank - 1]);
+      height[c] = z[kTopRank - 1];
     }
   }
+}
+
+bool BinFill::Under(const BinRelease& release, const Eigen::Vector2d& p) const {
+  return DistanceToLine(p, release.from, release.to) <= release.half_width;
 }
 
 void BinFill::Released(const std::string& category, const BinRelease& release, double height) {
-  std::vector<double>& slots = heights_.at(category);
-  for (const int k : release.slots) slots[k] = std::max(slots[k], release.clearance + height);
+  std::vector<double>& cells = maps_.at(category).height;
+  const BinRelease& lies = release;
+  // Let go, it comes to rest on what is under it.
+  const double top = HighestUnder(category, lies) + height;
+  for (int i = 0; i < n_; ++i) {
+    for (int j = 0; j < n_; ++j) {
+      if (Under(lies, CellCentre(i, j))) cells[i * n_ + j] = std::max(cells[i * n_ + j], top);
+    }
+  }
 }
 
-const std::vector<double>& BinFill::Heights(const std::string& category) const {
-  const auto bin = heights_.find(category);
-  if (bin == heights_.end()) throw std::invalid_argument("cell layout: no bin for category '" + category + "'");
+const BinFill::Map& BinFill::MapOf(const std::string& category) const {
+  const auto bin = maps_.find(category);
+  if (bin == maps_.end()) throw std::invalid_argument("cell layout: no bin for category '" + category + "'");
   return bin->second;
 }
 
-BinRelease BinFill::Upright(const std::string& category, int filled, double min_clearance) const {
-  const std::vector<double>& slots = Heights(category);
-  const int n = static_cast<int>(slots.size());
-  // Heights within a centimetre count as the same: the layout's order decides between them.
-  int best = filled % n;
-  for (int i = 1; i < n; ++i) {
-    const int k = (filled + i) % n;
-    if (slots[k] < slots[best] - 0.01) best = k;
+double BinFill::HighestUnder(const std::string& category, const BinRelease& release) const {
+  const std::vector<double>& cells = MapOf(category).height;
+  double highest = 0;
+  for (int i = 0; i < n_; ++i) {
+    for (int j = 0; j < n_; ++j) {
+      if (Under(release, CellCentre(i, j))) highest = std::max(highest, cells[i * n_ + j]);
+    }
   }
-  BinRelease release;
-  release.p_W_floor = BinSlot(layout_, category, best);
-  release.clearance = std::max(min_clearance, slots[best] + kAboveContents);
-  release.yaw_step = layout_.place_yaw_step;
-  release.slots = {best};
-  return release;
+  return highest;
+}
+
+BinRelease BinFill::Upright(const std::string& category, int filled, double radius, double min_clearance) const {
+  MapOf(category);  // Names an unknown category first.
+  if (layout_.bin_slots.empty()) throw std::invalid_argument("cell layout: no bin slots");
+  const int n = static_cast<int>(layout_.bin_slots.size());
+  auto at_slot = [&](int k) {
+    BinRelease release;
+    release.p_W_floor = BinSlot(layout_, category, k);
+    release.from = release.to = layout_.bin_slots[k].head<2>();
+    release.half_width = radius;
+    release.yaw_step = layout_.place_yaw_step;
+    return release;
+  };
+  // Heights within a centimetre count as the same: the layout's order decides between them.
+  BinRelease best = at_slot(filled % n);
+  double best_height = HighestUnder(category, best);
+  for (int i = 1; i < n; ++i) {
+    const BinRelease candidate = at_slot((filled + i) % n);
+    const double height = HighestUnder(category, candidate);
+    if (height < best_height - 0.01) {
+      best = candidate;
+      best_height = height;
+    }
+  }
+  best.clearance = std::max(min_clearance, best_height + kAboveContents);
+  return best;
 }
 
 BinRelease BinFill::Lying(const std::string& category) const {
-  const std::vector<double>& slots = Heights(category);
-  auto highest = [&](const std::vector<int>& diagonal) {
-    double h = 0;
-    for (const int k : diagonal) h = std::max(h, slots[k]);
-    return h;
+  const double reach = layout_.bin_inner_half_width - kLyingHalfWidth;
+  auto along = [&](double sign) {
+    BinRelease release;
+    release.p_W_floor = layout_.p_W_bin.at(category);
+    release.from = Eigen::Vector2d(-reach, -sign * reach);
+    release.to = Eigen::Vector2d(reach, sign * reach);
+    release.half_width = kLyingHalfWidth;
+    // The object hangs along the TCP's x axis, (-sin yaw, cos yaw) for a top-down pinch at yaw.
+    release.yaw_offset = std::atan2(-1.0, sign);
+    release.yaw_step = M_PI;
+    return release;
   };
-  const std::vector<int> rising = DiagonalSlots(layout_, 1), falling = DiagonalSlots(layout_, -1);
-  // The diagonals share the middle: the ends decide.
-  auto ends = [&](const std::vector<int>& diagonal, const std::vector<int>& other) {
-    std::vector<int> own;
-    for (const int k : diagonal) {
-      if (std::find(other.begin(), other.end(), k) == other.end()) own.push_back(k);
-    }
-    return own;
+  MapOf(category);  // Names an unknown category first.
+  // The diagonal with less on its axis; let go above the highest thing under the whole band (dropped
+  // onto an edge of what is there, not pressed into it).
+  auto on_axis = [&](BinRelease release) {
+    release.half_width = kAxisHalfWidth;
+    return HighestUnder(category, release);
   };
-  const bool along_rising = highest(ends(rising, falling)) <= highest(ends(falling, rising)) + 0.01;
-  BinRelease release;
-  release.p_W_floor = layout_.p_W_bin.at(category);
-  release.slots = along_rising ? rising : falling;
-  release.clearance = std::max(layout_.bin_wall_height + 0.01, highest(release.slots) + kAboveContents);
-  // The object hangs along the TCP's x axis, (-sin yaw, cos yaw) for a top-down pinch at yaw.
-  const double sign = along_rising ? 1.0 : -1.0;
-  release.yaw_offset = std::atan2(-1.0, sign);
-  release.yaw_step = M_PI;
+  const BinRelease rising = along(1), falling = along(-1);
+  BinRelease release = on_axis(rising) <= on_axis(falling) + 0.01 ? rising : falling;
+  release.clearance = std::max(layout_.bin_wall_height + 0.01, HighestUnder(category, release) + kAboveContents);
   return release;
 }
 

@@ -19,39 +19,55 @@ namespace sortcell::cell {
 /// Where and how high to let go of an object in its bin.
 struct BinRelease {
   Eigen::Vector3d p_W_floor = Eigen::Vector3d::Zero();  ///< Below the release point, on the bin's floor.
-  double clearance = 0;  ///< The object's bottom above the floor when let go (m).
+  double clearance = 0;   ///< The object's bottom above the floor when let go (m).
   double yaw_offset = 0;  ///< First placement yaw (rad); with yaw_step the yaws tried.
   double yaw_step = 0;
-  std::vector<int> slots;  ///< The layout's bin slots the object will take.
+  /// Where it will lie in the bin (bin frame: offsets from the floor centre, m): within half_width of
+  /// the segment from..to, a disc around a slot for an upright object (from = to), the band along a
+  /// diagonal for a lying one.
+  Eigen::Vector2d from = Eigen::Vector2d::Zero(), to = Eigen::Vector2d::Zero();
+  double half_width = 0;
 };
 
+/// A height map of each bin's inside, in cells of kBinCell (m): the height above the floor of what
+/// is in each cell, as far as the robot knows.
 class BinFill {
  public:
-  /// @throws std::invalid_argument if the layout has no bin slots.
   explicit BinFill(const CellLayout& layout);
 
-  /// Raises each slot's height to what the capture shows in it (camera frame cloud, calibrated pose
-  /// X_WC): the height above the floor of the highest few points inside the slot's square, within the
-  /// bin's walls, leaving out points of the arm (`arm`, from the encoders at the capture). Never
-  /// lowers a slot: what went into a bin stays there, and part of it may be hidden this time.
+  /// Sets each cell the capture sees (camera frame cloud, calibrated pose X_WC) to what it shows there:
+  /// the height above the floor of its third-highest point inside the bin's walls (0 where it sees
+  /// the floor), leaving out points of the arm (`arm`, from the encoders at the capture). A cell it
+  /// does not see (behind a wall or the arm) keeps what the robot knew of it.
   void See(const perception::Cloud& cloud, const Eigen::Isometry3d& X_WC, const std::vector<Capsule>& arm);
-  /// An object of `height` (m) was let go at `release`: its slots are at least that high now.
+  /// An object of `height` (m) was let go at `release`: it rests on what is under its disc or band,
+  /// and that is at least that much higher now.
   void Released(const std::string& category, const BinRelease& release, double height);
 
-  /// An upright object: the lowest slot (the layout's order from `filled` where they tie), let go
-  /// `min_clearance` above the floor or that far above what is already there.
-  /// @throws std::invalid_argument naming the category if the layout has no bin for it.
-  BinRelease Upright(const std::string& category, int filled, double min_clearance) const;
-  /// A lying object, longer than the bin is wide: along the lower of the two diagonals, in the middle,
-  /// let go above the walls (lowered in, its ends would catch on them) and above what is there.
+  /// An upright object standing on a disc of `radius` (m): the layout's bin slot with the least
+  /// under that disc (the layout's order from `filled` where they tie), let go `min_clearance` above
+  /// the floor or that far above what is already there.
+  /// @throws std::invalid_argument naming the category if the layout has no bin for it, or if the
+  ///         layout has no bin slots.
+  BinRelease Upright(const std::string& category, int filled, double radius, double min_clearance) const;
+  /// A lying object, longer than the bin is wide: along the emptier of the two diagonals, in the
+  /// middle, let go above the walls (lowered in, its ends would catch on them) and above what is there.
   BinRelease Lying(const std::string& category) const;
 
-  /// Each slot's height above the bin floor (m), in the layout's slot order.
-  const std::vector<double>& Heights(const std::string& category) const;
+  /// The height (m) of the highest cell under `release`'s disc or band.
+  double HighestUnder(const std::string& category, const BinRelease& release) const;
 
  private:
+  struct Map {
+    std::vector<double> height;  // Row-major, n x n cells from the bin's (-x, -y) corner.
+  };
+  const Map& MapOf(const std::string& category) const;
+  Eigen::Vector2d CellCentre(int i, int j) const;
+  bool Under(const BinRelease& release, const Eigen::Vector2d& p) const;
+
   const CellLayout& layout_;
-  std::map<std::string, std::vector<double>> heights_;
+  int n_ = 0;  // Cells per side.
+  std::map<std::string, Map> maps_;
 };
 
 }  // namespace sortcell::cell

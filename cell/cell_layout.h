@@ -60,6 +60,7 @@ struct CellLayout {
   /// than that (a bottle lying, 0.224 m) goes in along the diagonal, in the middle, let go above the walls.
   double bin_wall_height = 0.10;
   double bin_inner_half_width = 0.10;
+  double bin_outer_half_width = 0.108;
 
   /// The pick area the camera watches (world box, m): the table in front of the robot up to its far
   /// edge (objects out of reach there are seen and reported unreachable), between the bins, up to
@@ -80,5 +81,9 @@ struct CellLayout {
 /// The bin slot for the `filled`-th object released into a bin (cycling through the slots).
 /// @throws std::invalid_argument naming the category if the layout has no bin for it.
 Eigen::Vector3d BinSlot(const CellLayout& layout, const std::string& category, int filled);
+
+/// The bins' walls seen from above (world xy, m): their inner and outer outlines every `spacing`.
+/// What open fingers must keep clear of besides the objects: one landing on a wall is stopped there.
+std::vector<Eigen::Vector2d> BinWallOutlines(const CellLayout& layout, double spacing = 0.005);
 
 }  // namespace sortcell::cell

@@ -101,16 +101,19 @@ PickReport PickAndPlace(MotionSequencer& run, const PickRequest& request, const 
   const double release_gap = std::fmin(plan.open_gap, run.io().ReadGripper().gap() + kReleaseOpening);
   Notify(hooks.grasped);
 
+  PickRequest release = request;
+  if (hooks.choose_release) hooks.choose_release(release);
+
   // Lift, carry and lower as one motion; the placement is planned from where the lift ends.
   MotionChain transfer(run.io().CommandedJoints(), MotionChain::Load::kHolding);
   if (!transfer.Line("lift", plan.X_WT_lift, lines.transit, lines.transit_acceleration)) {
     return Fail(run, request, report);
   }
   robot::GraspOptions place_options;
-  place_options.place_yaw_step = request.place_yaw_step;
-  place_options.place_yaw_offset = request.place_yaw_offset;
-  place_options.release_clearance = request.release_clearance;
-  const robot::PlacePlan place = robot::PlanPlacement(request.p_W_release, plan.grasp_height, transfer.end(), place_options);
+  place_options.place_yaw_step = release.place_yaw_step;
+  place_options.place_yaw_offset = release.place_yaw_offset;
+  place_options.release_clearance = release.release_clearance;
+  const robot::PlacePlan place = robot::PlanPlacement(release.p_W_release, plan.grasp_height, transfer.end(), place_options);
   if (place.ok) {
     transfer.JointMove("carry", place.q_above);
     // Fast down to just above the release point; the last centimetres (below) are slow.

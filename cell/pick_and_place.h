@@ -47,6 +47,10 @@ struct PickHooks {
   /// holds no longer hide the workspace from the camera (the policy captures the next view then).
   std::function<bool(const robot::Joints& q)> out_of_view;
   std::function<void()> left_view;
+  /// After the fingers closed on the object, before the lift: sets where in the bin to let go (the
+  /// request's p_W_release, place_yaw_* and release_clearance), for a caller that looks into the bin
+  /// first. Without it the request's are used.
+  std::function<void(PickRequest& release)> choose_release;
 };
 
 struct PickReport {

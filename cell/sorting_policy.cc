@@ -35,8 +35,10 @@ robot::GraspOptions GraspOptionsFor(const robot::ObjectFootprint& object, bool l
 }
 
 // Everything seen but detection `target`, as the fingers' obstacles.
-robot::Neighbours NeighboursOf(const std::vector<Detection>& detections, size_t target) {
+robot::Neighbours NeighboursOf(const std::vector<Detection>& detections, size_t target,
+                                const std::vector<Eigen::Vector2d>& fixed_xy) {
   robot::Neighbours neighbours;
+  neighbours.p_xy = fixed_xy;
   for (size_t j = 0; j < detections.size(); ++j) {
     if (j == target) continue;
     const Detection& d = detections[j];
@@ -48,14 +50,15 @@ robot::Neighbours NeighboursOf(const std::vector<Detection>& detections, size_t 
 
 // The ways detection `i` may be pinched (round: from any side; a prism: across either pair of sides;
 // lying: across its axis), the one whose open fingers clear the neighbours.
-robot::ClearGrasp ClearestGraspOf(const std::vector<Detection>& detections, size_t i) {
+robot::ClearGrasp ClearestGraspOf(const std::vector<Detection>& detections, size_t i,
+                                  const std::vector<Eigen::Vector2d>& fixed_xy) {
   const Detection& d = detections[i];
   std::vector<robot::ObjectFootprint> ways{d.footprint};
   if (d.round) ways = robot::RoundWays(d.footprint);
   if (d.turned) ways.push_back(*d.turned);
   std::vector<double> side_clearances;  // As the grasp will open for each (GraspOptionsFor).
   for (const auto& way : ways) side_clearances.push_back(GraspOptionsFor(way, d.lying).finger_clearance);
-  return robot::ClearestGrasp(ways, side_clearances, NeighboursOf(detections, i));
+  return robot::ClearestGrasp(ways, side_clearances, NeighboursOf(detections, i, fixed_xy));
 }
 
 }  // namespace
@@ -66,7 +69,8 @@ SortingPolicy::SortingPolicy(CellIo& io, const CellLayout& layout, const CameraC
     : io_(io), layout_(layout), calibration_(calibration), model_(model), options_(options),
       observer_(observer ? *observer : no_observer_), motions_(io), segmentation_(CellSegmentation(layout)),
       view_(calibration, layout.workspace_min_W, layout.workspace_max_W),
-      bins_(layout) {
+      bins_(layout),
+      bin_walls_xy_(BinWallOutlines(layout)) {
   if (options.max_attempts_per_position < 1 || options.max_attempts < 1) {
     throw std::invalid_argument("policy options: attempt limits must be at least 1");
   }
@@ -89,11 +93,25 @@ Observation SortingPolicy::Observe(const std::optional<HeldObject>& held) {
   const auto start = std::chrono::steady_clock::now();
   Observation observation = ObserveScene(*cloud, calibration_, segmentation_, model_);
   bins_.See(*cloud, calibration_.X_WC, ArmCapsules(io_.ReadJoints(), held));
+  unseen_release_.reset();
   for (Detection& d : observation.detections) {
     if (d.category && d.confidence < options_.reject_below) d.category = options_.reject_bin;
   }
   observer_.Observed(*cloud, observation, WallSecondsSince(start));
   return observation;
+}
+
+void SortingPolicy::LookIntoBins(const HeldObject& held) {
+  bins_.See(*io_.Capture(), calibration_.X_WC, ArmCapsules(io_.ReadJoints(), held));
+  unseen_release_.reset();
+}
+
+BinRelease SortingPolicy::ChooseRelease(const Detection& seen, int filled, double min_clearance) const {
+  if (seen.lying) return bins_.Lying(*seen.category);
+  // Upright it stands on its footprint: across the pinch and, for a prism, its other pair of sides.
+  const double across = seen.turned ? seen.turned->width : seen.footprint.width;
+  const double radius = 0.5 * std::hypot(seen.footprint.width, seen.round ? 0.0 : across);
+  return bins_.Upright(*seen.category, filled, radius, min_clearance);
 }
 
 int SortingPolicy::Choose(const std::vector<Detection>& detections, robot::PickMemory& memory,
@@ -120,7 +138,7 @@ int SortingPolicy::Choose(const std::vector<Detection>& detections, robot::PickM
     if (i < 0) i = robot::ChooseNextPick(footprints, free_hidden);
     robot::ClearGrasp grasp;
     if (i >= 0) {
-      grasp = ClearestGraspOf(detections, i);
+      grasp = ClearestGraspOf(detections, i, bin_walls_xy_);
       if (grasp.clearance < kFreeFingers) {
         for (robot::PickMemory* m : {&free, &free_hidden}) m->Skip(footprints[i].centre_xy, robot::SkipReason::kUnreachable);
         blocked.emplace_back(i, grasp);
@@ -157,13 +175,6 @@ AttemptReport SortingPolicy::Attempt(const Detection& seen, int index, int attem
   int& filled = released_into_[*seen.category];
   PickRequest request;
   request.grasp = plan;
-  const BinRelease release = seen.lying ? bins_.Lying(*seen.category)
-                                        : bins_.Upright(*seen.category, filled, request.release_clearance);
-  request.p_W_release = release.p_W_floor;
-  request.place_yaw_step = release.yaw_step;
-  request.place_yaw_offset = release.yaw_offset;
-  request.release_clearance = release.clearance;
-  report.release = release;
   request.q_home = layout_.q_observe;
   request.X_WT_exit = X_WT_exit;
   request.speeds = layout_.speeds;
@@ -177,12 +188,22 @@ AttemptReport SortingPolicy::Attempt(const Detection& seen, int index, int attem
   hooks.left_view = [&] { next_view = Observe(held); };
   hooks.grasped = [&] { observer_.Grasped(); };
   hooks.lowered = [&] { observer_.Lowered(); };
+  hooks.choose_release = [&](PickRequest& placing) {
+    // The last release into this bin has not been seen yet: look, while the fingers squeeze.
+    if (unseen_release_ == *seen.category) LookIntoBins(held);
+    report.release = ChooseRelease(seen, filled, placing.release_clearance);
+    placing.p_W_release = report.release.p_W_floor;
+    placing.place_yaw_step = report.release.yaw_step;
+    placing.place_yaw_offset = report.release.yaw_offset;
+    placing.release_clearance = report.release.clearance;
+  };
   const size_t first_phase = motions_.phases().size();
   report.pick = PickAndPlace(motions_, request, hooks);
   report.phases.assign(motions_.phases().begin() + first_phase, motions_.phases().end());
   if (report.pick.reached_bin) {
     ++filled;
-    bins_.Released(*seen.category, release, seen.footprint.top_z - seen.footprint.base_z);
+    bins_.Released(*seen.category, report.release, seen.footprint.top_z - seen.footprint.base_z);
+    unseen_release_ = *seen.category;
   }
   report.end_s = io_.Now();
   observer_.AttemptEnded(report);

@@ -114,7 +114,14 @@ class SortingPolicy {
   perception::SegmentationParams segmentation_;
   WorkspaceView view_;  // Whether the arm hides the workspace from the camera.
   std::map<std::string, int> released_into_;  // Objects released into each category's bin so far.
+  // Captures only to see into the bins (no perception of the table).
+  void LookIntoBins(const HeldObject& held);
+  // Where in its bin to let go of `seen`, from what is there.
+  BinRelease ChooseRelease(const Detection& seen, int filled, double min_clearance) const;
+
   BinFill bins_;                               // What is in the bins already.
+  std::optional<std::string> unseen_release_;  // The bin of the last release, until a capture saw it.
+  std::vector<Eigen::Vector2d> bin_walls_xy_;  // What open fingers must keep clear of besides objects.
 };
 
 }  // namespace sortcell::cell

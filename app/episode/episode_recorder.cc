@@ -129,7 +129,7 @@ void EpisodeRecorder::AttemptEnded(const cell::AttemptReport& report) {
   entry.width_m = d.footprint.width;
   entry.top_z_m = d.footprint.top_z;
   entry.lying = d.lying;
-  entry.release_clearance_m = report.release.clearance;
+  if (report.pick.grasped) entry.release_clearance_m = report.release.clearance;
   entry.result = cell::ToString(result);
   if (attempted_object_ >= 0) entry.truth_object = scorer_.objects()[attempted_object_].name;
   if (truth_errors_) {

@@ -195,6 +195,26 @@ TEST(SortingPolicy, ReleasesIntoThePredictedBinSlotBySlot) {
   }
 }
 
+TEST(SortingPolicy, AnObjectSeenInTheBinIsNotLetGoOnto) {
+  // Something already stands in the bottle bin's first slot (the camera sees into the bins): the
+  // release goes to the next slot. The scripted cell never shows what was released, so the camera
+  // sees that slot empty again and the second release goes there too, never onto the first slot.
+  const CellLayout layout = Layout();
+  const Eigen::Vector3d p_slot0 = BinSlot(layout, "bottle", 0);
+  const Cylinder in_bin{p_slot0.head<2>(), 0.03, 0.15, 200, 200, 200};
+  PolicyOptions options;
+  options.max_attempts = 2;
+  const SortRun run = Sort({kBottle, in_bin}, {true, true}, options);
+  ASSERT_EQ(run.seen.results, (std::vector<AttemptResult>{AttemptResult::kReleased, AttemptResult::kReleased}));
+  std::vector<Eigen::Vector2d> released;
+  for (size_t i = 0; i < run.motions.size(); ++i) {
+    if (run.motions[i] == "lower") released.push_back(robot::TcpPose(run.motion_ends[i]).translation().head<2>());
+  }
+  ASSERT_EQ(released.size(), 2u);
+  EXPECT_LT((released[0] - BinSlot(layout, "bottle", 1).head<2>()).norm(), 1e-4);
+  EXPECT_LT((released[1] - BinSlot(layout, "bottle", 1).head<2>()).norm(), 1e-4);
+}
+
 TEST(SortingPolicy, AFaultOfTheCellEndsTheEpisode) {
   const SortRun run = Sort({kBottle}, {true}, {}, Layout(), Model(), false, "carry");
   ASSERT_EQ(run.seen.results.size(), 1u);
