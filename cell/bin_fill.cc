@@ -15,8 +15,8 @@ constexpr double kTallest = 0.40;         // Higher points are not in the bin (t
 constexpr int kTopRank = 3;               // A cell's height: its 3rd-highest point (stray pixels aside).
 constexpr double kAboveContents = 0.015;  // Let go this far above what is already there (m).
 constexpr double kArmMargin = 0.02;       // Points this near the arm's capsules are the arm (m).
-constexpr double kLyingHalfWidth = 0.04;   // A lying object's band: a bottle's radius and 5 mm (m).
-constexpr double kAxisHalfWidth = 0.02;    // Of that, the band along its axis: what decides the diagonal.
+constexpr double kLyingHalfWidth = 0.04;   // A lying bottle's radius and 5 mm (m): how far its axis stays from a wall.
+constexpr double kAxisHalfWidth = 0.02;    // The band along a diagonal's axis (m).
 
 double DistanceToSegment(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
   const Eigen::Vector3d ab = b - a;
@@ -137,28 +137,26 @@ BinRelease BinFill::Upright(const std::string& category, int filled, double radi
 }
 
 BinRelease BinFill::Lying(const std::string& category) const {
-  const double reach = layout_.bin_inner_half_width - kLyingHalfWidth;
-  auto along = [&](double sign) {
-    BinRelease release;
-    release.p_W_floor = layout_.p_W_bin.at(category);
-    release.from = Eigen::Vector2d(-reach, -sign * reach);
-    release.to = Eigen::Vector2d(reach, sign * reach);
-    release.half_width = kLyingHalfWidth;
-    // The object hangs along the TCP's x axis, (-sin yaw, cos yaw) for a top-down pinch at yaw.
-    release.yaw_offset = std::atan2(-1.0, sign);
-    release.yaw_step = M_PI;
-    return release;
-  };
   MapOf(category);  // Names an unknown category first.
-  // The diagonal with less on its axis; let go above the highest thing under the whole band (dropped
-  // onto an edge of what is there, not pressed into it).
-  auto on_axis = [&](BinRelease release) {
-    release.half_width = kAxisHalfWidth;
-    return HighestUnder(category, release);
+  const double reach = layout_.bin_inner_half_width - kLyingHalfWidth;
+  // The object hangs along the TCP's x axis, (-sin yaw, cos yaw) for a top-down pinch at yaw: yaws
+  // pi/4 + k pi/2 lay it along either diagonal, whichever the arm turns to more easily. (Choosing the
+  // emptier one made the arm turn the wrist the long way, and a bottle grasped off its middle swung
+  // out over a wall.) Let go above what is on either diagonal's axis.
+  auto axis = [&](double sign) {
+    BinRelease band;
+    band.from = Eigen::Vector2d(-reach, -sign * reach);
+    band.to = Eigen::Vector2d(reach, sign * reach);
+    band.half_width = kAxisHalfWidth;
+    return HighestUnder(category, band);
   };
-  const BinRelease rising = along(1), falling = along(-1);
-  BinRelease release = on_axis(rising) <= on_axis(falling) + 0.01 ? rising : falling;
-  release.clearance = std::max(layout_.bin_wall_height + 0.01, HighestUnder(category, release) + kAboveContents);
+  BinRelease release;
+  release.p_W_floor = layout_.p_W_bin.at(category);
+  release.yaw_offset = M_PI / 4;
+  release.yaw_step = M_PI / 2;
+  release.clearance = std::max(layout_.bin_wall_height + 0.01, std::max(axis(1), axis(-1)) + kAboveContents);
+  // Where it ends is not known until a capture sees it: anywhere in the bin.
+  release.half_width = 2 * layout_.bin_inner_half_width;
   return release;
 }
 

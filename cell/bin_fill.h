@@ -50,8 +50,9 @@ class BinFill {
   /// @throws std::invalid_argument naming the category if the layout has no bin for it, or if the
   ///         layout has no bin slots.
   BinRelease Upright(const std::string& category, int filled, double radius, double min_clearance) const;
-  /// A lying object, longer than the bin is wide: along the emptier of the two diagonals, in the
-  /// middle, let go above the walls (lowered in, its ends would catch on them) and above what is there.
+  /// A lying object, longer than the bin is wide: along a diagonal, in the middle, let go above the
+  /// walls (lowered in, its ends would catch on them) and above what is on the diagonals. Until a
+  /// capture sees it, it may be anywhere in the bin.
   BinRelease Lying(const std::string& category) const;
 
   /// The height (m) of the highest cell under `release`'s disc or band.
