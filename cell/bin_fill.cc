@@ -18,8 +18,10 @@ constexpr double kArmMargin = 0.02;       // Points this near the arm's capsules
 constexpr double kLyingHalfWidth = 0.04;   // A lying bottle's radius and 5 mm (m): how far its axis stays from a wall.
 constexpr double kAxisHalfWidth = 0.02;    // The band along a diagonal's axis (m).
 
-double DistanceToSegment(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
-  const Eigen::Vector3d ab = b - a;
+// From p to the segment a-b, in 2D (a band's axis) or 3D (a capsule's).
+template <typename Vector>
+double DistanceToSegment(const Vector& p, const Vector& a, const Vector& b) {
+  const Vector ab = b - a;
   const double t = ab.squaredNorm() > 0 ? std::clamp((p - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0) : 0.0;
   return (p - (a + t * ab)).norm();
 }
@@ -27,12 +29,6 @@ double DistanceToSegment(const Eigen::Vector3d& p, const Eigen::Vector3d& a, con
 bool OnArm(const Eigen::Vector3d& p_W, const std::vector<Capsule>& arm) {
   return std::any_of(arm.begin(), arm.end(),
                      [&](const Capsule& c) { return DistanceToSegment(p_W, c.a, c.b) < c.radius + kArmMargin; });
-}
-
-double DistanceToLine(const Eigen::Vector2d& p, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
-  const Eigen::Vector2d ab = b - a;
-  const double t = ab.squaredNorm() > 0 ? std::clamp((p - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0) : 0.0;
-  return (p - (a + t * ab)).norm();
 }
 
 }  // namespace
@@ -77,17 +73,16 @@ void BinFill::See(const perception::Cloud& cloud, const Eigen::Isometry3d& X_WC,
 }
 
 bool BinFill::Under(const BinRelease& release, const Eigen::Vector2d& p) const {
-  return DistanceToLine(p, release.from, release.to) <= release.half_width;
+  return DistanceToSegment(p, release.from, release.to) <= release.half_width;
 }
 
 void BinFill::Released(const std::string& category, const BinRelease& release, double height) {
   std::vector<double>& cells = maps_.at(category).height;
-  const BinRelease& lies = release;
   // Let go, it comes to rest on what is under it.
-  const double top = HighestUnder(category, lies) + height;
+  const double top = HighestUnder(category, release) + height;
   for (int i = 0; i < n_; ++i) {
     for (int j = 0; j < n_; ++j) {
-      if (Under(lies, CellCentre(i, j))) cells[i * n_ + j] = std::max(cells[i * n_ + j], top);
+      if (Under(release, CellCentre(i, j))) cells[i * n_ + j] = std::max(cells[i * n_ + j], top);
     }
   }
 }
