@@ -34,6 +34,15 @@ robot::GraspOptions GraspOptionsFor(const robot::ObjectFootprint& object, bool l
   return options;
 }
 
+// What a held object reaches across from the TCP's axis (m): half the largest finger gap (whatever
+// fitted between the fingers, and the sets' 0.09 m boxes along them), or as far as its points were
+// from the grasp centre: a lying bottle's ends, 0.11 m out, were seen in a bin as 0.36 m high contents.
+double HeldReach(const Detection& d) {
+  double reach = 0.5 * robot::kMaxGap;
+  for (const Eigen::Vector2d& p : d.p_W_xy) reach = std::max(reach, (p - d.footprint.centre_xy).norm());
+  return reach;
+}
+
 // Everything seen but detection `target`, as the fingers' obstacles.
 robot::Neighbours NeighboursOf(const std::vector<Detection>& detections, size_t target,
                                 const std::vector<Eigen::Vector2d>& fixed_xy) {
@@ -179,9 +188,7 @@ AttemptReport SortingPolicy::Attempt(const Detection& seen, int index, int attem
   request.X_WT_exit = X_WT_exit;
   request.speeds = layout_.speeds;
   PickHooks hooks;
-  // What it holds hangs down to the object's bottom; across, it reaches half the largest finger gap
-  // from the TCP's axis: whatever fitted between the fingers, and the sets' 0.09 m boxes along them.
-  const HeldObject held{plan.grasp_height, 0.5 * robot::kMaxGap};
+  const HeldObject held{plan.grasp_height, HeldReach(seen)};
   hooks.out_of_view = [&](const robot::Joints& q) {
     return !view_.ArmInView(q, held);
   };
