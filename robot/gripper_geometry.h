@@ -23,4 +23,12 @@ inline constexpr double kFingerHalfWidth = 0.020;
 inline constexpr double kFingerServoKp = 2000;
 inline constexpr double kFingerForceLimit = 60;
 
+/// The hand-eye calibration marker: an ArUco marker (OpenCV's 4x4_50 dictionary) printed on a plate
+/// on the housing's +x_F side, facing +x_F, its centre at (kMarkerFaceX, 0, kMarkerCentreZ) in the
+/// flange frame (m); the black square is kMarkerSide wide (m).
+inline constexpr int kMarkerId = 7;
+inline constexpr double kMarkerSide = 0.056;
+inline constexpr double kMarkerFaceX = 0.046;
+inline constexpr double kMarkerCentreZ = 0.037;
+
 }  // namespace sortcell::robot

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "app/cli/calibrate_command.h"
 #include "app/cli/capture_command.h"
 #include "app/cli/classify_command.h"
 #include "app/cli/episode_command.h"
@@ -51,16 +52,18 @@ int RunCli(int argc, char** argv) {
   AddClassifyCommand(app, run);
   AddExperimentCommand(app, run, command_line);
   AddEpisodeCommand(app, run, command_line);
+  AddCalibrateCommand(app, run, command_line);
   AddSweepCommand(app, run, command_line);
   AddKinematicsCommands(app, run);
 
-  // `sortcell episode --set KEY=VALUE` becomes `--KEY=VALUE` before CLI11 parses (episode_command.h).
+  // `sortcell episode|calibrate --set KEY=VALUE` becomes `--KEY=VALUE` before CLI11 parses
+  // (episode_command.h).
   std::vector<std::string> args = command_line;
-  if (args.size() > 1 && args[1] == "episode") {
+  if (args.size() > 1 && (args[1] == "episode" || args[1] == "calibrate")) {
     try {
-      args = ExpandEpisodeSets(*app.get_subcommand("episode"), args);
+      args = ExpandEpisodeSets(*app.get_subcommand(args[1]), args);
     } catch (const std::invalid_argument& e) {
-      std::cerr << "sortcell episode: error: " << OneLine(e.what()) << "\n";
+      std::cerr << "sortcell " << args[1] << ": error: " << OneLine(e.what()) << "\n";
       return 2;
     }
   }

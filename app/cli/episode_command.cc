@@ -55,6 +55,7 @@ struct EpisodeCli {
   std::string placement_mode = "sparse";
   std::string video_size = "1280x720";
   bool train_if_missing = false;
+  std::string self_calibrate = "auto";
   std::vector<std::string> sets;  ///< Empty: ExpandEpisodeSets turned them into options before parsing.
 };
 
@@ -97,6 +98,29 @@ void AddPlacementOptions(CLI::App& cmd, EpisodeCli& cli) {
 }
 
 }  // namespace
+
+void AddSensorVariationOptions(CLI::App& cmd, EpisodeOptions& o) {
+  cmd.add_option("--light-intensity", o.light_intensity, "Scale of the scene's lights")->capture_default_str();
+  cmd.add_option("--noise-scale", o.noise_scale, "Scale of the Kinect's depth noise")->capture_default_str();
+  cmd.add_option("--camera-shift", o.variation.camera_shift_m,
+                 "Move the Kinect this far (m) in a random direction; the robot is given the nominal pose")
+      ->capture_default_str();
+  cmd.add_option("--camera-turn", o.variation.camera_turn_rad, "Turn the Kinect by this angle (rad) about a random axis")
+      ->capture_default_str();
+}
+
+void AddSetOption(CLI::App& cmd, std::vector<std::string>& sets) {
+  cmd.add_option("--set", sets,
+                 "Override an option (repeatable): KEY=VALUE is --KEY VALUE for any option above by its long name, "
+                 "e.g. --set noise-scale=1.5 --set seed=3; applied after the other options, so it wins over the "
+                 "option given directly")
+      ->type_name("KEY=VALUE")
+      ->allow_extra_args(false);
+  // One value per option, the last one given wins (so --set overrides).
+  for (CLI::Option* option : cmd.get_options()) {
+    if (option->get_items_expected_max() == 1) option->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
+  }
+}
 
 std::vector<std::string> ExpandEpisodeSets(const CLI::App& episode, const std::vector<std::string>& args) {
   const std::vector<std::string> keys = SetKeys(episode);
@@ -148,14 +172,13 @@ void AddEpisodeCommand(CLI::App& app, std::function<int()>& run, const std::vect
   cmd->add_option("--place", cli->placements,
                   "Put an object at NAME=x,y[,yaw[,lying]] (world, m, rad; 'lying': on its side) instead of at random");
   AddPlacementOptions(*cmd, *cli);
-  cmd->add_option("--light-intensity", o.light_intensity, "Scale of the scene's lights")->capture_default_str();
-  cmd->add_option("--noise-scale", o.noise_scale, "Scale of the Kinect's depth noise")->capture_default_str();
+  AddSensorVariationOptions(*cmd, o);
   cmd->add_option("--friction-scale", o.variation.friction_scale, "Scale of the objects' friction")->capture_default_str();
   cmd->add_option("--mass-scale", o.variation.mass_scale, "Scale of the objects' masses")->capture_default_str();
-  cmd->add_option("--camera-shift", o.variation.camera_shift_m,
-                  "Move the Kinect this far (m) in a random direction; the robot keeps the nominal pose")
-      ->capture_default_str();
-  cmd->add_option("--camera-turn", o.variation.camera_turn_rad, "Turn the Kinect by this angle (rad) about a random axis")
+  cmd->add_option("--self-calibrate", cli->self_calibrate,
+                  "Calibrate the camera's pose from the marker on the gripper before sorting: on, off, or auto (when "
+                  "--camera-shift or --camera-turn displaces the camera)")
+      ->check(CLI::IsMember({"auto", "on", "off"}))
       ->capture_default_str();
   cmd->add_option("--max-attempts", o.max_attempts_per_object, "Grasp attempts per object before giving it up")
       ->capture_default_str();
@@ -163,22 +186,16 @@ void AddEpisodeCommand(CLI::App& app, std::function<int()>& run, const std::vect
   cmd->add_option("--reject-below", o.reject_below,
                   "Objects recognised with a lower confidence (0-1) are unknown and go to the 'others' bin")
       ->check(CLI::Range(0.0, 1.0))->capture_default_str();
-  cmd->add_option("--set", cli->sets,
-                  "Override an option (repeatable): KEY=VALUE is --KEY VALUE for any option above by its long name, "
-                  "e.g. --set noise-scale=1.5 --set seed=3 --set time-limit=100; applied after the other options, so "
-                  "it wins over the option given directly")
-      ->type_name("KEY=VALUE")
-      ->allow_extra_args(false);
-  // One value per option, the last one given wins (so --set overrides).
-  for (CLI::Option* option : cmd->get_options()) {
-    if (option->get_items_expected_max() == 1) option->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
-  }
+  AddSetOption(*cmd, cli->sets);
   cmd->callback([&run, cli, command_line] {
     run = [cli, command_line] {
       if (!cli->sets.empty()) throw std::logic_error("episode: --set reached the parser (ExpandEpisodeSets not applied)");
       EpisodeOptions options = cli->options;
       for (const auto& p : cli->placements) options.placements.push_back(ParsePlacement(p));
       options.placement.mode = *sim::ParsePlacementMode(cli->placement_mode);  // Checked by the parser.
+      options.self_calibrate = cli->self_calibrate == "on"    ? SelfCalibration::kOn
+                               : cli->self_calibrate == "off" ? SelfCalibration::kOff
+                                                              : SelfCalibration::kAuto;
       std::tie(options.video_options.width, options.video_options.height) = ParseVideoSize(cli->video_size);
       if (options.model.empty()) {
         const ObjectSet set = LoadObjectSet(options.object_set);

@@ -11,11 +11,13 @@
 #include "app/common/output_dir.h"
 #include "app/common/seeding.h"
 #include "app/common/wall_clock.h"
+#include "app/episode/calibration_run.h"
 #include "app/episode/episode_recorder.h"
 #include "app/episode/episode_setup.h"
 #include "app/episode/episode_scoring.h"
 #include "app/episode/sim_cell.h"
 #include "app/episode/sim_layout.h"
+#include "app/episode/sim_rig.h"
 #include "cell/sorting_policy.h"
 #include "perception/descriptor.h"
 #include "perception/recognition_model.h"
@@ -42,6 +44,8 @@ class EpisodeRun {
  private:
   void Calibrate();
   void BuildCell();
+  void SelfCalibrate();
+  void DrawObjects();
   void PlaceObjects();
   cell::PolicyOptions Budget() const;
   EpisodeMetrics Metrics(const cell::PolicyResult& result, double wall_s) const;
@@ -55,11 +59,11 @@ class EpisodeRun {
   sim::Model model_;
   cell::CellLayout layout_;
   cell::CameraCalibration calibration_;
-  std::unique_ptr<sim::Data> data_;
-  std::unique_ptr<sim::KinectCamera> kinect_;
-  sim::KinectNoiseParams noise_;
-  std::unique_ptr<sim::VideoRecorder> video_;
-  std::unique_ptr<SimCell> cell_;
+  std::unique_ptr<SimRig> rig_;
+  std::optional<CalibrationFigures> calibrated_;
+  std::vector<ObjectSpec> chosen_;
+  std::vector<sim::ObjectShape> shapes_;
+  std::vector<sim::TablePose> poses_;
   std::unique_ptr<EpisodeScorer> scorer_;
   std::unique_ptr<EpisodeRecorder> recorder_;
 };
@@ -79,42 +83,43 @@ void EpisodeRun::Calibrate() {
 // The varied cell, every object stowed out of view, the arm at its observe pose; the empty cell
 // captured for background subtraction.
 void EpisodeRun::BuildCell() {
-  sim::ApplyVariation(model_, options_.variation, rng_);
-  sim::EnablePhysicsTimers();
-  data_ = std::make_unique<sim::Data>(model_);
-  kinect_ = std::make_unique<sim::KinectCamera>(model_, "kinect");
-  sim::Lighting lighting;
-  lighting.intensity = options_.light_intensity;
-  kinect_->SetLighting(lighting);
-  noise_.noise_scale = options_.noise_scale;
-  const std::vector<std::string> bodies = sim::FreeBodyNames(model_);
-  for (size_t i = 0; i < bodies.size(); ++i) sim::StowObject(model_, *data_, model_.Id(mjOBJ_BODY, bodies[i]), static_cast<int>(i));
-  if (!options_.video.empty()) {
-    if (options_.video.has_parent_path()) std::filesystem::create_directories(options_.video.parent_path());
-    video_ = std::make_unique<sim::VideoRecorder>(model_, options_.video, options_.video_options);
-  }
-  cell_ = std::make_unique<SimCell>(model_, *data_, kinect_.get(), &noise_, &rng_, video_.get(), layout_.control_period);
-  cell_->Reset(layout_.q_observe, layout_.observe_half_gap);
-  calibration_.background = sim::ToOrganizedCloud(kinect_->Capture(*data_, &noise_, &rng_));
+  rig_ = std::make_unique<SimRig>(model_, layout_, options_, rng_);
+  calibration_.background = rig_->Capture();
 }
 
-// The objects: chosen, then placed where asked or at random non-overlapping poses.
+// The robot's own calibration of its camera, before any object is placed (the arm sweeps the
+// workspace); it replaces the nominal pose when the fit succeeds.
+void EpisodeRun::SelfCalibrate() {
+  if (!SelfCalibrates(options_)) return;
+  const cell::HandEyeCalibration result = cell::CalibrateHandEye(rig_->cell(), layout_, calibration_.X_WC);
+  calibration_.X_WC = result.X_WC;
+  calibrated_ = ScoreCalibration(result, rig_->TrueCameraPose());
+  WriteJson(options_.out / "calibration.json", CalibrationJson(result, *calibrated_));
+}
+
+// The objects: chosen, and where asked or at random non-overlapping poses (drawn before the
+// calibration's captures draw their noise, so a seed sets the same scene with or without it).
+void EpisodeRun::DrawObjects() {
+  chosen_ = ChooseObjects(set_, options_, rng_);
+  shapes_.clear();
+  for (const auto& spec : chosen_) shapes_.push_back(sim::ObjectShapeOf(model_, model_.Id(mjOBJ_BODY, spec.name)));
+  poses_ = DrawPoses(options_.placements, shapes_, sim::PlacementArea(), options_.placement, rng_);
+}
+
 void EpisodeRun::PlaceObjects() {
-  const std::vector<ObjectSpec> chosen = ChooseObjects(set_, options_, rng_);
-  std::vector<sim::ObjectShape> shapes;
-  for (const auto& spec : chosen) shapes.push_back(sim::ObjectShapeOf(model_, model_.Id(mjOBJ_BODY, spec.name)));
-  const std::vector<sim::TablePose> poses =
-      DrawPoses(options_.placements, shapes, sim::PlacementArea(), options_.placement, rng_);
-  const std::vector<std::string>& label_names = kinect_->object_names();
+  const std::vector<ObjectSpec>& chosen = chosen_;
+  const std::vector<sim::ObjectShape>& shapes = shapes_;
+  const std::vector<sim::TablePose>& poses = poses_;
+  const std::vector<std::string>& label_names = rig_->kinect().object_names();
   std::vector<PlacedObject> placed;
   for (size_t i = 0; i < chosen.size(); ++i) {
     const int body = model_.Id(mjOBJ_BODY, chosen[i].name);
-    sim::PlaceObject(model_, *data_, body, poses[i], shapes[i]);
+    sim::PlaceObject(model_, rig_->data(), body, poses[i], shapes[i]);
     const int label = static_cast<int>(std::find(label_names.begin(), label_names.end(), chosen[i].name) -
                                        label_names.begin()) + 1;
     placed.push_back({chosen[i].name, chosen[i].category, body, label});
   }
-  mj_forward(model_.get(), data_->get());
+  mj_forward(model_.get(), rig_->data().get());
   scorer_ = std::make_unique<EpisodeScorer>(std::move(placed), static_cast<int>(label_names.size()),
                                             TableExtent{layout_.table_min_xy, layout_.table_max_xy});
 }
@@ -134,17 +139,19 @@ EpisodeMetrics EpisodeRun::Run(const std::vector<std::string>& command_line) {
   const auto wall_start = WallClock::now();
   Calibrate();
   BuildCell();
+  DrawObjects();
+  SelfCalibrate();
   PlaceObjects();
-  recorder_ = std::make_unique<EpisodeRecorder>(*scorer_, *cell_, model_, *data_, video_.get(), options_.seed,
+  recorder_ = std::make_unique<EpisodeRecorder>(*scorer_, rig_->cell(), model_, rig_->data(), rig_->video(), options_.seed,
                                                 options_.max_attempts_per_object);
   recorder_->ShowStatus("settling");
-  cell_->Wait("settle", kSettleTime);
+  rig_->cell().Wait("settle", kSettleTime);
 
-  cell::SortingPolicy policy(*cell_, layout_, calibration_, recognizer_, Budget(), recorder_.get());
+  cell::SortingPolicy policy(rig_->cell(), layout_, calibration_, recognizer_, Budget(), recorder_.get());
   const cell::PolicyResult result = policy.Run();
   recorder_->ShowStatus(std::string("episode over: ") + cell::ToString(result.status));
-  cell_->Wait("settle_result", kSettleTime);
-  if (video_) video_->Close();
+  rig_->cell().Wait("settle_result", kSettleTime);
+  if (rig_->video()) rig_->video()->Close();
 
   const EpisodeMetrics metrics = Metrics(result, SecondsSince(wall_start));
   WriteJson(options_.out / "metrics.json", metrics);
@@ -156,14 +163,14 @@ EpisodeMetrics EpisodeRun::Run(const std::vector<std::string>& command_line) {
 
 // Where the episode's wall time went, by stage.
 std::map<std::string, double> EpisodeRun::WallProfile(double wall_s) const {
-  const sim::CaptureTimings& kinect = kinect_->timings();  // Background capture included.
-  std::map<std::string, double> profile{{"physics", cell_->step_wall_s()},
+  const sim::CaptureTimings& kinect = rig_->kinect().timings();  // Background capture included.
+  std::map<std::string, double> profile{{"physics", rig_->cell().step_wall_s()},
                                         {"kinect_render", kinect.render_s},
                                         {"kinect_noise", kinect.noise_s},
                                         {"label_render", kinect.labels_s},
-                                        {"cloud", cell_->cloud_wall_s()},
+                                        {"cloud", rig_->cell().cloud_wall_s()},
                                         {"perception", recorder_->perception_wall_s()},
-                                        {"video", video_ ? video_->render_wall_s() : 0.0}};
+                                        {"video", rig_->video() ? rig_->video()->render_wall_s() : 0.0}};
   double accounted = 0;
   for (const auto& [stage, seconds] : profile) accounted += seconds;
   profile["other"] = wall_s - accounted;
@@ -171,13 +178,13 @@ std::map<std::string, double> EpisodeRun::WallProfile(double wall_s) const {
 }
 
 std::map<std::string, double> EpisodeRun::PhysicsProfile() const {
-  const std::map<std::string, double> stages = sim::PhysicsStageSeconds(*data_);
-  const ArmExecutor& exec = cell_->executor();
+  const std::map<std::string, double> stages = sim::PhysicsStageSeconds(rig_->data());
+  const ArmExecutor& exec = rig_->cell().executor();
   return {{"collision_s", stages.at("collision")},
           {"constraint_s", stages.at("constraint")},
           {"smooth_s", stages.at("smooth")},
           {"step_s", stages.at("step")},
-          {"steps", (*data_)->timer[mjTIMER_STEP].number},
+          {"steps", rig_->data()->timer[mjTIMER_STEP].number},
           {"contacts_per_step", exec.mean_contacts()},
           {"constraint_rows_per_step", exec.mean_constraint_rows()}};
 }
@@ -185,20 +192,20 @@ std::map<std::string, double> EpisodeRun::PhysicsProfile() const {
 EpisodeMetrics EpisodeRun::Metrics(const cell::PolicyResult& result, double wall_s) const {
   RunFigures run;
   run.status = result.status;
-  run.sim_time_s = cell_->Now();
+  run.sim_time_s = rig_->cell().Now();
   run.wall_time_s = wall_s;
-  run.real_time_factor = cell_->Now() / wall_s;
-  run.frames = cell_->frames();
+  run.real_time_factor = rig_->cell().Now() / wall_s;
+  run.frames = rig_->cell().frames();
   run.perception_ms_per_frame = run.frames > 0 ? 1000 * recorder_->perception_wall_s() / run.frames : 0.0;
-  run.render_ms_per_frame = run.frames > 0 ? 1000 * cell_->render_wall_s() / run.frames : 0.0;
-  run.video_frames = video_ ? video_->frames() : 0;
-  run.video_render_wall_s = video_ ? video_->render_wall_s() : 0.0;
-  for (int i = 0; i < mjNWARNING; ++i) run.mujoco_warnings += (*data_)->warning[i].number;
+  run.render_ms_per_frame = run.frames > 0 ? 1000 * rig_->cell().render_wall_s() / run.frames : 0.0;
+  run.video_frames = rig_->video() ? rig_->video()->frames() : 0;
+  run.video_render_wall_s = rig_->video() ? rig_->video()->render_wall_s() : 0.0;
+  for (int i = 0; i < mjNWARNING; ++i) run.mujoco_warnings += rig_->data()->warning[i].number;
   run.cycle_phases_s = recorder_->CyclePhases();
   run.profile_wall_s = WallProfile(wall_s);
   run.physics_profile = PhysicsProfile();
-  run.tracking_max_error_rad = cell_->tracking().max_error;
-  run.torque_saturated_samples = cell_->tracking().saturated_samples;
+  run.tracking_max_error_rad = rig_->cell().tracking().max_error;
+  run.torque_saturated_samples = rig_->cell().tracking().saturated_samples;
   run.carry_slip_max_mm = recorder_->slip().max_mm;
   run.carry_slip_sum_mm = recorder_->slip().sum_mm;
   run.carries = recorder_->slip().carries;
@@ -213,8 +220,9 @@ EpisodeMetrics EpisodeRun::Metrics(const cell::PolicyResult& result, double wall
   m.variation = {options_.light_intensity,          options_.noise_scale,
                  options_.variation.friction_scale, options_.variation.mass_scale,
                  options_.variation.camera_shift_m, options_.variation.camera_turn_rad};
-  m.items = scorer_->Items(*data_, sim::Bins(model_));
+  m.items = scorer_->Items(rig_->data(), sim::Bins(model_));
   m.summary = SummarizeEpisode(m.items, scorer_->attempts(), scorer_->grasps(), run);
+  m.summary.calibration = calibrated_;
   m.attempts = recorder_->attempts_log();
   if (!options_.video.empty()) m.video = options_.video.string();
   return m;

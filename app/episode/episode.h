@@ -24,6 +24,13 @@ struct ObjectPlacement {
   bool lying = false;  ///< Laid on its side (objects taller than they are narrow).
 };
 
+/// Whether an episode starts with the hand-eye self-calibration (app/episode/calibration_run.h).
+enum class SelfCalibration {
+  kAuto,  ///< When the variation displaces the camera from the pose the robot was given.
+  kOn,
+  kOff,
+};
+
 struct EpisodeOptions {
   std::filesystem::path scene;       ///< MJCF cell holding every object of the set.
   std::filesystem::path object_set;  ///< Which objects exist and their categories.
@@ -39,6 +46,7 @@ struct EpisodeOptions {
   double light_intensity = 1.0;  ///< Scales the scene's lights (1 = as modelled).
   double noise_scale = 1.0;      ///< Scales the Kinect's depth noise (1 = the Kinect).
   sim::SceneVariation variation;
+  SelfCalibration self_calibrate = SelfCalibration::kAuto;
   // The policy's budget.
   int max_attempts_per_object = 3;  ///< Grasp attempts at one position before it is given up.
   double time_limit_s = 0;          ///< Simulated seconds of sorting (0: 60 + 45 per object placed).

@@ -131,7 +131,8 @@ void to_json(nlohmann::json& j, const EpisodeSummary& v) {
        {"carry_slip_max_mm", v.run.carry_slip_max_mm},
        {"carry_slip_mean_mm", v.run.carries > 0 ? v.run.carry_slip_sum_mm / v.run.carries : 0.0},
        {"carry_turn_max_deg", v.run.carry_turn_max_deg},
-       {"carries", v.run.carries}};
+       {"carries", v.run.carries},
+       {"calibration", OrNull(v.calibration)}};
 }
 
 void from_json(const nlohmann::json& j, EpisodeSummary& v) {
@@ -171,6 +172,27 @@ void from_json(const nlohmann::json& j, EpisodeSummary& v) {
   double mean_mm = 0;
   ReadAddedField(j, path, "carry_slip_mean_mm", mean_mm);
   v.run.carry_slip_sum_mm = mean_mm * v.run.carries;
+  v.calibration.reset();
+  if (j.contains("calibration")) ReadNullable(j, path, "calibration", v.calibration);
+}
+
+void to_json(nlohmann::json& j, const CalibrationFigures& v) {
+  j = {{"status", v.status},           {"sightings", v.sightings},   {"inliers", v.inliers},
+       {"rms_residual_m", v.rms_residual_m}, {"duration_s", v.duration_s}, {"error_m", v.error_m},
+       {"error_rad", v.error_rad},     {"prior_error_m", v.prior_error_m}, {"prior_error_rad", v.prior_error_rad}};
+}
+
+void from_json(const nlohmann::json& j, CalibrationFigures& v) {
+  const std::string path;  // ReadField names the record: "summary.calibration: <key>: ...".
+  ReadField(j, path, "status", v.status);
+  ReadField(j, path, "sightings", v.sightings);
+  ReadField(j, path, "inliers", v.inliers);
+  ReadField(j, path, "rms_residual_m", v.rms_residual_m);
+  ReadField(j, path, "duration_s", v.duration_s);
+  ReadField(j, path, "error_m", v.error_m);
+  ReadField(j, path, "error_rad", v.error_rad);
+  ReadField(j, path, "prior_error_m", v.prior_error_m);
+  ReadField(j, path, "prior_error_rad", v.prior_error_rad);
 }
 
 void to_json(nlohmann::json& j, const EpisodeVariation& v) {

@@ -59,6 +59,16 @@ struct RunFigures {
   int carries = 0;
 };
 
+/// The hand-eye self-calibration an episode started with (app/episode/calibration_run.h).
+struct CalibrationFigures {
+  std::string status;           ///< cell::ToString(cell::HandEyeStatus).
+  int sightings = 0, inliers = 0;
+  double rms_residual_m = 0;    ///< Of the fit, over its inliers.
+  double duration_s = 0;        ///< Simulated.
+  /// Scoring: the calibrated and the prior (nominal) camera pose against the true one.
+  double error_m = 0, error_rad = 0, prior_error_m = 0, prior_error_rad = 0;
+};
+
 struct EpisodeSummary {
   int items = 0;
   OutcomeCounts outcomes;
@@ -68,6 +78,7 @@ struct EpisodeSummary {
   std::optional<double> grasp_success_rate, mean_cycle_time_s;
   std::optional<double> picks_per_hour;  ///< Items sorted per simulated hour (null without simulated time).
   RunFigures run;
+  std::optional<CalibrationFigures> calibration;  ///< Null when the episode did not self-calibrate.
 };
 
 /// The scene variations the episode ran with.
@@ -130,6 +141,8 @@ void from_json(const nlohmann::json& j, ItemResult& v);
 void to_json(nlohmann::json& j, const EpisodeSummary& v);
 void from_json(const nlohmann::json& j, EpisodeSummary& v);
 void to_json(nlohmann::json& j, const EpisodeVariation& v);
+void to_json(nlohmann::json& j, const CalibrationFigures& v);
+void from_json(const nlohmann::json& j, CalibrationFigures& v);
 void to_json(nlohmann::json& j, const AttemptLogEntry& v);
 void to_json(nlohmann::json& j, const EpisodeMetrics& v);
 /// {"sorted": n, ...} in the order of cell::kItemOutcomes.

@@ -4,10 +4,12 @@
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
+#include <numeric>
 #include <cmath>
 #include <cstdio>
 #include <map>
 #include <optional>
+#include <set>
 #include <stdexcept>
 #include <string>
 
@@ -135,13 +137,13 @@ struct AxisGroup {
 };
 
 // The label of a record's value of `axis`: a range axis is cut into 4 equal bins, a model shows its
-// file name, a placement its mode.
+// file name, a placement its mode, self_calibrate auto, on or off.
 std::string ValueLabel(const SweepAxis& axis, const SweepRecord& record) {
   const nlohmann::json& value = record.axes.at(axis.name);
-  const bool model = axis.name == "model", text = model || axis.name == "placement";
+  const bool model = axis.name == "model", text = model || axis.name == "placement" || axis.name == "self_calibrate";
   if (text ? !value.is_string() : !value.is_number()) {
     throw std::invalid_argument("episode " + std::to_string(record.episode) + ": axes." + axis.name + ": expected " +
-                                (model ? "a file name" : text ? "a placement mode" : "a number") + ", found " +
+                                (model ? "a file name" : text ? "a text value" : "a number") + ", found " +
                                 value.dump());
   }
   if (model) return std::filesystem::path(value.get<std::string>()).filename().string();
@@ -300,6 +302,59 @@ std::pair<double, double> WilsonInterval(int successes, int n) {
   return {std::max(0.0, centre - half), std::min(1.0, centre + half)};
 }
 
+// The items grouped by object (the set's names), in name order: which objects fail, and how.
+std::vector<AxisGroup> GroupByObject(const std::vector<SweepRecord>& records) {
+  std::map<std::string, Tally> tallies;
+  for (const auto& r : records) {
+    if (!r.ok()) continue;
+    std::set<std::string> in_episode;
+    for (const auto& item : r.items) {
+      tallies[item.name].items.Add(item);
+      if (in_episode.insert(item.name).second) ++tallies[item.name].episodes;
+    }
+  }
+  std::vector<AxisGroup> groups;
+  for (const auto& [name, tally] : tallies) groups.push_back({name, Figures(tally)});
+  return groups;
+}
+
+// The episodes' hand-eye self-calibrations: how many succeeded, the camera error they left (median
+// and largest) against the nominal pose's, and what they cost. Null when no episode calibrated.
+nlohmann::json CalibrationSummary(const std::vector<SweepRecord>& records) {
+  std::vector<double> error_m, error_rad, prior_m, prior_rad, duration_s;
+  int ok = 0;
+  for (const auto& r : records) {
+    if (!r.ok() || !r.summary.calibration) continue;
+    const CalibrationFigures& c = *r.summary.calibration;
+    ok += c.status == "ok";
+    error_m.push_back(c.error_m), error_rad.push_back(c.error_rad);
+    prior_m.push_back(c.prior_error_m), prior_rad.push_back(c.prior_error_rad);
+    duration_s.push_back(c.duration_s);
+  }
+  if (error_m.empty()) return nullptr;
+  const auto median = [](std::vector<double> v) {
+    std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
+    return v[v.size() / 2];
+  };
+  const auto largest = [](const std::vector<double>& v) { return *std::max_element(v.begin(), v.end()); };
+  return {{"episodes", error_m.size()},       {"ok", ok},
+          {"median_error_m", median(error_m)}, {"max_error_m", largest(error_m)},
+          {"median_error_rad", median(error_rad)}, {"max_error_rad", largest(error_rad)},
+          {"max_prior_error_m", largest(prior_m)}, {"max_prior_error_rad", largest(prior_rad)},
+          {"mean_duration_s", std::accumulate(duration_s.begin(), duration_s.end(), 0.0) / duration_s.size()}};
+}
+
+std::string MarkdownCalibration(const nlohmann::json& c) {
+  if (c.is_null()) return "";
+  return fmt::format(
+      "\nSelf-calibration in {} episodes ({} ok): camera error median {:.2f} mm / {:.4f} rad, largest {:.2f} mm / "
+      "{:.4f} rad (the nominal pose's largest: {:.1f} mm / {:.4f} rad); {:.1f} simulated s each.\n",
+      c["episodes"].get<int>(), c["ok"].get<int>(), 1000 * c["median_error_m"].get<double>(),
+      c["median_error_rad"].get<double>(), 1000 * c["max_error_m"].get<double>(), c["max_error_rad"].get<double>(),
+      1000 * c["max_prior_error_m"].get<double>(), c["max_prior_error_rad"].get<double>(),
+      c["mean_duration_s"].get<double>());
+}
+
 nlohmann::json WriteSweepReport(const std::filesystem::path& dir, const SweepSpec& spec,
                                 const std::vector<SweepRecord>& records) {
   Tally tally;
@@ -311,6 +366,8 @@ nlohmann::json WriteSweepReport(const std::filesystem::path& dir, const SweepSpe
   nlohmann::json by_axis = nlohmann::json::object();
   std::string csv = CsvHeader() + CsvRow("all", "all", all);
   std::string md = MarkdownOverview(spec, all);
+  summary["calibration"] = CalibrationSummary(records);
+  md += MarkdownCalibration(summary["calibration"]);
   for (const auto& axis : spec.axes) {
     const std::vector<AxisGroup> groups = GroupByAxis(axis, records);
     if (groups.size() < 2) continue;
@@ -323,6 +380,14 @@ nlohmann::json WriteSweepReport(const std::filesystem::path& dir, const SweepSpe
     md += "\n![correct-sort rate by " + axis.name + "](plot_" + axis.name + ".png)\n";
   }
   summary["by_axis"] = by_axis;
+  nlohmann::json by_object = nlohmann::json::object();
+  const std::vector<AxisGroup> objects = GroupByObject(records);
+  for (const auto& g : objects) {
+    by_object[g.label] = FiguresJson(g.figures);
+    csv += CsvRow("object", g.label, g.figures);
+  }
+  if (!objects.empty()) md += MarkdownAxisTable("object", objects);
+  summary["by_object"] = by_object;
   WriteTextFile(dir / "summary.csv", csv);
   WriteTextFile(dir / "summary.md", md);
   WriteJson(dir / "summary.json", summary);

@@ -152,6 +152,12 @@ nlohmann::json AxisValue(const SpecReader& r, const std::string& name, const YAM
     }
     return v.Scalar();
   }
+  if (name == "self_calibrate") {
+    if (!v.IsScalar() || (v.Scalar() != "auto" && v.Scalar() != "on" && v.Scalar() != "off")) {
+      y.Fail("key '" + where + "': expected auto, on or off, found " + (v.IsScalar() ? "'" + v.Scalar() + "'" : NodeKind(v)));
+    }
+    return v.Scalar();
+  }
   if (name == "objects") {
     const long long k = y.Integer(v, where);
     if (k < 1) y.Fail("key '" + where + "': expected at least 1 object");
@@ -179,6 +185,7 @@ SweepAxis ReadAxis(const SpecReader& r, const std::string& name, const YAML::Nod
     y.RejectUnknownKeys(node, key, {"min", "max"});
     if (name == "model") y.Fail("key '" + key + "': models are a list of files, not a range");
     if (name == "placement") y.Fail("key '" + key + "': placements are a list of modes, not a range");
+    if (name == "self_calibrate") y.Fail("key '" + key + "': self_calibrate is a list of auto, on, off, not a range");
     if (!node["min"] || !node["max"]) y.Fail("key '" + key + "': a range needs min and max");
     axis.min = AxisValue(r, name, node["min"], key + ".min").get<double>();
     axis.max = AxisValue(r, name, node["max"], key + ".max").get<double>();
@@ -203,7 +210,7 @@ void ReadAxes(const SpecReader& r, const YAML::Node& root, SweepSpec& spec) {
 const std::vector<std::string>& SweepAxisNames() {
   static const std::vector<std::string> names{"objects",     "light_intensity", "camera_shift_m", "camera_turn_rad",
                                                "noise_scale", "friction_scale",  "mass_scale",     "model",
-                                               "reject_below", "placement",      "lying_fraction"};
+                                               "reject_below", "placement",      "lying_fraction", "self_calibrate"};
   return names;
 }
 

@@ -65,6 +65,22 @@ TEST(EpisodeCli, BadVideoSize) {
   }
 }
 
+TEST(EpisodeCli, BadSelfCalibrate) {
+  ExpectOneLineError(RunSortcell("episode --scene " + kScene + " --self-calibrate maybe --out " + Temp("h")),
+                     "--self-calibrate");
+}
+
+TEST(CalibrateCli, BadSceneDisplacementAndSet) {
+  ExpectOneLineError(RunSortcell("calibrate --scene /nonexistent.xml --out " + Temp("cal_a")),
+                     "scene '/nonexistent.xml': file not found");
+  ExpectOneLineError(RunSortcell("calibrate --scene " + kScene + " --camera-shift -0.01 --out " + Temp("cal_b")),
+                     "camera jitter must be >= 0");
+  ExpectOneLineError(RunSortcell("calibrate --scene " + kScene + " --set colour=red --out " + Temp("cal_c")),
+                     "--set: unknown key 'colour'");
+  ExpectOneLineError(RunSortcell("calibrate --scene " + kScene + " --light-intensity 0 --out " + Temp("cal_d")),
+                     "--light-intensity: expected > 0");
+}
+
 class SweepBadInput : public ::testing::Test {
  protected:
   std::string Spec(const std::string& name, const std::string& body) {

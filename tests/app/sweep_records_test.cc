@@ -142,7 +142,8 @@ TEST(SweepResults, OldResultsReadAndWriteBackTheSameKeys) {
   // Written back: the same keys and values, plus the summary figures added since.
   nlohmann::json back = r;
   for (const char* key : {"picks_per_hour", "cycle_phases_s", "tracking_max_error_rad", "torque_saturated_samples", "profile_wall_s",
-                          "physics_profile", "carry_slip_max_mm", "carry_slip_mean_mm", "carries", "carry_turn_max_deg"}) {
+                          "physics_profile", "carry_slip_max_mm", "carry_slip_mean_mm", "carries", "carry_turn_max_deg",
+                          "calibration"}) {
     ASSERT_TRUE(back["summary"].contains(key)) << key;
     back["summary"].erase(key);
   }
@@ -163,6 +164,27 @@ TEST(SweepResults, WrittenRecordsReadBack) {
   ASSERT_EQ(results.records.size(), 2u);
   EXPECT_EQ(results.records[1].episode, 1);
   EXPECT_EQ(Read(file), Dump(OkRecord(0, {{"objects", 2}})) + "\n" + Dump(OkRecord(1, {{"objects", 3}})) + "\n");
+}
+
+TEST(SweepResults, ACalibratedEpisodesFiguresReadBack) {
+  SweepRecord r = OkRecord(0, {{"camera_shift_m", 0.04}});
+  CalibrationFigures c;
+  c.status = "ok";
+  c.sightings = 18, c.inliers = 17;
+  c.rms_residual_m = 0.0002, c.duration_s = 17.6, c.error_m = 0.0004, c.error_rad = 0.0005;
+  c.prior_error_m = 0.04, c.prior_error_rad = 0.03;
+  r.summary.calibration = c;
+  const SweepRecord back = nlohmann::json(r).get<SweepRecord>();
+  ASSERT_TRUE(back.summary.calibration.has_value());
+  EXPECT_EQ(nlohmann::json(*back.summary.calibration), nlohmann::json(c));
+  nlohmann::json damaged = r;
+  damaged["summary"]["calibration"].erase("error_m");
+  try {
+    (void)damaged.get<SweepRecord>();
+    FAIL() << "no exception";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("error_m: missing"), std::string::npos) << e.what();
+  }
 }
 
 TEST(SweepResults, AFullDiskIsAnErrorNamingTheFile) {
@@ -281,6 +303,29 @@ TEST(SweepReport, PicksPerHourAndTheCycleByPhasePooledOverEpisodes) {
   EXPECT_DOUBLE_EQ(summary["tracking_max_error_rad"].get<double>(), 0.02);
   EXPECT_NE(Read(dir / "summary.md").find("mean simulated seconds per attempt: approach 3.00, carry 0.50."),
             std::string::npos) << Read(dir / "summary.md");
+}
+
+TEST(SweepReport, FailuresByObjectAndTheCalibrations) {
+  const TempDir dir("report_objects");
+  std::vector<SweepRecord> records{OkRecord(0, {}), OkRecord(1, {})};
+  records[1].items[1].outcome = cell::ItemOutcome::kSorted;  // The ball, sorted once of twice.
+  CalibrationFigures c;
+  c.status = "ok";
+  c.error_m = 0.0004, c.error_rad = 0.0003, c.prior_error_m = 0.05, c.prior_error_rad = 0.05, c.duration_s = 17.5;
+  records[0].summary.calibration = c;
+  c.error_m = 0.0008;
+  records[1].summary.calibration = c;
+  const nlohmann::json summary = WriteSweepReport(dir.path(), SweepSpec(), records);
+  EXPECT_EQ(summary["by_object"]["ball"]["items"], 2);
+  EXPECT_EQ(summary["by_object"]["ball"]["outcomes"]["grasp_failed"], 1);
+  EXPECT_EQ(summary["by_object"]["cup"]["episodes"], 2);
+  const std::string md = Read(dir / "summary.md");
+  EXPECT_NE(md.find("| ball | 2 | 2 | 50.0 % |"), std::string::npos) << md;
+  EXPECT_NE(Read(dir / "summary.csv").find("\nobject,ball,2,2,1,0.5,"), std::string::npos) << Read(dir / "summary.csv");
+  EXPECT_EQ(summary["calibration"]["episodes"], 2);
+  EXPECT_DOUBLE_EQ(summary["calibration"]["max_error_m"].get<double>(), 0.0008);
+  EXPECT_NE(md.find("Self-calibration in 2 episodes (2 ok): camera error median 0.80 mm"), std::string::npos) << md;
+  EXPECT_TRUE(WriteSweepReport(dir.path(), SweepSpec(), {OkRecord(0, {})})["calibration"].is_null());
 }
 
 TEST(SweepReport, AFailedWriteIsAnErrorNamingTheFile) {

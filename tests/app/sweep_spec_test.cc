@@ -84,6 +84,14 @@ TEST(SweepSpec, GridRangesAreDrawnPerRepeatAlikeInEveryCell) {
   EXPECT_GT(counts.size(), 1u);  // Drawn, not fixed.
 }
 
+TEST(SweepSpec, SelfCalibrationIsAnAxisOfWords) {
+  const SweepSpec spec = LoadSweepSpec(WriteSpec("calibrate", "mode: grid\nepisodes: 1\naxes:\n"
+                                                              "  self_calibrate: [on, off]\n"));
+  ASSERT_EQ(spec.EpisodeCount(), 2);
+  EXPECT_EQ(spec.Episode(0).second["self_calibrate"], "on");
+  EXPECT_EQ(spec.Episode(1).second["self_calibrate"], "off");
+}
+
 TEST(SweepSpec, BadSpecsNameTheKey) {
   using sortcell_test::ErrorOf;
   const auto error = [](const std::string& name, const std::string& body) {
@@ -99,6 +107,9 @@ TEST(SweepSpec, BadSpecsNameTheKey) {
                 .find("key 'axes.placement[1]': expected sparse, dense or clustered, found 'heaped'"),
             std::string::npos);
   EXPECT_NE(error("placement_range", "axes:\n  placement: {min: 1, max: 2}\n").find("not a range"), std::string::npos);
+  EXPECT_NE(error("calibrate", "axes:\n  self_calibrate: [on, sometimes]\n")
+                .find("key 'axes.self_calibrate[1]': expected auto, on or off, found 'sometimes'"),
+            std::string::npos);
   EXPECT_NE(error("lying", "axes:\n  lying_fraction: [1.5]\n").find("key 'axes.lying_fraction[0]': expected a fraction"),
             std::string::npos);
   EXPECT_NE(error("mode", "mode: sometimes\n").find("key 'mode': expected random or grid"), std::string::npos);

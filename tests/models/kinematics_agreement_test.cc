@@ -86,6 +86,12 @@ TEST(KinematicsAgreement, TcpOfTheGripperModelMatchesTheRobotLayer) {
   const int servo = model.Id(mjOBJ_ACTUATOR, "finger_left");
   EXPECT_DOUBLE_EQ(model.get()->actuator_gainprm[servo * mjNGAIN], robot::kFingerServoKp);
   EXPECT_DOUBLE_EQ(model.get()->actuator_forcerange[2 * servo + 1], robot::kFingerForceLimit);
+  // The calibration marker: its centre on the plate's face where the robot layer has it.
+  const int marker = model.Id(mjOBJ_SITE, "calibration_marker");
+  const Eigen::Vector3d p_WM = Eigen::Map<const Eigen::Vector3d>(data.get()->site_xpos + 3 * marker);
+  EXPECT_TRUE((X_WF.inverse() * p_WM).isApprox(Eigen::Vector3d(robot::kMarkerFaceX, 0, robot::kMarkerCentreZ), 1e-12));
+  const int plate = model.Id(mjOBJ_GEOM, "calibration_plate");
+  EXPECT_NEAR(model.get()->geom_pos[3 * plate] + model.get()->geom_size[3 * plate], robot::kMarkerFaceX, 1e-12);
 }
 
 TEST(UrdfChain, BadFilesAreOneClearError) {
