@@ -19,7 +19,8 @@ constexpr int kWatchStride = 10;          // A chain's `when` hook is asked ever
 bool MotionSequencer::Phase(const std::string& name, const std::function<MotionResult()>& action) {
   const double start = io_.Now();
   const MotionResult result = action();
-  phases_.push_back({name, start, io_.Now()});
+  const robot::GripperSensors fingers = io_.ReadGripper();
+  phases_.push_back({name, start, io_.Now(), robot::DetectHold(fingers), fingers.gap()});
   if (result.ok()) return true;
   failure_ = name + ": cell fault: " + result.detail;
   faulted_ = true;

@@ -19,10 +19,13 @@
 
 namespace sortcell::cell {
 
-/// One phase as it ran, on the cell's clock.
+/// One phase as it ran, on the cell's clock, and what the gripper's sensors said at its end: a drop
+/// shows as the first phase after which nothing is held.
 struct PhaseSpan {
   std::string phase;
   double start_s = 0, end_s = 0;
+  robot::HoldState hold = robot::HoldState::kMoving;
+  double gap_m = 0;  ///< Between the pads.
 };
 
 /// Motions run as one, each next one starting while the one before slows down (robot::BlendMoves):

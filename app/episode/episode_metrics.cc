@@ -212,6 +212,9 @@ void to_json(nlohmann::json& j, const AttemptLogEntry& v) {
   j["top_z_m"] = OrNull(v.top_z_m);
   j["lying"] = OrNull(v.lying);
   j["release_clearance_m"] = OrNull(v.release_clearance_m);
+  nlohmann::json phases = nlohmann::json::array();
+  for (const auto& p : v.phases) phases.push_back({{"phase", p.phase}, {"end_s", p.end_s}, {"hold", p.hold}, {"gap_m", p.gap_m}});
+  j["phases"] = phases;
   j["truth_object"] = OrNull(v.truth_object);
   j["truth_centre_error_m"] = OrNull(v.truth_centre_error_m);
   j["truth_width_error_m"] = OrNull(v.truth_width_error_m);

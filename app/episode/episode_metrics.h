@@ -87,6 +87,14 @@ struct EpisodeVariation {
   double camera_shift_m = 0, camera_turn_rad = 0;
 };
 
+/// A phase of an attempt and the hold the gripper's sensors judged at its end (robot::ToString(HoldState)).
+struct PhaseHold {
+  std::string phase;
+  double end_s = 0;
+  std::string hold;
+  double gap_m = 0;
+};
+
 /// One line of the attempts log: a grasp attempt, or a cluster skipped without one.
 struct AttemptLogEntry {
   double time_s = 0;
@@ -101,6 +109,7 @@ struct AttemptLogEntry {
   std::optional<std::string> truth_object;  ///< Scoring: the object the cluster really was.
   std::optional<double> truth_centre_error_m, truth_width_error_m;
   std::string detail;
+  std::vector<PhaseHold> phases;  ///< An attempt's phases in order; empty for a skipped cluster.
 };
 
 struct EpisodeMetrics {
