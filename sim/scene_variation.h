@@ -1,7 +1,7 @@
 #pragma once
 /// @file
-/// Physical and sensor variations of a scene for sweeps: the objects' friction and mass, and a
-/// displaced camera. Applied to a freshly loaded model, before any Data is made from it.
+/// Physical and sensor variations of a scene for sweeps: the objects' friction, mass and colours, and
+/// a displaced camera. Applied to a freshly loaded model, before any Data is made from it.
 
 #include <random>
 #include <string>
@@ -18,10 +18,17 @@ struct SceneVariation {
   double camera_shift_m = 0.0;
   double camera_turn_rad = 0.0;
   std::string camera = "kinect";
+  /// Each object's colours varied at random, as one batch of an object differs from the next (0: as
+  /// modelled, 1: the most): hue by up to +-25 deg x colour_jitter, saturation and brightness by up to
+  /// +-30 % x colour_jitter. A printed (textured) material varies in brightness only, and only darker
+  /// (MuJoCo tints a texture by the material's colour, which cannot pass white).
+  double colour_jitter = 0.0;
 };
 
-/// @throws std::invalid_argument naming the scene for non-positive scales, negative jitter or an
-///         unknown camera.
+/// The colour draws come after the others and only when colour_jitter > 0, so other variations draw
+/// the same with or without it.
+/// @throws std::invalid_argument naming the scene for non-positive scales, negative jitter, a colour
+///         jitter outside [0, 1] or an unknown camera.
 void ApplyVariation(Model& model, const SceneVariation& variation, std::mt19937_64& rng);
 
 }  // namespace sortcell::sim

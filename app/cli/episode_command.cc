@@ -175,6 +175,11 @@ void AddEpisodeCommand(CLI::App& app, std::function<int()>& run, const std::vect
   AddSensorVariationOptions(*cmd, o);
   cmd->add_option("--friction-scale", o.variation.friction_scale, "Scale of the objects' friction")->capture_default_str();
   cmd->add_option("--mass-scale", o.variation.mass_scale, "Scale of the objects' masses")->capture_default_str();
+  cmd->add_option("--colour-jitter", o.variation.colour_jitter,
+                  "Vary each object's colours at random (0-1): hue up to +-25 deg, saturation and brightness up to "
+                  "+-30 %, times this")
+      ->check(CLI::Range(0.0, 1.0))
+      ->capture_default_str();
   cmd->add_option("--self-calibrate", cli->self_calibrate,
                   "Calibrate the camera's pose from the marker on the gripper before sorting: on, off, or auto (when "
                   "--camera-shift or --camera-turn displaces the camera)")

@@ -219,7 +219,8 @@ EpisodeMetrics EpisodeRun::Metrics(const cell::PolicyResult& result, double wall
   m.descriptor = perception::DescriptorName(recognizer_.descriptor);
   m.variation = {options_.light_intensity,          options_.noise_scale,
                  options_.variation.friction_scale, options_.variation.mass_scale,
-                 options_.variation.camera_shift_m, options_.variation.camera_turn_rad};
+                 options_.variation.camera_shift_m, options_.variation.camera_turn_rad,
+                 options_.variation.colour_jitter};
   m.items = scorer_->Items(rig_->data(), sim::Bins(model_));
   m.summary = SummarizeEpisode(m.items, scorer_->attempts(), scorer_->grasps(), run);
   m.summary.calibration = calibrated_;

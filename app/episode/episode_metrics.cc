@@ -198,7 +198,8 @@ void from_json(const nlohmann::json& j, CalibrationFigures& v) {
 void to_json(nlohmann::json& j, const EpisodeVariation& v) {
   j = {{"light_intensity", v.light_intensity}, {"noise_scale", v.noise_scale},
        {"friction_scale", v.friction_scale},   {"mass_scale", v.mass_scale},
-       {"camera_shift_m", v.camera_shift_m},   {"camera_turn_rad", v.camera_turn_rad}};
+       {"camera_shift_m", v.camera_shift_m},   {"camera_turn_rad", v.camera_turn_rad},
+       {"colour_jitter", v.colour_jitter}};
 }
 
 void to_json(nlohmann::json& j, const AttemptLogEntry& v) {

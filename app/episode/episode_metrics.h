@@ -85,6 +85,7 @@ struct EpisodeSummary {
 struct EpisodeVariation {
   double light_intensity = 1, noise_scale = 1, friction_scale = 1, mass_scale = 1;
   double camera_shift_m = 0, camera_turn_rad = 0;
+  double colour_jitter = 0;
 };
 
 /// A phase of an attempt and the hold the gripper's sensors judged at its end (robot::ToString(HoldState)).

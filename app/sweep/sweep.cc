@@ -180,7 +180,8 @@ std::vector<std::string> EpisodeArguments(const SweepSetup& s, const Worker& w) 
   static const std::map<std::string, std::string> kAxisOptions{
       {"light_intensity", "--light-intensity"}, {"noise_scale", "--noise-scale"},   {"friction_scale", "--friction-scale"},
       {"mass_scale", "--mass-scale"},           {"camera_shift_m", "--camera-shift"}, {"camera_turn_rad", "--camera-turn"},
-      {"reject_below", "--reject-below"},       {"lying_fraction", "--lying-fraction"}};
+      {"reject_below", "--reject-below"},       {"lying_fraction", "--lying-fraction"},
+      {"colour_jitter", "--colour-jitter"}};
   for (const auto& [axis, value] : w.axes.items()) {
     if (axis == "objects") args.insert(args.end(), {"--objects", std::to_string(value.get<int>())});
     if (axis == "placement") args.insert(args.end(), {"--placement", value.get<std::string>()});

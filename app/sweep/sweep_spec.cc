@@ -164,7 +164,7 @@ nlohmann::json AxisValue(const SpecReader& r, const std::string& name, const YAM
     return k;
   }
   const double x = y.Number(v, where);
-  if (name == "lying_fraction") {
+  if (name == "lying_fraction" || name == "colour_jitter") {
     if (!(x >= 0 && x <= 1)) y.Fail("key '" + where + "': expected a fraction in [0, 1]");
     return x;
   }
@@ -210,7 +210,7 @@ void ReadAxes(const SpecReader& r, const YAML::Node& root, SweepSpec& spec) {
 const std::vector<std::string>& SweepAxisNames() {
   static const std::vector<std::string> names{"objects",     "light_intensity", "camera_shift_m", "camera_turn_rad",
                                                "noise_scale", "friction_scale",  "mass_scale",     "model",
-                                               "reject_below", "placement",      "lying_fraction", "self_calibrate"};
+                                               "reject_below", "placement",      "lying_fraction", "self_calibrate", "colour_jitter"};
   return names;
 }
 

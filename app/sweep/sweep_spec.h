@@ -18,6 +18,7 @@
 ///     model: [a.model.json, b.model.json]   # recognition models (descriptor axis)
 ///     placement: [sparse, dense, clustered] # how objects stand: apart, touching, in groups
 ///     lying_fraction: [0.3]             # chance a bottle or box lies on its side
+///     colour_jitter: {min: 0, max: 1}  # each object's colours varied (hue, saturation, brightness)
 ///     self_calibrate: [on, off]         # hand-eye calibration first (default auto: when the camera moves)
 ///
 /// In grid mode a range axis is drawn per repeat: every grid cell sees the same draws.
