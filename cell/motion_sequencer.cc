@@ -118,11 +118,24 @@ bool MotionSequencer::Run(const MotionChain& chain, const ChainHooks& hooks) {
         break;
       }
     }
-    if (!Phase(phase, [&] { return io_.Follow(phase, Slice(t, from, split)); })) return false;
+    // Samples [a, b] of the phase, in strides with `watch` after each when there is one.
+    const auto follow = [&](int a, int b) {
+      if (!hooks.watch) return io_.Follow(phase, Slice(t, a, b));
+      int k = a;
+      do {
+        const int next = std::min(k + kWatchStride, b);
+        const MotionResult result = io_.Follow(phase, Slice(t, k, next));
+        if (!result.ok()) return result;
+        hooks.watch(phase);
+        k = next;
+      } while (k < b);
+      return MotionResult{};
+    };
+    if (!Phase(phase, [&] { return follow(from, split); })) return false;
     if (split < last) {
       watched = true;
       if (hooks.then) hooks.then();
-      if (!Phase(phase, [&] { return io_.Follow(phase, Slice(t, split, last)); })) return false;
+      if (!Phase(phase, [&] { return follow(split, last); })) return false;
     }
     from = last;
     if (hooks.after_phase && !hooks.after_phase(phase)) {
@@ -154,9 +167,8 @@ bool MotionSequencer::Gripper(const std::string& name, double gap) {
 MotionResult MotionSequencer::CloseAndSqueeze(const std::string& name) {
   MotionResult result = MoveFingers(name, 0.0);
   if (!result.ok() || Hold() != robot::HoldState::kHolding) return result;
-  const robot::GripperSensors contact = io_.ReadGripper();
-  io_.CommandFingers(robot::SqueezeTarget(contact.left_half_gap, robot::kDefaultGripForce),
-                     robot::SqueezeTarget(contact.right_half_gap, robot::kDefaultGripForce));
+  const auto [left, right] = robot::SqueezeTargets(io_.ReadGripper(), robot::kDefaultGripForce);
+  io_.CommandFingers(left, right);
   return io_.Wait(name, kSqueezeTime);
 }
 

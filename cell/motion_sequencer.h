@@ -75,6 +75,9 @@ struct ChainHooks {
   /// out of the camera's view and a capture can be taken while it moves on.
   std::function<bool(const robot::Joints& q)> when;
   std::function<void()> then;
+  /// Called every 20 ms of motion with the phase running (the arm moves on meanwhile): e.g. the grip
+  /// watched for slipping.
+  std::function<void(const std::string& phase)> watch;
 };
 
 class MotionSequencer {

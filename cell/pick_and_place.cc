@@ -1,5 +1,8 @@
 #include "cell/pick_and_place.h"
 
+#include <algorithm>
+#include <cmath>
+
 #include "robot/gripper_geometry.h"
 #include "robot/joint_trajectory.h"
 
@@ -8,6 +11,9 @@ namespace {
 
 // The last part of lowering an object into its bin, slowly (m).
 constexpr double kSlowPlacing = 0.05;
+// A held object's middle farther than this off the TCP's axis is grasped again over it (m): beyond
+// the Kinect's noise in the footprint and the fingers' own play.
+constexpr double kOffCentre = 0.006;
 // How much wider than the held gap the fingers open to let go (m): 5 mm per side.
 constexpr double kReleaseOpening = 0.010;
 
@@ -75,6 +81,58 @@ bool ApproachAndGrasp(MotionSequencer& run, const PickRequest& request) {
          run.Grasp("grasp");
 }
 
+// Nothing held after the fingers closed: open, go home, a miss.
+PickReport Missed(MotionSequencer& run, const PickRequest& request, PickReport report) {
+  if (!run.Gripper("open", request.grasp.open_gap) || !Home(run, request, request.grasp.X_WT_lift)) {
+    return Fail(run, request, report);
+  }
+  report.grasped = false;
+  report.result = AttemptResult::kMissed;
+  return report;
+}
+
+// A grasp that closed off-centre (one finger met the object first and it did not slide between them):
+// opened, moved over where the fingers found its middle, and closed again, once, before the lift,
+// which then rises straight from there. False when a motion failed.
+bool Recentre(MotionSequencer& run, const ArmSpeeds& lines, robot::GraspPlan& plan, PickReport& report) {
+  const double off = robot::HeldOffCentre(run.io().ReadGripper());
+  if (std::abs(off) <= kOffCentre) return true;
+  const Eigen::Vector3d shift = plan.X_WT_grasp.linear() * Eigen::Vector3d(0, off, 0);
+  plan.X_WT_grasp.translation() += shift;
+  plan.X_WT_lift.translation() += shift;
+  report.recentred_m = off;
+  return run.Gripper("regrasp", plan.open_gap) &&
+         run.MoveL("recentre", plan.X_WT_grasp, lines.slow, lines.slow_acceleration) && run.Grasp("grasp");
+}
+
+// Every 20 ms of the lift and carry: how much of the pads' friction the hold uses; near slipping (the
+// accelerations nearly using it up), squeeze harder at once, before the object goes.
+void WatchTheGrip(MotionSequencer& run, const std::string& phase, PickReport& report) {
+  const robot::GripperSensors fingers = run.io().ReadGripper();
+  const double use = robot::FrictionUse(fingers);
+  report.max_friction_use = std::max(report.max_friction_use, use);
+  if (use > robot::kSlipWarning && report.squeezed_harder_in.empty() && robot::DetectHold(fingers) != robot::HoldState::kEmpty) {
+    const auto [left, right] = robot::SqueezeTargets(fingers, robot::kFirmGripForce);
+    run.io().CommandFingers(left, right);
+    report.squeezed_harder_in = phase;
+  }
+}
+
+// The last centimetres down into the bin, slowly, and open there. False when a motion failed.
+bool LetGo(MotionSequencer& run, const PickRequest& request, const Eigen::Isometry3d& X_WT_release, double release_gap,
+           const PickHooks& hooks) {
+  const ArmSpeeds& lines = request.speeds;
+  if (!run.MoveL("place", X_WT_release, lines.slow, lines.slow_acceleration)) return false;
+  Notify(hooks.lowered);
+  if (!run.Gripper("release", release_gap)) return false;
+  // Still caught by the fingers: open as wide as for the approach, then all the way (an object turned
+  // in the grasp may span the fingers corner to corner), or the next motion takes it along.
+  for (const double gap : {request.grasp.open_gap, robot::kMaxGap}) {
+    if (robot::CaughtAfterOpening(run.io().ReadGripper(), release_gap) && !run.Gripper("release", gap)) return false;
+  }
+  return true;
+}
+
 }  // namespace
 
 bool GoHome(MotionSequencer& run, const std::optional<Eigen::Isometry3d>& X_WT_exit, const robot::Joints& q_home,
@@ -86,22 +144,19 @@ bool GoHome(MotionSequencer& run, const std::optional<Eigen::Isometry3d>& X_WT_e
 }
 
 PickReport PickAndPlace(MotionSequencer& run, const PickRequest& request, const PickHooks& hooks) {
-  const robot::GraspPlan& plan = request.grasp;
   const ArmSpeeds& lines = request.speeds;
   PickReport report;
   if (!ApproachAndGrasp(run, request)) return Fail(run, request, report);
-  if (run.Hold() != robot::HoldState::kHolding) {
-    if (!run.Gripper("open", plan.open_gap) || !Home(run, request, plan.X_WT_lift)) return Fail(run, request, report);
-    report.result = AttemptResult::kMissed;
-    return report;
-  }
+  if (run.Hold() != robot::HoldState::kHolding) return Missed(run, request, report);
   report.grasped = true;
+  PickRequest release = request;  // From here on: the grasp as recentred, the release as chosen.
+  if (!Recentre(run, request.speeds, release.grasp, report)) return Fail(run, request, report);
+  if (run.Hold() != robot::HoldState::kHolding) return Missed(run, release, report);
+  const robot::GraspPlan& plan = release.grasp;
   // Released by opening a little beyond the gap it was held at: in a bin slot near the walls, opening
   // to the approach's wider gap may press a finger against a wall and keep the object.
   const double release_gap = std::fmin(plan.open_gap, run.io().ReadGripper().gap() + kReleaseOpening);
   Notify(hooks.grasped);
-
-  PickRequest release = request;
   if (hooks.choose_release) hooks.choose_release(release);
 
   // Lift, carry and lower as one motion; the placement is planned from where the lift ends.
@@ -138,6 +193,7 @@ PickReport PickAndPlace(MotionSequencer& run, const PickRequest& request, const 
   };
   watch.when = hooks.out_of_view;
   watch.then = hooks.left_view;
+  watch.watch = [&](const std::string& phase) { WatchTheGrip(run, phase, report); };
   if (!run.Run(transfer, watch)) {
     if (run.faulted() || !run.stopped()) return Fail(run, request, report);
     // Lost during the lift: let go of nothing and go home.
@@ -146,19 +202,8 @@ PickReport PickAndPlace(MotionSequencer& run, const PickRequest& request, const 
                         : AttemptResult::kSimDiverged;
     return report;
   }
-  if (!place.ok) return PutBack(run, request, report);
-  if (!run.MoveL("place", place.X_WT_release, lines.slow, lines.slow_acceleration)) {
-    return Fail(run, request, report);
-  }
-  Notify(hooks.lowered);
-  if (!run.Gripper("release", release_gap)) return Fail(run, request, report);
-  // Still caught by the fingers: open as wide as for the approach, then all the way (an object turned
-  // in the grasp may span the fingers corner to corner), or the next motion takes it along.
-  for (const double gap : {plan.open_gap, robot::kMaxGap}) {
-    if (robot::CaughtAfterOpening(run.io().ReadGripper(), release_gap) && !run.Gripper("release", gap)) {
-      return Fail(run, request, report);
-    }
-  }
+  if (!place.ok) return PutBack(run, release, report);
+  if (!LetGo(run, release, place.X_WT_release, release_gap, hooks)) return Fail(run, request, report);
   report.reached_bin = true;
   report.X_WT_exit = place.X_WT_above;
   report.result = held_above_bin ? AttemptResult::kReleased : AttemptResult::kDropped;

@@ -59,6 +59,13 @@ struct PickReport {
   bool lifted = false;   ///< Still held after the lift.
   bool reached_bin = false;  ///< Carried to the bin and opened there (the slot is used, held or not).
   std::string detail;    ///< Why a motion failed (MotionSequencer::failure()), else empty.
+  /// The most of the pads' friction the hold used during the lift and carry (robot::FrictionUse).
+  double max_friction_use = 0;
+  /// How far off the TCP's axis the fingers found the object's middle when it was grasped again over
+  /// it (m, along the TCP's y); 0 when the first grasp was centred.
+  double recentred_m = 0;
+  /// The phase in which the hold came near slipping and the fingers squeezed harder; empty: never.
+  std::string squeezed_harder_in;
   /// Where the arm is to leave to first (straight up out of the bin); empty when it ended at home.
   std::optional<Eigen::Isometry3d> X_WT_exit;
 };

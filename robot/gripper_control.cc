@@ -28,6 +28,19 @@ double SqueezeTarget(double half_gap_at_contact, double grip_force) {
   return half_gap_at_contact - grip_force / kFingerServoKp;
 }
 
+double FrictionUse(const GripperSensors& s) {
+  const auto side = [](double normal, double shear, double twist) {
+    if (normal <= 0) return 0.0;
+    return std::hypot(shear / kPadFriction, twist / kPadTwistFriction) / normal;
+  };
+  return std::fmax(side(s.left_pad_force, s.left_pad_shear, s.left_pad_twist),
+                   side(s.right_pad_force, s.right_pad_shear, s.right_pad_twist));
+}
+
+std::pair<double, double> SqueezeTargets(const GripperSensors& sensors, double grip_force) {
+  return {SqueezeTarget(sensors.left_half_gap, grip_force), SqueezeTarget(sensors.right_half_gap, grip_force)};
+}
+
 double HalfGapTarget(double gap) { return std::fmax(0.0, std::fmin(0.5 * gap, 0.5 * kMaxGap)); }
 
 }  // namespace sortcell::robot

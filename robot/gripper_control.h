@@ -4,6 +4,8 @@
 /// (60 N per finger); the robot layer chooses targets and judges, from the finger encoders and the
 /// pads' contact forces, whether something is held.
 
+#include <utility>
+
 #include "robot/gripper_geometry.h"
 
 namespace sortcell::robot {
@@ -16,6 +18,10 @@ struct GripperSensors {
   double right_speed = 0;
   double left_pad_force = 0;  ///< Normal contact force on each finger's pads (N).
   double right_pad_force = 0;
+  double left_pad_shear = 0;  ///< Tangential contact force on each finger's pads (N).
+  double right_pad_shear = 0;
+  double left_pad_twist = 0;  ///< Torsional moment about the pads' normals (N m).
+  double right_pad_twist = 0;
   double gap() const { return left_half_gap + right_half_gap; }
 };
 
@@ -50,6 +56,28 @@ double HalfGapTarget(double gap);
 /// carry). Unsaturated, each finger is a spring to its own target and the pair resists that drift
 /// with 2 kp = 4000 N/m. @pre grip_force in (0, kFingerForceLimit).
 double SqueezeTarget(double half_gap_at_contact, double grip_force);
+
+/// How much of the pads' friction a hold uses (0: none, 1: at the edge of slipping): the larger of
+/// the two fingers' sqrt((shear / mu)^2 + (twist / mu_twist)^2) / normal force, with the pads' own
+/// friction (kPadFriction, kPadTwistFriction: the pads' material sets every pad contact's friction).
+/// 0 without pad contact.
+double FrictionUse(const GripperSensors& sensors);
+
+/// Where what the fingers hold sits off the TCP's axis along the closing direction y (m): the middle
+/// between the pads, (left half gap - right half gap) / 2 (the left finger is on +y).
+inline double HeldOffCentre(const GripperSensors& sensors) {
+  return 0.5 * (sensors.left_half_gap - sensors.right_half_gap);
+}
+
+/// Half-gap targets that squeeze what the fingers hold now with `grip_force` per finger (SqueezeTarget
+/// of each finger's present position).
+std::pair<double, double> SqueezeTargets(const GripperSensors& sensors, double grip_force);
+
+/// The grip force per finger once a hold is seen near slipping (N): below the servos' 60 N limit, so
+/// they stay springs (SqueezeTarget).
+inline constexpr double kFirmGripForce = 50;
+/// A hold using more than this share of its friction is near slipping: squeeze harder.
+inline constexpr double kSlipWarning = 0.6;
 
 /// The default grip force per finger (N): with mu = 1.5 on two pads it holds 90 N of load, ~25x the
 /// heaviest object's weight (0.35 kg), with headroom for the carry's accelerations.

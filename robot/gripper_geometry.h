@@ -22,6 +22,10 @@ inline constexpr double kFingerHalfWidth = 0.020;
 /// Each finger is a position servo with this stiffness (N/m), its force limited to kFingerForceLimit (N).
 inline constexpr double kFingerServoKp = 2000;
 inline constexpr double kFingerForceLimit = 60;
+/// The pads' sliding and torsional friction (their MJCF class gripper_pad; priority 1, so theirs is
+/// every pad contact's friction).
+inline constexpr double kPadFriction = 1.5;
+inline constexpr double kPadTwistFriction = 0.02;
 
 /// The hand-eye calibration marker: an ArUco marker (OpenCV's 4x4_50 dictionary) printed on a plate
 /// on the housing's +x_F side, facing +x_F, its centre at (kMarkerFaceX, 0, kMarkerCentreZ) in the

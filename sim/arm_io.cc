@@ -1,5 +1,7 @@
 #include "sim/arm_io.h"
 
+#include <cmath>
+
 namespace sortcell::sim {
 namespace {
 
@@ -76,7 +78,10 @@ GripperReading ArmIo::ReadGripper(const Data& data) const {
       if (contact.geom1 != pads_[p] && contact.geom2 != pads_[p]) continue;
       mjtNum force[6];
       mj_contactForce(m_, data.get(), c, force);
-      (p < 2 ? r.left_pad_force : r.right_pad_force) += force[0];
+      const bool left = p < 2;
+      (left ? r.left_pad_force : r.right_pad_force) += force[0];
+      (left ? r.left_pad_shear : r.right_pad_shear) += std::hypot(force[1], force[2]);
+      (left ? r.left_pad_twist : r.right_pad_twist) += std::abs(force[3]);
       break;
     }
   }

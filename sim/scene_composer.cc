@@ -52,6 +52,12 @@ std::vector<Model::VirtualFile> ComposeCell(const std::filesystem::path& models_
   return {{"sortcell_composed.xml", main}, {"flange_tool.inc.xml", tool}};
 }
 
+std::vector<Model::VirtualFile> ModelTextures(const std::filesystem::path& models_dir) {
+  std::vector<Model::VirtualFile> files = Model::AssetFiles(models_dir / "objects" / "textures");
+  for (auto& asset : Model::AssetFiles(models_dir / "gripper" / "textures")) files.push_back(std::move(asset));
+  return files;
+}
+
 Model LoadComposedCell(const std::filesystem::path& models_dir,
                        const std::vector<std::filesystem::path>& object_models, const std::string& name,
                        const std::vector<CameraSpec>& cameras) {
@@ -62,7 +68,7 @@ Model LoadComposedCell(const std::filesystem::path& models_dir,
     }
   }
   std::vector<Model::VirtualFile> files = ComposeCell(models_dir, object_models, cameras);
-  for (auto& asset : Model::AssetFiles(models_dir / "objects" / "textures")) files.push_back(std::move(asset));
+  for (auto& asset : ModelTextures(models_dir)) files.push_back(std::move(asset));
   return Model::FromVirtualFiles(files, name);
 }
 

@@ -27,7 +27,11 @@ std::vector<Model::VirtualFile> ComposeCell(const std::filesystem::path& models_
                                             const std::vector<std::filesystem::path>& object_models,
                                             const std::vector<CameraSpec>& cameras = {});
 
-/// Compiles ComposeCell(...) with the object textures of models_dir/objects/textures (found by name).
+/// The textures the models use, as virtual files found by their names: the objects' prints
+/// (models_dir/objects/textures) and the gripper's calibration plate (models_dir/gripper/textures).
+std::vector<Model::VirtualFile> ModelTextures(const std::filesystem::path& models_dir);
+
+/// Compiles ComposeCell(...) with ModelTextures(models_dir).
 /// `name` names the scene in errors (e.g. the object set file).
 /// @throws std::invalid_argument naming a missing model file, or the scene with MuJoCo's message.
 Model LoadComposedCell(const std::filesystem::path& models_dir,

@@ -2,6 +2,8 @@
 
 #include <cstdlib>
 
+#include "sim/scene_composer.h"
+
 namespace sortcell::app {
 
 std::string DataDir() {
@@ -12,7 +14,7 @@ std::string DataDir() {
 std::filesystem::path ObjectTexturesDir() { return std::filesystem::path(DataDir()) / "models" / "objects" / "textures"; }
 
 sim::Model LoadScene(const std::filesystem::path& scene) {
-  return sim::Model::FromFile(scene.string(), sim::Model::AssetFiles(ObjectTexturesDir()));
+  return sim::Model::FromFile(scene.string(), sim::ModelTextures(std::filesystem::path(DataDir()) / "models"));
 }
 
 }  // namespace sortcell::app

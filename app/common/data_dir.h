@@ -15,7 +15,7 @@ std::string DataDir();
 /// models/objects/textures under DataDir(): the object models' texture files.
 std::filesystem::path ObjectTexturesDir();
 
-/// Loads a scene file with the objects' textures (models/objects/textures under DataDir()), which
+/// Loads a scene file with the models' textures (sim::ModelTextures of models/ under DataDir()), which
 /// object models name relative to scenes/ but MuJoCo then finds from a scene in any folder.
 /// @throws std::invalid_argument as sim::Model::FromFile.
 sim::Model LoadScene(const std::filesystem::path& scene);

@@ -105,6 +105,10 @@ robot::GripperSensors ArmExecutor::Gripper() const {
   s.right_speed = r.right_speed;
   s.left_pad_force = r.left_pad_force;
   s.right_pad_force = r.right_pad_force;
+  s.left_pad_shear = r.left_pad_shear;
+  s.right_pad_shear = r.right_pad_shear;
+  s.left_pad_twist = r.left_pad_twist;
+  s.right_pad_twist = r.right_pad_twist;
   return s;
 }
 

@@ -216,6 +216,9 @@ void to_json(nlohmann::json& j, const AttemptLogEntry& v) {
   nlohmann::json phases = nlohmann::json::array();
   for (const auto& p : v.phases) phases.push_back({{"phase", p.phase}, {"end_s", p.end_s}, {"hold", p.hold}, {"gap_m", p.gap_m}});
   j["phases"] = phases;
+  j["max_friction_use"] = OrNull(v.max_friction_use);
+  j["recentred_m"] = OrNull(v.recentred_m);
+  j["squeezed_harder_in"] = OrNull(v.squeezed_harder_in);
   j["truth_object"] = OrNull(v.truth_object);
   j["truth_centre_error_m"] = OrNull(v.truth_centre_error_m);
   j["truth_width_error_m"] = OrNull(v.truth_width_error_m);

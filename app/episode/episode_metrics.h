@@ -111,6 +111,9 @@ struct AttemptLogEntry {
   std::optional<double> truth_centre_error_m, truth_width_error_m;
   std::string detail;
   std::vector<PhaseHold> phases;  ///< An attempt's phases in order; empty for a skipped cluster.
+  std::optional<double> max_friction_use;          ///< The most of the pads' friction the hold used.
+  std::optional<double> recentred_m;               ///< Grasped again this far over (off-centre), or null.
+  std::optional<std::string> squeezed_harder_in;   ///< The phase the grip was firmed in (near slipping).
 };
 
 struct EpisodeMetrics {

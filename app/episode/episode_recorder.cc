@@ -130,6 +130,9 @@ void EpisodeRecorder::AttemptEnded(const cell::AttemptReport& report) {
   entry.top_z_m = d.footprint.top_z;
   entry.lying = d.lying;
   if (report.pick.grasped) entry.release_clearance_m = report.release.clearance;
+  if (report.pick.grasped) entry.max_friction_use = report.pick.max_friction_use;
+  if (report.pick.recentred_m != 0) entry.recentred_m = report.pick.recentred_m;
+  if (!report.pick.squeezed_harder_in.empty()) entry.squeezed_harder_in = report.pick.squeezed_harder_in;
   for (const auto& span : report.phases) entry.phases.push_back({span.phase, span.end_s, robot::ToString(span.hold), span.gap_m});
   entry.result = cell::ToString(result);
   if (attempted_object_ >= 0) entry.truth_object = scorer_.objects()[attempted_object_].name;

@@ -142,6 +142,32 @@ TEST(EpisodeScenario, ADenseSceneWithLyingObjectsIsSorted) {
   EXPECT_EQ(m["summary"]["mujoco_warnings"], 0);
 }
 
+// The heaviest objects twice their mass on half their friction (the pads' own friction grips them):
+// carried without a drop, the hold's friction use logged and below slipping.
+TEST(EpisodeScenario, AHeavyLowFrictionObjectIsCarriedWithoutDropping) {
+  const auto m = Episode("heavy", "--seed 4 --objects 3 --mass-scale 2 --friction-scale 0.5 --place bottle1=0.45,-0.12 "
+                                  "--place box=0.55,0.12,0.4 --place bottle3=0.62,-0.05");
+  ASSERT_EQ(m["items"].size(), 3u);
+  for (const auto& item : m["items"]) EXPECT_EQ(item["outcome"], "sorted") << item.dump();
+  for (const auto& attempt : m["attempts"]) {
+    if (attempt["result"] != "released") continue;
+    EXPECT_LT(attempt["max_friction_use"].get<double>(), 1.0) << attempt.dump();
+    EXPECT_GT(attempt["max_friction_use"].get<double>(), 0.0) << attempt.dump();
+  }
+}
+
+// A camera displaced by 4 cm and turned by 0.04 rad: the episode calibrates it first (auto) and sorts.
+TEST(EpisodeScenario, ADisplacedCameraIsCalibratedBeforeSorting) {
+  const auto m = Episode("displaced", "--seed 7 --objects 3 --camera-shift 0.04 --camera-turn 0.04");
+  ASSERT_TRUE(m["summary"]["calibration"].is_object()) << m["summary"].dump();
+  const auto& c = m["summary"]["calibration"];
+  EXPECT_EQ(c["status"], "ok");
+  EXPECT_LT(c["error_m"].get<double>(), 0.002);
+  EXPECT_LT(c["error_rad"].get<double>(), 0.002);
+  EXPECT_NEAR(c["prior_error_m"].get<double>(), 0.04, 1e-6);
+  EXPECT_EQ(m["summary"]["outcomes"]["sorted"], 3) << m["summary"]["outcomes"].dump();
+}
+
 TEST(EpisodeScenario, OutOfReachObjectIsReportedAndTheRestSorted) {
   // x = 0.85 m: on the table and in the camera's view, beyond the arm's reach for a top-down grasp.
   const auto m = Episode("reach", "--seed 4 --objects 3 --place box=0.85,0.0 --place ball=0.45,-0.1 --place cup=0.5,0.12");

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "cell/cell_io.h"
+#include "robot/gripper_geometry.h"
 
 namespace sortcell_test {
 
@@ -14,11 +15,18 @@ class FakeCell : public sortcell::cell::CellIo {
  public:
   // What the next closings of the fingers find: true = an object (held until the fingers open).
   std::deque<bool> grasps;
+  // Where the object's middle sits off the TCP's axis (along its y, m) at each closing on it that
+  // finds one; none left: centred.
+  std::deque<double> grasp_offsets;
   // Lose the held object during the lift (the next "lift" motion).
   bool drop_on_lift = false;
+  // The held object starts to slip as the carry begins: the pads' friction nearly used up (shear at
+  // 90 % of what the default squeeze holds); unless the fingers squeeze harder within 60 ms of the
+  // carry, it is lost.
+  bool slip_on_carry = false;
   std::vector<sortcell::perception::Cloud::Ptr> clouds;
   int captures = 0;
-  std::vector<std::string> motions;  // Phase of every Follow, in order.
+  std::vector<std::string> motions;  // Phase of every Follow, in order (a phase's parts as one).
   std::vector<sortcell::robot::Joints> motion_ends;  // Where each of them left the arm.
   std::string fault_on;  // The cell stops under the first motion of this phase.
 
@@ -36,23 +44,36 @@ class FakeCell : public sortcell::cell::CellIo {
   sortcell::robot::GripperSensors ReadGripper() const override { return sensors_; }
 
   sortcell::cell::MotionResult Follow(std::string_view phase, const sortcell::robot::JointTrajectory& t) override {
-    motions.emplace_back(phase);
+    // A phase followed in parts (the policy watching between them) is one motion here.
+    const bool continues = !motions.empty() && motions.back() == phase;
+    if (!continues) motions.emplace_back(phase);
     if (!fault_on.empty() && phase == fault_on) return {sortcell::cell::MotionStatus::kFault, "diverged (scripted)"};
     if (t.size() > 0) q_ = t.q.back();
-    motion_ends.push_back(q_);
+    if (continues) {
+      motion_ends.back() = q_;
+    } else {
+      motion_ends.push_back(q_);
+    }
     now_ += t.duration();
     if (phase == "lift" && drop_on_lift && holding_) Open(0.0, 0.0);
+    if (phase == "carry" && slip_on_carry && holding_) Slip(t.duration());
     return {};
   }
   void CommandFingers(double left, double right) override {
-    if (left <= 0 && right <= 0) {  // Closing on whatever is between the fingers.
+    if (left == 0 && right == 0) {  // Closing on whatever is between the fingers (a squeeze may aim past 0).
       const bool object = !grasps.empty() && grasps.front();
       if (!grasps.empty()) grasps.pop_front();
       holding_ = object;
       sensors_ = {};
-      if (object) sensors_.left_half_gap = sensors_.right_half_gap = 0.02, sensors_.left_pad_force = sensors_.right_pad_force = 20;
-    } else if (holding_ && left < sensors_.left_half_gap) {
-      sensors_.left_pad_force = sensors_.right_pad_force = 30;  // Squeezing what is held.
+      if (object) {
+        const double off = grasp_offsets.empty() ? 0.0 : grasp_offsets.front();
+        if (!grasp_offsets.empty()) grasp_offsets.pop_front();
+        sensors_.left_half_gap = 0.02 + off, sensors_.right_half_gap = 0.02 - off;
+        sensors_.left_pad_force = sensors_.right_pad_force = 20;
+      }
+    } else if (holding_ && left < sensors_.left_half_gap) {  // Squeezing what is held: springs to the targets.
+      sensors_.left_pad_force = sortcell::robot::kFingerServoKp * (sensors_.left_half_gap - left);
+      sensors_.right_pad_force = sortcell::robot::kFingerServoKp * (sensors_.right_half_gap - right);
     } else {
       Open(left, right);
     }
@@ -72,6 +93,12 @@ class FakeCell : public sortcell::cell::CellIo {
   double Now() const override { return now_; }
 
  private:
+  void Slip(double seconds) {
+    constexpr double kDefaultSqueeze = 30;
+    slipping_s_ += seconds;
+    sensors_.left_pad_shear = sensors_.right_pad_shear = 0.9 * sortcell::robot::kPadFriction * kDefaultSqueeze;
+    if (sensors_.left_pad_force < 1.5 * kDefaultSqueeze && slipping_s_ > 0.06) Open(0.0, 0.0);
+  }
   void Open(double left, double right) {
     holding_ = false;
     sensors_ = {};
@@ -82,6 +109,7 @@ class FakeCell : public sortcell::cell::CellIo {
   sortcell::robot::Joints q_;
   sortcell::robot::GripperSensors sensors_;
   bool holding_ = false;
+  double slipping_s_ = 0;
   double now_;
 };
 

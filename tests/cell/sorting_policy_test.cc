@@ -110,7 +110,11 @@ struct Recorder : PolicyObserver {
     phase_sums_match = phase_sums_match && std::abs(phases - (r.end_s - r.start_s)) < 1e-9 && !r.phases.empty();
     last_phases.clear();
     for (const auto& p : r.phases) last_phases.push_back(p.phase);
+    squeezed_harder_in.push_back(r.pick.squeezed_harder_in);
+    recentred_m.push_back(r.pick.recentred_m);
   }
+  std::vector<double> recentred_m;  // Per attempt; 0 where the first grasp was centred.
+  std::vector<std::string> squeezed_harder_in;  // Per attempt; empty where the grip held as it was.
   bool phase_sums_match = true;          // Every attempt's phases add up to its duration.
   std::vector<std::string> last_phases;  // Of the last attempt.
 };
@@ -125,13 +129,14 @@ struct SortRun {
 
 SortRun Sort(const std::vector<Cylinder>& objects, std::deque<bool> grasps, PolicyOptions options = {},
          CellLayout layout = Layout(), const perception::RecognitionModel& model = Model(), bool drop_on_lift = false,
-         const std::string& fault_on = "") {
+         const std::string& fault_on = "", bool slip_on_carry = false) {
   const CameraCalibration calibration = Calibration();
   FakeCell cell(layout.q_observe);
   cell.clouds = {sortcell_test::RenderTable(objects, calibration.X_WC)};
   cell.grasps = std::move(grasps);
   cell.drop_on_lift = drop_on_lift;
   cell.fault_on = fault_on;
+  cell.slip_on_carry = slip_on_carry;
   SortRun run;
   run.seen.cell = &cell;
   SortingPolicy policy(cell, layout, calibration, model, options, &run.seen);
@@ -166,9 +171,10 @@ TEST(SortingPolicy, SortsAnObjectItHoldsAndMovesThroughThePhases) {
   ASSERT_EQ(run.seen.results.size(), 1u);
   EXPECT_EQ(run.seen.results[0], AttemptResult::kReleased);
   EXPECT_EQ(run.result.status, EpisodeStatus::kAttemptLimit);
-  // The carry is split where the arm leaves the camera's view: the next view is captured there. The
-  // arm stays in the bin after the release and goes home, straight up first, when the episode ends.
-  const std::vector<std::string> expected{"approach", "descend", "reach", "lift", "carry", "carry", "lower", "place",
+  // The next view is captured during the carry, where the arm leaves the camera's view (the second
+  // capture). The arm stays in the bin after the release and goes home, straight up first, when the
+  // episode ends.
+  const std::vector<std::string> expected{"approach", "descend", "reach", "lift", "carry", "lower", "place",
                                           "retreat", "home"};
   EXPECT_EQ(run.motions, expected);
   EXPECT_EQ(run.captures, 2);
@@ -281,6 +287,54 @@ TEST(SortingPolicy, ReportsADropDuringTheLift) {
   const SortRun run = Sort({kBottle}, {true}, options, Layout(), Model(), /*drop_on_lift=*/true);
   ASSERT_EQ(run.seen.results.size(), 1u);
   EXPECT_EQ(run.seen.results[0], AttemptResult::kDropped);
+}
+
+TEST(SortingPolicy, ASlipDuringTheCarryIsCaughtBySqueezingHarder) {
+  // The scripted object slips from the carry's start and is lost within 60 ms unless squeezed
+  // harder: the pads' shear says so, the fingers firm up, and it reaches its bin.
+  PolicyOptions options;
+  options.max_attempts = 1;
+  const SortRun run = Sort({kBottle}, {true}, options, Layout(), Model(), false, "", /*slip_on_carry=*/true);
+  ASSERT_EQ(run.seen.results.size(), 1u);
+  EXPECT_EQ(run.seen.results[0], AttemptResult::kReleased);
+  EXPECT_EQ(run.seen.squeezed_harder_in, (std::vector<std::string>{"carry"}));
+  // A grip that holds as it is is left alone.
+  const SortRun calm = Sort({kBottle}, {true}, options);
+  EXPECT_EQ(calm.seen.squeezed_harder_in, (std::vector<std::string>{""}));
+}
+
+TEST(SortingPolicy, AGraspThatClosedOffCentreIsMadeAgainOverTheObject) {
+  // The first closing finds the object 12 mm off the TCP's axis (the left finger 12 mm farther out
+  // than the right): the fingers open, the TCP moves 12 mm along its y over the object, and they
+  // close again, centred, before the lift.
+  const CameraCalibration calibration = Calibration();
+  const CellLayout layout = Layout();  // The policy keeps references to these.
+  const perception::RecognitionModel& model = Model();
+  FakeCell cell(layout.q_observe);
+  cell.clouds = {sortcell_test::RenderTable({kBottle}, calibration.X_WC)};
+  cell.grasps = {true, true};
+  cell.grasp_offsets = {0.012, 0.0};
+  Recorder seen;
+  seen.cell = &cell;
+  PolicyOptions options;
+  options.max_attempts = 1;
+  SortingPolicy policy(cell, layout, calibration, model, options, &seen);
+  policy.Run();
+  ASSERT_EQ(seen.results, (std::vector<AttemptResult>{AttemptResult::kReleased}));
+  ASSERT_EQ(seen.recentred_m.size(), 1u);
+  EXPECT_DOUBLE_EQ(seen.recentred_m[0], 0.012);
+  const auto at = [&](const std::string& phase) {
+    const size_t i = std::find(cell.motions.begin(), cell.motions.end(), phase) - cell.motions.begin();
+    EXPECT_LT(i, cell.motions.size()) << phase;
+    return robot::TcpPose(cell.motion_ends.at(i));
+  };
+  const Eigen::Isometry3d X_WT_reach = at("reach"), X_WT_recentre = at("recentre");
+  const Eigen::Vector3d moved_T = X_WT_reach.linear().transpose() * (X_WT_recentre.translation() - X_WT_reach.translation());
+  EXPECT_LT((moved_T - Eigen::Vector3d(0, 0.012, 0)).norm(), 1e-4) << moved_T.transpose();
+  // A centred grasp is left as it is.
+  const SortRun calm = Sort({kBottle}, {true}, options);
+  EXPECT_EQ(calm.seen.recentred_m, (std::vector<double>{0.0}));
+  EXPECT_EQ(std::count(calm.motions.begin(), calm.motions.end(), "recentre"), 0);
 }
 
 TEST(SortingPolicy, NeverPicksAFragmentTooSmallToDescribe) {

@@ -86,6 +86,11 @@ TEST(KinematicsAgreement, TcpOfTheGripperModelMatchesTheRobotLayer) {
   const int servo = model.Id(mjOBJ_ACTUATOR, "finger_left");
   EXPECT_DOUBLE_EQ(model.get()->actuator_gainprm[servo * mjNGAIN], robot::kFingerServoKp);
   EXPECT_DOUBLE_EQ(model.get()->actuator_forcerange[2 * servo + 1], robot::kFingerForceLimit);
+  // The pads' friction, as the slip check assumes it.
+  const int pad = model.Id(mjOBJ_GEOM, "finger_left_pad_upper");
+  EXPECT_DOUBLE_EQ(model.get()->geom_friction[3 * pad], robot::kPadFriction);
+  EXPECT_DOUBLE_EQ(model.get()->geom_friction[3 * pad + 1], robot::kPadTwistFriction);
+  EXPECT_GT(model.get()->geom_priority[pad], 0) << "the pads' friction is every pad contact's";
   // The calibration marker: its centre on the plate's face where the robot layer has it.
   const int marker = model.Id(mjOBJ_SITE, "calibration_marker");
   const Eigen::Vector3d p_WM = Eigen::Map<const Eigen::Vector3d>(data.get()->site_xpos + 3 * marker);

@@ -67,5 +67,22 @@ TEST(GripperControl, CaughtAfterOpeningWhenShortOfTheGapOrPressed) {
   EXPECT_FALSE(CaughtAfterOpening(s, 0.2));  // beyond the stroke: open as far as it goes
 }
 
+TEST(GripperControl, FrictionUseFromThePadsForces) {
+  GripperSensors s;
+  EXPECT_DOUBLE_EQ(FrictionUse(s), 0.0) << "no contact";
+  s.left_pad_force = s.right_pad_force = 30;
+  EXPECT_DOUBLE_EQ(FrictionUse(s), 0.0) << "squeezed, nothing pulling";
+  s.left_pad_shear = 0.5 * kPadFriction * 30;  // Half the sliding friction used on the left.
+  EXPECT_NEAR(FrictionUse(s), 0.5, 1e-12);
+  s.right_pad_twist = 0.8 * kPadTwistFriction * 30;  // The right pads turning: the larger side counts.
+  EXPECT_NEAR(FrictionUse(s), 0.8, 1e-12);
+  s.right_pad_shear = 0.6 * kPadFriction * 30;  // Both at once add up on the friction ellipse.
+  EXPECT_NEAR(FrictionUse(s), 1.0, 1e-12);
+  const auto [left, right] = SqueezeTargets({0.03, 0.02}, 40);
+  EXPECT_DOUBLE_EQ(left, 0.03 - 40 / kFingerServoKp);
+  EXPECT_DOUBLE_EQ(right, 0.02 - 40 / kFingerServoKp);
+  EXPECT_LT(kFirmGripForce, kFingerForceLimit) << "the servos stay springs";
+}
+
 }  // namespace
 }  // namespace sortcell::robot
