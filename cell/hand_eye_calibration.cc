@@ -1,6 +1,7 @@
 #include "cell/hand_eye_calibration.h"
 
 #include <algorithm>
+#include <stdexcept>
 
 #include "cell/motion_sequencer.h"
 #include "perception/cloud_pinhole.h"
@@ -18,13 +19,33 @@ const Eigen::Vector3d kMarkerInFlange(robot::kMarkerFaceX, 0, robot::kMarkerCent
 Eigen::Isometry3d FlangeShowing(const Eigen::Vector3d& p_W_marker, const Eigen::Vector3d& p_W_camera) {
   const Eigen::Vector3d x = (p_W_camera - p_W_marker).normalized();
   const Eigen::Vector3d down(0, 0, -1);
-  const Eigen::Vector3d z = (down - down.dot(x) * x).normalized();
+  Eigen::Vector3d z = down - down.dot(x) * x;
+  // A camera straight above the marker leaves "down" along x: any tool direction across it will do.
+  z = z.norm() > 1e-6 ? z.normalized() : Eigen::Vector3d(x.unitOrthogonal());
   Eigen::Matrix3d R_WF;
   R_WF << x, z.cross(x), z;
   Eigen::Isometry3d X_WF = Eigen::Isometry3d::Identity();
   X_WF.linear() = R_WF;
   X_WF.translation() = p_W_marker - R_WF * kMarkerInFlange;
   return X_WF;
+}
+
+// One capture with the marker held still: where the encoders put it and where the camera sees it
+// (not seen: the marker not found, or a capture too empty to read the camera's pinhole from).
+MarkerShowing Show(CellIo& io, std::optional<perception::Pinhole>& pinhole) {
+  MarkerShowing showing;
+  const perception::Cloud::Ptr cloud = io.Capture();
+  showing.q = io.ReadJoints();
+  showing.p_W_marker = robot::FlangePose(showing.q) * kMarkerInFlange;
+  if (!pinhole) {
+    try {
+      pinhole = perception::FitPinhole(*cloud);
+    } catch (const std::invalid_argument&) {
+      return showing;  // Try the next capture.
+    }
+  }
+  showing.seen = perception::FindMarker(*cloud, *pinhole, robot::kMarkerId);
+  return showing;
 }
 
 }  // namespace
@@ -71,20 +92,17 @@ HandEyeCalibration CalibrateHandEye(CellIo& io, const CellLayout& layout, const 
   std::vector<size_t> seen_at;  // Showing index of each pair.
   for (const auto& q_goal : MarkerShowingJoints(X_WC_prior, io.CommandedJoints(), params)) {
     MarkerShowing showing;
-    showing.reachable = q_goal.has_value();
-    if (q_goal) {
-      MotionChain move(io.CommandedJoints(), MotionChain::Load::kEmptyHanded);
-      if (!move.JointMove("calibrate", *q_goal) || !motions.Run(move) || !motions.Wait("calibrate", params.settle_s)) {
-        result.status = HandEyeStatus::kFault;
+    MotionChain move(io.CommandedJoints(), MotionChain::Load::kEmptyHanded);
+    // A place the arm cannot reach, or reach within its torques from the last one, is left out.
+    showing.reachable = q_goal.has_value() && move.JointMove("calibrate", *q_goal);
+    if (showing.reachable) {
+      if (!motions.Run(move) || !motions.Wait("calibrate", params.settle_s)) {
+        result.status = HandEyeStatus::kFault;  // The cell stopped under the motion: nothing more to do.
         result.detail = motions.failure();
         result.end_s = io.Now();
         return result;
       }
-      const perception::Cloud::Ptr cloud = io.Capture();
-      showing.q = io.ReadJoints();
-      showing.p_W_marker = robot::FlangePose(showing.q) * kMarkerInFlange;
-      if (!pinhole) pinhole = perception::FitPinhole(*cloud);
-      showing.seen = perception::FindMarker(*cloud, *pinhole, robot::kMarkerId);
+      showing = Show(io, pinhole);
       if (showing.seen) {
         p_W.push_back(showing.p_W_marker);
         p_C.push_back(showing.seen->p_C_centre);

@@ -1,6 +1,7 @@
 #include "perception/marker_sighting.h"
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <cmath>
 #include <opencv2/aruco.hpp>
 #include <opencv2/imgproc.hpp>
@@ -41,7 +42,7 @@ Eigen::Vector2d DiagonalsCrossing(const std::array<Eigen::Vector2d, 4>& c) {
   const Eigen::Vector3d a = Eigen::Vector3d(c[0].x(), c[0].y(), 1).cross(Eigen::Vector3d(c[2].x(), c[2].y(), 1));
   const Eigen::Vector3d b = Eigen::Vector3d(c[1].x(), c[1].y(), 1).cross(Eigen::Vector3d(c[3].x(), c[3].y(), 1));
   const Eigen::Vector3d x = a.cross(b);
-  return x.head<2>() / x.z();
+  return x.head<2>() / x.z();  // Diagonals of a detected (convex) quadrilateral always cross: z != 0.
 }
 
 struct Plane {
@@ -67,7 +68,8 @@ std::optional<Plane> FitPlane(std::vector<Eigen::Vector3d> points, int min_point
     if (plane.normal.dot(mean) > 0) plane.normal = -plane.normal;  // Towards the camera.
     std::vector<Eigen::Vector3d> kept;
     for (const auto& p : points) {
-      if (std::abs((p - mean).dot(plane.normal)) <= 2.5 * plane.rms) kept.push_back(p);
+      // The floor: a noiseless plane's rms is ~0, and rounding must not reject its points.
+      if (std::abs((p - mean).dot(plane.normal)) <= std::max(2.5 * plane.rms, 1e-4)) kept.push_back(p);
     }
     if (kept.size() == points.size() || pass == kPasses - 1) return plane;
     points = std::move(kept);

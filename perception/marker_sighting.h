@@ -19,7 +19,7 @@ namespace sortcell::perception {
 struct MarkerSighting {
   Eigen::Vector3d p_C_centre = Eigen::Vector3d::Zero();  ///< The marker's centre, camera frame (m).
   Eigen::Vector3d n_C = Eigen::Vector3d::Zero();         ///< Its plane's normal, towards the camera.
-  std::array<Eigen::Vector2d, 4> corners_px;             ///< Image corners, the dictionary's order.
+  std::array<Eigen::Vector2d, 4> corners_px{};           ///< Image corners, the dictionary's order.
   int plane_points = 0;                                  ///< Depth points the plane was fitted to.
   double plane_rms_m = 0;                                ///< Their distance from it, RMS (m).
 };

@@ -74,7 +74,8 @@ inline double HeldOffCentre(const GripperSensors& sensors) {
 std::pair<double, double> SqueezeTargets(const GripperSensors& sensors, double grip_force);
 
 /// The grip force per finger once a hold is seen near slipping (N): below the servos' 60 N limit, so
-/// they stay springs (SqueezeTarget).
+/// they stay springs (SqueezeTarget). A servo's target cannot pass the closed stop (0), so an object
+/// narrower than 2 x 50 N / kFingerServoKp = 50 mm is squeezed with kFingerServoKp x its half width.
 inline constexpr double kFirmGripForce = 50;
 /// A hold using more than this share of its friction is near slipping: squeeze harder.
 inline constexpr double kSlipWarning = 0.6;

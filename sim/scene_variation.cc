@@ -94,7 +94,17 @@ void ApplyVariation(Model& model, const SceneVariation& variation, std::mt19937_
   m->cam_quat[4 * camera + 1] = turned.x();
   m->cam_quat[4 * camera + 2] = turned.y();
   m->cam_quat[4 * camera + 3] = turned.z();
-  if (variation.colour_jitter > 0) JitterColours(m, variation.colour_jitter, rng);
+  if (variation.colour_jitter > 0) {
+    // A stream of its own, seeded from a copy of the episode's: the colours take nothing from the
+    // stream the objects' choice and poses are drawn from next, so a seed sets the same scene at any
+    // jitter.
+    std::mt19937_64 copy = rng;
+    const uint64_t a = copy(), b = copy();
+    std::seed_seq seq{static_cast<uint32_t>(a), static_cast<uint32_t>(a >> 32), static_cast<uint32_t>(b),
+                      static_cast<uint32_t>(b >> 32), 0xC0102u};
+    std::mt19937_64 colours(seq);
+    JitterColours(m, variation.colour_jitter, colours);
+  }
   // Derived quantities that depend on masses (subtree masses, armature-free inertias at qpos0).
   mjData* d = mj_makeData(m);
   mj_setConst(m, d);

@@ -25,8 +25,8 @@ struct SceneVariation {
   double colour_jitter = 0.0;
 };
 
-/// The colour draws come after the others and only when colour_jitter > 0, so other variations draw
-/// the same with or without it.
+/// The colours are drawn from a stream of their own (seeded from a copy of `rng`), so `rng` draws and
+/// is left the same at any colour jitter: a seed sets the same scene.
 /// @throws std::invalid_argument naming the scene for non-positive scales, negative jitter, a colour
 ///         jitter outside [0, 1] or an unknown camera.
 void ApplyVariation(Model& model, const SceneVariation& variation, std::mt19937_64& rng);

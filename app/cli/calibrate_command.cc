@@ -1,6 +1,7 @@
 #include "app/cli/calibrate_command.h"
 
-#include <cstdio>
+#include <spdlog/fmt/fmt.h>
+
 #include <iostream>
 #include <memory>
 #include <tuple>
@@ -19,13 +20,11 @@ struct CalibrateCli {
 };
 
 std::string Summary(const CalibrationFigures& f, const std::filesystem::path& out) {
-  char line[400];
-  std::snprintf(line, sizeof line,
-                "Calibration %s: %d of %d sightings agree, residual %.2f mm RMS, %.1f s simulated. Camera error "
-                "%.2f mm / %.4f rad (the nominal pose's: %.2f mm / %.4f rad).\nResult: %s",
-                f.status.c_str(), f.inliers, f.sightings, 1000 * f.rms_residual_m, f.duration_s, 1000 * f.error_m,
-                f.error_rad, 1000 * f.prior_error_m, f.prior_error_rad, (out / "calibration.json").c_str());
-  return line;
+  return fmt::format(
+      "Calibration {}: {} of {} sightings agree, residual {:.2f} mm RMS, {:.1f} s simulated. Camera error {:.2f} mm / "
+      "{:.4f} rad (the nominal pose's: {:.2f} mm / {:.4f} rad).\nResult: {}",
+      f.status, f.inliers, f.sightings, 1000 * f.rms_residual_m, f.duration_s, 1000 * f.error_m, f.error_rad,
+      1000 * f.prior_error_m, f.prior_error_rad, (out / "calibration.json").string());
 }
 
 }  // namespace

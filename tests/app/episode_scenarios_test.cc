@@ -156,6 +156,18 @@ TEST(EpisodeScenario, AHeavyLowFrictionObjectIsCarriedWithoutDropping) {
   }
 }
 
+// A bottle five times its mass: the lift's acceleration takes more than 60 % of the pads' friction, the
+// grip is firmed at once (squeezed_harder_in), and it is carried to its bin.
+TEST(EpisodeScenario, ASlipIsDetectedAndTheGripFirmed) {
+  const auto m = Episode("slip", "--seed 4 --objects 1 --mass-scale 5 --place bottle3=0.50,0.05");
+  ASSERT_EQ(m["items"].size(), 1u);
+  EXPECT_EQ(m["items"][0]["outcome"], "sorted") << m["items"][0].dump();
+  ASSERT_FALSE(m["attempts"].empty());
+  const auto& attempt = m["attempts"][0];
+  EXPECT_GT(attempt["max_friction_use"].get<double>(), 0.6) << attempt.dump();
+  EXPECT_TRUE(attempt["squeezed_harder_in"].is_string()) << attempt.dump();
+}
+
 // A camera displaced by 4 cm and turned by 0.04 rad: the episode calibrates it first (auto) and sorts.
 TEST(EpisodeScenario, ADisplacedCameraIsCalibratedBeforeSorting) {
   const auto m = Episode("displaced", "--seed 7 --objects 3 --camera-shift 0.04 --camera-turn 0.04");

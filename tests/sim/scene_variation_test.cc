@@ -92,7 +92,8 @@ TEST(SceneVariation, ColourJitterLeavesTheOtherDrawsAsTheyWere) {
     std::mt19937_64 rng(5);
     ApplyVariation(model, v, rng);
     const int c = model.Id(mjOBJ_CAMERA, "kinect");
-    return Eigen::Vector3d(Eigen::Map<const Eigen::Vector3d>(model.get()->cam_pos + 3 * c));
+    // What the episode draws next (its objects and their poses) too.
+    return std::make_pair(Eigen::Vector3d(Eigen::Map<const Eigen::Vector3d>(model.get()->cam_pos + 3 * c)), rng());
   };
   EXPECT_EQ(camera(0), camera(0.7));
 }
