@@ -1,5 +1,7 @@
 #include "app/cli/sweep_command.h"
 
+#include <csignal>
+
 #include <cstdio>
 #include <iostream>
 #include <memory>
@@ -44,6 +46,13 @@ void AddSweepCommand(CLI::App& app, std::function<int()>& run, const std::vector
       ParseShard(*shard, *o);
       const SweepRun r = RunSweep(*o, command_line);
       const auto& s = r.summary;
+      if (r.stopped_by != 0) {
+        std::printf("Sweep %s stopped by %s: %d episodes finished and recorded in this run, %d in flight ended and "
+                    "not recorded; `--resume` runs the rest. Summary of what is done: %s\n",
+                    o->spec.filename().string().c_str(), r.stopped_by == SIGINT ? "SIGINT" : "SIGTERM", r.ran,
+                    r.ended_in_flight, (o->out / "summary.md").string().c_str());
+        return 128 + r.stopped_by;
+      }
       std::printf("Sweep %s: %d of %d episodes in this shard run now (%d were already done, %d failed to run) in %.0f s. "
                   "All %d episodes in %s: %d items, correct-sort rate %.1f %% (95 %% CI %.1f-%.1f %%).\nSummary: %s\n",
                   o->spec.filename().string().c_str(), r.ran, r.in_shard, r.already, r.crashed, r.wall_time_s,

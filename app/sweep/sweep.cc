@@ -10,6 +10,7 @@
 #include <spdlog/spdlog.h>
 
 #include <chrono>
+#include <csignal>
 #include <fstream>
 #include <map>
 #include <set>
@@ -22,6 +23,7 @@
 #include "app/common/output_dir.h"
 #include "app/common/progress.h"
 #include "app/common/wall_clock.h"
+#include "app/sweep/sweep_lock.h"
 #include "app/recognition/default_model.h"
 #include "app/sweep/sweep_record.h"
 #include "app/sweep/sweep_report.h"
@@ -139,6 +141,32 @@ struct Worker {
   WallClock::time_point started;
 };
 
+// A SIGINT or SIGTERM asks the sweep to stop: set by the handler, read by the runner's loop.
+volatile std::sig_atomic_t g_stop_signal = 0;
+extern "C" void RequestStop(int signal) { g_stop_signal = signal; }
+
+// SIGINT and SIGTERM handled while the sweep runs; the previous handlers back after it.
+class StopOnSignals {
+ public:
+  StopOnSignals() {
+    g_stop_signal = 0;
+    struct sigaction stop {};
+    stop.sa_handler = RequestStop;
+    sigemptyset(&stop.sa_mask);
+    sigaction(SIGINT, &stop, &old_int_);
+    sigaction(SIGTERM, &stop, &old_term_);
+  }
+  ~StopOnSignals() {
+    sigaction(SIGINT, &old_int_, nullptr);
+    sigaction(SIGTERM, &old_term_, nullptr);
+  }
+  StopOnSignals(const StopOnSignals&) = delete;
+  StopOnSignals& operator=(const StopOnSignals&) = delete;
+
+ private:
+  struct sigaction old_int_ {}, old_term_ {};
+};
+
 // What every episode of the sweep shares.
 struct SweepSetup {
   const SweepSpec& spec;
@@ -155,8 +183,10 @@ pid_t Spawn(const std::vector<std::string>& args, const std::filesystem::path& l
   const pid_t pid = fork();
   if (pid < 0) throw std::runtime_error("sweep: cannot start a worker process (fork failed)");
   if (pid == 0) {
-    // A worker dies with the sweep (no orphans writing into a folder that a --resume reuses).
+    // A worker dies with the sweep (no orphans writing into a folder that a --resume reuses), and a
+    // terminal's Ctrl-C reaches the sweep only, which ends its workers itself.
     prctl(PR_SET_PDEATHSIG, SIGKILL);
+    setpgid(0, 0);
     const int fd = open(log_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
     if (fd >= 0) {
       dup2(fd, 1);
@@ -251,7 +281,7 @@ class EpisodeRunner {
   void Run(const std::vector<int>& todo) {
     Progress progress("sweep " + setup_.spec.source.filename().string(), static_cast<int>(todo.size()));
     size_t next = 0;
-    while (next < todo.size() || !running_.empty()) {
+    while ((next < todo.size() || !running_.empty()) && g_stop_signal == 0) {
       while (next < todo.size() && static_cast<int>(running_.size()) < setup_.options.jobs) {
         Worker w = StartEpisode(setup_, todo[next++]);
         running_[w.pid] = w;
@@ -260,10 +290,22 @@ class EpisodeRunner {
       KillOverdue(progress);
       std::this_thread::sleep_for(std::chrono::milliseconds(50));
     }
+    if (g_stop_signal != 0) EndInFlight();
     progress.Finish();
   }
 
  private:
+  // Asked to stop: the episodes still running are ended and not recorded (a --resume runs them).
+  void EndInFlight() {
+    for (const auto& [pid, worker] : running_) {
+      int status = 0;
+      kill(pid, SIGKILL);
+      waitpid(pid, &status, 0);
+      ++run_.ended_in_flight;
+    }
+    running_.clear();
+  }
+
   // Records a worker that has ended, if one has. Returns whether one had.
   bool ReapOne(Progress& progress) {
     int status = 0;
@@ -319,6 +361,7 @@ SweepRun RunSweep(const SweepOptions& options, const std::vector<std::string>& c
   const ObjectSet set = LoadObjectSet(spec.object_set);
   LoadScene(spec.scene);  // Fails here, once, rather than in every worker.
   PrepareOutputDir(options.out);
+  const SweepLock lock(options.out);  // Before anything in the folder is read or written.
   const std::filesystem::path results_file = options.out / "results.jsonl";
   const std::filesystem::path spec_copy = options.out / "spec.yaml";
   const std::string spec_text = SpecCopyText(options);
@@ -339,7 +382,11 @@ SweepRun RunSweep(const SweepOptions& options, const std::vector<std::string>& c
 
   SweepResultsWriter writer(results_file);
   const SweepSetup setup{spec, options, model};
-  EpisodeRunner(setup, writer, finished.records, run).Run(todo);
+  {
+    const StopOnSignals stop;
+    EpisodeRunner(setup, writer, finished.records, run).Run(todo);
+    run.stopped_by = g_stop_signal;
+  }
   writer.Close();
   run.wall_time_s = SecondsSince(wall_start);
   run.summary = WriteSweepReport(options.out, spec, finished.records);

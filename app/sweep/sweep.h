@@ -31,12 +31,16 @@ struct SweepRun {
   int in_shard = 0;   ///< Of them, this shard's.
   int already = 0;    ///< Found in results.jsonl.
   int ran = 0, crashed = 0;
+  /// The signal (SIGINT, SIGTERM) that stopped the sweep early, 0 if it ran to the end; the episodes
+  /// it ended in flight are not recorded (--resume runs them).
+  int stopped_by = 0;
+  int ended_in_flight = 0;
   double wall_time_s = 0;
   nlohmann::json summary;  ///< summary.json of everything in results.jsonl.
 };
 
 /// @throws std::invalid_argument for a bad spec (naming it) or --set, a bad shard or job count, an
-///         output folder holding another spec's results, results without --resume, or (on --resume) a
+///         output folder another sweep is running in (its sweep.lock held), one holding another spec's results, results without --resume, or (on --resume) a
 ///         damaged line in results.jsonl ("<file> line <n>: <key>: <what>"; a cut-short last line is
 ///         dropped and its episode runs again).
 /// @throws std::runtime_error "cannot write '<file>'" if a result or summary cannot be written (a

@@ -261,4 +261,50 @@ TEST(EpisodeScenario, SweepKilledAndResumedRunsEveryEpisodeOnce) {
   EXPECT_TRUE(std::filesystem::exists(out + "/plot_objects.png"));
 }
 
+// SIGTERM part-way (and SIGINT alike): the sweep ends its workers, records nothing half-done, exits
+// 128 + 15 saying so, and refuses a second sweep into the folder while it runs; --resume completes it
+// with every episode exactly once.
+TEST(EpisodeScenario, SweepStoppedBySigtermEndsCleanlyAndResumes) {
+  const std::string out = Temp("sweep_term");
+  std::filesystem::remove_all(out);
+  const std::string spec = Temp("sweep_term.yaml");
+  std::ofstream(spec) << "scene: " << kScene << "\nobject_set: " << kSet << "\nmodel: " << SORTCELL_TEST_MODEL
+                      << "\nseed: 20\nepisodes: 6\naxes:\n  objects: [1, 2]\n";
+  const std::string pid_file = Temp("sweep_term.pid"), stdout_file = Temp("sweep_term.out");
+  std::system((std::string(SORTCELL_BINARY) + " sweep " + spec + " -j 2 --out " + out + " > " + stdout_file +
+               " 2>&1 & echo $! > " + pid_file).c_str());
+  int pid = 0;
+  std::ifstream(pid_file) >> pid;
+  ASSERT_GT(pid, 0);
+  const auto start = std::chrono::steady_clock::now();
+  while (Lines(out + "/results.jsonl").empty() && std::chrono::steady_clock::now() - start < std::chrono::seconds(300)) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  }
+  const auto second = RunSortcell("sweep " + spec + " -j 1 --resume --out " + out);
+  EXPECT_EQ(second.exit_code, 2);
+  EXPECT_NE(second.err.find("another sweep is running in it"), std::string::npos) << second.err;
+  kill(pid, SIGTERM);
+  // Wait for the sweep's last words (it may be nobody's child to reap here, so not for its pid).
+  const auto said = [&] {
+    std::ifstream in(stdout_file);
+    return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  };
+  while (said().find("stopped by") == std::string::npos && std::chrono::steady_clock::now() - start < std::chrono::seconds(300)) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  }
+  EXPECT_NE(said().find("stopped by SIGTERM"), std::string::npos) << said();
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));  // Its lock released as it exits.
+  const auto before = Lines(out + "/results.jsonl");  // Every line whole JSON (Lines parses them).
+  ASSERT_GE(before.size(), 1u);
+  ASSERT_LT(before.size(), 6u) << "the sweep finished before it could be stopped";
+  const auto r = RunSortcell("sweep " + spec + " -j 2 --resume --out " + out);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  std::multiset<int> episodes;
+  for (const auto& l : Lines(out + "/results.jsonl")) {
+    episodes.insert(l["episode"].get<int>());
+    EXPECT_EQ(l["status"], "ok") << l.dump();
+  }
+  EXPECT_EQ(episodes, (std::multiset<int>{0, 1, 2, 3, 4, 5}));
+}
+
 }  // namespace

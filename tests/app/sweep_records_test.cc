@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "app/cli/episode_command.h"
+#include "app/sweep/sweep_lock.h"
 #include "app/sweep/sweep_record.h"
 #include "app/sweep/sweep_report.h"
 #include "app/sweep/sweep_spec.h"
@@ -185,6 +186,22 @@ TEST(SweepResults, ACalibratedEpisodesFiguresReadBack) {
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("error_m: missing"), std::string::npos) << e.what();
   }
+}
+
+TEST(SweepLock, OneSweepAtATimeInAFolder) {
+  const TempDir dir("lock");
+  {
+    const SweepLock first(dir.path());
+    try {
+      const SweepLock second(dir.path());
+      FAIL() << "a second lock was taken";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find("another sweep is running in it (it holds " + (dir / "sweep.lock").string()),
+                std::string::npos) << e.what();
+    }
+  }
+  EXPECT_NO_THROW(SweepLock again(dir.path())) << "released when the first ended";
+  EXPECT_THROW(SweepLock nowhere(dir / "missing" / "folder"), std::invalid_argument);
 }
 
 TEST(SweepResults, AFullDiskIsAnErrorNamingTheFile) {
