@@ -109,7 +109,16 @@ std::filesystem::path CheckModels(const SweepSpec& spec, const ObjectSet& set, c
 }
 
 // A last line cut short by an interruption is dropped; its episode runs again.
-void DropCutShortRecord(const std::filesystem::path& file, const SweepResults& results) {
+// Damaged lines are reported and the file rewritten without them (a new file moved over the old one,
+// so a crash leaves one or the other whole); a cut-short last line is dropped. Their episodes run again.
+void DropUnreadableRecords(const std::filesystem::path& file, const SweepResults& results) {
+  if (!results.damaged.empty()) {
+    for (const auto& line : results.damaged) spdlog::warn("{}: dropped; its episode runs again", line);
+    const std::filesystem::path rewritten = file.string() + ".rewrite";
+    WriteTextFile(rewritten, results.good_text);
+    std::filesystem::rename(rewritten, file);
+    return;
+  }
   if (results.file_bytes <= results.complete_bytes) return;
   spdlog::warn("{}: dropping an incomplete last record ({} bytes); its episode runs again", file.string(),
                results.file_bytes - results.complete_bytes);
@@ -370,7 +379,7 @@ SweepRun RunSweep(const SweepOptions& options, const std::vector<std::string>& c
   const std::filesystem::path model = CheckModels(spec, set, options.spec);
 
   if (!std::filesystem::exists(spec_copy)) WriteTextFile(spec_copy, spec_text);
-  DropCutShortRecord(results_file, finished);
+  DropUnreadableRecords(results_file, finished);
   SweepRun run;
   run.total = spec.EpisodeCount();
   const std::vector<int> todo = EpisodesToRun(options, finished.records, run);

@@ -39,10 +39,12 @@ struct SweepRun {
   nlohmann::json summary;  ///< summary.json of everything in results.jsonl.
 };
 
+/// On --resume a damaged line of results.jsonl is reported ("<file> line <n>: <key>: <what>: dropped;
+/// its episode runs again"), the file rewritten without it, and its episode run again; so is a
+/// cut-short last line.
 /// @throws std::invalid_argument for a bad spec (naming it) or --set, a bad shard or job count, an
-///         output folder another sweep is running in (its sweep.lock held), one holding another spec's results, results without --resume, or (on --resume) a
-///         damaged line in results.jsonl ("<file> line <n>: <key>: <what>"; a cut-short last line is
-///         dropped and its episode runs again).
+///         output folder another sweep is running in (its sweep.lock held), one holding another spec's
+///         results, or results without --resume.
 /// @throws std::runtime_error "cannot write '<file>'" if a result or summary cannot be written (a
 ///         full disk): the results written before stay.
 SweepRun RunSweep(const SweepOptions& options, const std::vector<std::string>& command_line);

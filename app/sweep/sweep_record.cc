@@ -159,12 +159,15 @@ SweepResults ReadSweepResults(const std::filesystem::path& file) {
     const std::string_view content(text.data() + start, end - start);
     start = end + 1;
     results.complete_bytes = start;
-    if (content.find_first_not_of(" \t\r") == std::string_view::npos) continue;
-    try {
-      results.records.push_back(ParseRecord(content));
-    } catch (const std::invalid_argument& e) {
-      throw std::invalid_argument(file.string() + " line " + std::to_string(line) + ": " + e.what());
+    if (content.find_first_not_of(" \t\r") != std::string_view::npos) {
+      try {
+        results.records.push_back(ParseRecord(content));
+      } catch (const std::invalid_argument& e) {
+        results.damaged.push_back(file.string() + " line " + std::to_string(line) + ": " + e.what());
+        continue;
+      }
     }
+    results.good_text.append(content).push_back('\n');
   }
   return results;
 }

@@ -67,15 +67,19 @@ void ReadSummaryAndItems(const nlohmann::json& json, EpisodeSummary& summary, st
 /// results.jsonl as read.
 struct SweepResults {
   std::vector<SweepRecord> records;
+  /// Complete lines that are not JSON or not a record: "<file> line <n>: <key>: <what>" each. Their
+  /// episodes have no record, so a --resume runs them again.
+  std::vector<std::string> damaged;
+  /// The file's good lines (and blank ones) as they were, for rewriting it without the damaged ones.
+  std::string good_text;
   /// Length of the file up to the end of its last complete line. A last line without its newline
   /// was cut short by an interruption: it is no record, and its episode runs again.
   size_t complete_bytes = 0;
   size_t file_bytes = 0;
 };
 
-/// Reads results.jsonl (none: no records). Blank lines are skipped.
-/// @throws std::invalid_argument "<file> line <n>: <key>: <what>" for a complete line that is not
-///         JSON or not a record (a damaged line anywhere but a cut-short last one).
+/// Reads results.jsonl (none: no records). Blank lines are skipped; a damaged complete line (not JSON
+/// or not a record) is listed in `damaged`, not read.
 /// @throws std::runtime_error "cannot read '<file>'" if it exists but cannot be read.
 SweepResults ReadSweepResults(const std::filesystem::path& file);
 

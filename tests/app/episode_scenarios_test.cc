@@ -305,6 +305,33 @@ TEST(EpisodeScenario, SweepStoppedBySigtermEndsCleanlyAndResumes) {
     EXPECT_EQ(l["status"], "ok") << l.dump();
   }
   EXPECT_EQ(episodes, (std::multiset<int>{0, 1, 2, 3, 4, 5}));
+
+  // A line damaged in the middle (a disk error, a bad merge): reported by its number, dropped, its
+  // episode run again; the other lines kept as they were.
+  std::vector<std::string> text;
+  {
+    std::ifstream in(out + "/results.jsonl");
+    for (std::string line; std::getline(in, line);) text.push_back(line);
+  }
+  ASSERT_EQ(text.size(), 6u);
+  const int damaged_episode = nlohmann::json::parse(text[2])["episode"];
+  text[2] = R"({"episode":)" + std::to_string(damaged_episode) + R"(,"status":"ok","summ)";
+  {
+    std::ofstream rewrite(out + "/results.jsonl");
+    for (const auto& line : text) rewrite << line << "\n";
+  }
+  const auto repaired = RunSortcell("sweep " + spec + " -j 2 --resume --out " + out);
+  ASSERT_EQ(repaired.exit_code, 0) << repaired.err;
+  EXPECT_NE(repaired.err.find("results.jsonl line 3: "), std::string::npos) << repaired.err;
+  EXPECT_NE(repaired.err.find("dropped; its episode runs again"), std::string::npos) << repaired.err;
+  std::vector<std::string> after;
+  {
+    std::ifstream in(out + "/results.jsonl");
+    for (std::string line; std::getline(in, line);) after.push_back(line);
+  }
+  ASSERT_EQ(after.size(), 6u);
+  for (int i : {0, 1, 3, 4, 5}) EXPECT_EQ(after[i < 2 ? i : i - 1], text[i]) << "kept as it was";
+  EXPECT_EQ(nlohmann::json::parse(after[5])["episode"], damaged_episode) << "run again";
 }
 
 }  // namespace

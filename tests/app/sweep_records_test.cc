@@ -215,12 +215,16 @@ TEST(SweepResults, AFullDiskIsAnErrorNamingTheFile) {
   }
 }
 
-// results.jsonl with `middle` as line 2 between two good records: the error reading it.
+// results.jsonl with `middle` as line 2 between two good records: what reading it says of line 2
+// (the two good records read, and kept for the rewrite).
 std::string ErrorWithLine2(const std::string& name, const std::string& middle) {
   const TempDir dir("results_of_" + name);  // A folder name no key contains.
-  const auto file = WriteFile(dir / "results.jsonl",
-                              Dump(OkRecord(0, {})) + "\n" + middle + "\n" + Dump(OkRecord(2, {})) + "\n");
-  return ErrorOf([&] { ReadSweepResults(file); });
+  const std::string good = Dump(OkRecord(0, {})) + "\n", other = Dump(OkRecord(2, {})) + "\n";
+  const auto file = WriteFile(dir / "results.jsonl", good + middle + "\n" + other);
+  const SweepResults results = ReadSweepResults(file);
+  EXPECT_EQ(results.records.size(), 2u);
+  EXPECT_EQ(results.good_text, good + other);
+  return results.damaged.size() == 1 ? results.damaged[0] : "";
 }
 
 // A good record with one change.
@@ -471,16 +475,18 @@ TEST(SweepCli, UnknownSetKeyIsAOneLineError) {
                                     "--set: unknown sweep spec key 'episodez'");
 }
 
-TEST(SweepCli, ResumeRefusesADamagedMiddleLineAndKeepsTheFile) {
+// A --resume re-runs a damaged middle line's episode (tests/app/episode_scenarios_test.cc); one that is
+// refused (here: its model is missing) leaves the damaged file as it was.
+TEST(SweepCli, ARefusedResumeLeavesADamagedFileAsItWas) {
   const TempDir dir("sweep_cli_damaged");
-  const auto spec = WriteSpec(dir, "episodes: 3\n");
+  const auto spec = WriteSpec(dir, "episodes: 3\nmodel: /nonexistent/m.model.json\n");
   const auto out = dir / "out";
   std::filesystem::create_directories(out);
   std::filesystem::copy_file(spec, out / "spec.yaml");
   const std::string results = Dump(OkRecord(0, {})) + "\n" + R"({"episode":1,"sta)" + "\n" + Dump(OkRecord(2, {})) + "\n";
   WriteFile(out / "results.jsonl", results);
   sortcell_test::ExpectOneLineError(sortcell_test::RunSortcell("sweep " + spec.string() + " --resume --out " + out.string()),
-                                    (out / "results.jsonl").string() + " line 2: not a JSON record");
+                                    "/nonexistent/m.model.json");
   EXPECT_EQ(Read(out / "results.jsonl"), results);
 }
 
