@@ -13,6 +13,7 @@ packages=(
   nlohmann-json3-dev libcli11-dev libyaml-cpp-dev libspdlog-dev libsvm-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   ffmpeg gnuplot-nox
+  parallel
 )
 
 missing=()

@@ -356,7 +356,11 @@ std::string MarkdownCalibration(const nlohmann::json& c) {
 }
 
 nlohmann::json WriteSweepReport(const std::filesystem::path& dir, const SweepSpec& spec,
-                                const std::vector<SweepRecord>& records) {
+                                const std::vector<SweepRecord>& in_any_order) {
+  // In episode order: sums of floating-point figures then do not depend on the order the episodes
+  // finished in (shards merged give the unsharded run's summary, to the last bit).
+  std::vector<SweepRecord> records = in_any_order;
+  std::stable_sort(records.begin(), records.end(), [](const auto& a, const auto& b) { return a.episode < b.episode; });
   Tally tally;
   for (const auto& r : records) tally.Add(r);
   const GroupFigures all = Figures(tally);
