@@ -76,11 +76,7 @@ nlohmann::json CalibrationJson(const cell::HandEyeCalibration& calibration, cons
 }
 
 CalibrationFigures RunCalibration(const EpisodeOptions& options, const std::vector<std::string>& command_line) {
-  if (!(options.light_intensity > 0)) throw std::invalid_argument("--light-intensity: expected > 0");
-  if (!(options.noise_scale >= 0)) throw std::invalid_argument("--noise-scale: expected >= 0");
-  if (!std::filesystem::is_regular_file(options.scene)) {
-    throw std::invalid_argument("scene '" + options.scene.string() + "': file not found");
-  }
+  CheckRigOptions(options);
   PrepareOutputDir(options.out);
   std::mt19937_64 rng = EpisodeRng(options.seed, 0);
   sim::Model model = LoadScene(options.scene);

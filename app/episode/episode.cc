@@ -233,12 +233,8 @@ EpisodeMetrics EpisodeRun::Metrics(const cell::PolicyResult& result, double wall
 
 EpisodeMetrics RunEpisode(const EpisodeOptions& options, const std::vector<std::string>& command_line) {
   if (options.max_attempts_per_object < 1) throw std::invalid_argument("--max-attempts: expected at least 1");
-  if (!(options.light_intensity > 0)) throw std::invalid_argument("--light-intensity: expected > 0");
-  if (!(options.noise_scale >= 0)) throw std::invalid_argument("--noise-scale: expected >= 0");
   if (!(options.time_limit_s >= 0)) throw std::invalid_argument("--time-limit: expected >= 0");
-  if (!std::filesystem::is_regular_file(options.scene)) {
-    throw std::invalid_argument("scene '" + options.scene.string() + "': file not found");
-  }
+  CheckRigOptions(options);
   const ObjectSet set = LoadObjectSet(options.object_set);
   const perception::RecognitionModel recognizer = perception::LoadModel(options.model);
   std::set<std::string> categories;

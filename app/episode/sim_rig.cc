@@ -1,5 +1,7 @@
 #include "app/episode/sim_rig.h"
 
+#include <stdexcept>
+
 #include "app/episode/sim_layout.h"
 #include "sim/object_placement.h"
 #include "sim/physics_profile.h"
@@ -7,6 +9,14 @@
 #include "sim/scene_variation.h"
 
 namespace sortcell::app {
+
+void CheckRigOptions(const EpisodeOptions& options) {
+  if (!(options.light_intensity > 0)) throw std::invalid_argument("--light-intensity: expected > 0");
+  if (!(options.noise_scale >= 0)) throw std::invalid_argument("--noise-scale: expected >= 0");
+  if (!std::filesystem::is_regular_file(options.scene)) {
+    throw std::invalid_argument("scene '" + options.scene.string() + "': file not found");
+  }
+}
 
 SimRig::SimRig(sim::Model& model, const cell::CellLayout& layout, const EpisodeOptions& options, std::mt19937_64& rng)
     : model_(model), rng_(rng) {

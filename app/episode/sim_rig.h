@@ -19,6 +19,10 @@
 
 namespace sortcell::app {
 
+/// Checks the options a rig is built from: the lights, the depth noise, the scene file.
+/// @throws std::invalid_argument naming the option or the scene.
+void CheckRigOptions(const EpisodeOptions& options);
+
 class SimRig {
  public:
   /// Applies options.variation to `model` (drawing from `rng`, which the rig keeps for the Kinect's

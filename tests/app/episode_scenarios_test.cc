@@ -222,23 +222,36 @@ std::vector<nlohmann::json> Lines(const std::string& file) {
   return lines;
 }
 
+// A sweep spec of `episodes` episodes of 1 or 2 objects, sorted with the test model.
+std::string SmallSweepSpec(const std::string& name, int seed, int episodes) {
+  const std::string spec = Temp(name + ".yaml");
+  std::ofstream(spec) << "scene: " << kScene << "\nobject_set: " << kSet << "\nmodel: " << SORTCELL_TEST_MODEL
+                      << "\nseed: " << seed << "\nepisodes: " << episodes << "\naxes:\n  objects: [1, 2]\n";
+  return spec;
+}
+
+// Starts `sortcell sweep spec -j 2 --out out` in the background (its output into `log`) and waits
+// until its first episode is recorded; returns its pid.
+int StartSweepAndWaitForARecord(const std::string& spec, const std::string& out, const std::string& log) {
+  const std::string pid_file = log + ".pid";
+  std::system((std::string(SORTCELL_BINARY) + " sweep " + spec + " -j 2 --out " + out + " > " + log +
+               " 2>&1 & echo $! > " + pid_file).c_str());
+  int pid = 0;
+  std::ifstream(pid_file) >> pid;
+  const auto start = std::chrono::steady_clock::now();
+  while (pid > 0 && Lines(out + "/results.jsonl").empty() && std::chrono::steady_clock::now() - start < std::chrono::seconds(300)) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  }
+  return pid;
+}
+
 TEST(EpisodeScenario, SweepKilledAndResumedRunsEveryEpisodeOnce) {
   const std::string out = Temp("sweep");
   std::filesystem::remove_all(out);
-  const std::string spec = Temp("sweep.yaml");
-  std::ofstream(spec) << "scene: " << kScene << "\nobject_set: " << kSet << "\nmodel: " << SORTCELL_TEST_MODEL
-                      << "\nseed: 10\nepisodes: 5\naxes:\n  objects: [1, 2]\n";
-  const std::string pid_file = Temp("sweep.pid");
-  std::system((std::string(SORTCELL_BINARY) + " sweep " + spec + " -j 2 --out " + out + " > /dev/null 2>&1 & echo $! > " +
-               pid_file).c_str());
-  int pid = 0;
-  std::ifstream(pid_file) >> pid;
+  const std::string spec = SmallSweepSpec("sweep", 10, 5);
+  const int pid = StartSweepAndWaitForARecord(spec, out, Temp("sweep.log"));
   ASSERT_GT(pid, 0);
   // Kill it (SIGKILL: no clean-up) once the first episode is in.
-  const auto start = std::chrono::steady_clock::now();
-  while (Lines(out + "/results.jsonl").empty() && std::chrono::steady_clock::now() - start < std::chrono::seconds(300)) {
-    std::this_thread::sleep_for(std::chrono::milliseconds(100));
-  }
   kill(pid, SIGKILL);
   std::this_thread::sleep_for(std::chrono::milliseconds(500));
   const size_t before = Lines(out + "/results.jsonl").size();
@@ -264,9 +277,7 @@ TEST(EpisodeScenario, SweepKilledAndResumedRunsEveryEpisodeOnce) {
 // The same spec run with -j 1, with -j 2, and as 3 shards merged gives the same record for every
 // episode, wall-clock figures aside.
 TEST(EpisodeScenario, SweepResultsDoNotDependOnTheExecutionPlan) {
-  const std::string spec = Temp("plans.yaml");
-  std::ofstream(spec) << "scene: " << kScene << "\nobject_set: " << kSet << "\nmodel: " << SORTCELL_TEST_MODEL
-                      << "\nseed: 30\nepisodes: 4\naxes:\n  objects: [1, 2]\n";
+  const std::string spec = SmallSweepSpec("plans", 30, 4);
   const auto by_episode = [](const std::string& dir) {
     std::map<int, nlohmann::json> records;
     for (auto record : Lines(dir + "/results.jsonl")) {
@@ -304,19 +315,11 @@ TEST(EpisodeScenario, SweepResultsDoNotDependOnTheExecutionPlan) {
 TEST(EpisodeScenario, SweepStoppedBySigtermEndsCleanlyAndResumes) {
   const std::string out = Temp("sweep_term");
   std::filesystem::remove_all(out);
-  const std::string spec = Temp("sweep_term.yaml");
-  std::ofstream(spec) << "scene: " << kScene << "\nobject_set: " << kSet << "\nmodel: " << SORTCELL_TEST_MODEL
-                      << "\nseed: 20\nepisodes: 6\naxes:\n  objects: [1, 2]\n";
-  const std::string pid_file = Temp("sweep_term.pid"), stdout_file = Temp("sweep_term.out");
-  std::system((std::string(SORTCELL_BINARY) + " sweep " + spec + " -j 2 --out " + out + " > " + stdout_file +
-               " 2>&1 & echo $! > " + pid_file).c_str());
-  int pid = 0;
-  std::ifstream(pid_file) >> pid;
+  const std::string spec = SmallSweepSpec("sweep_term", 20, 6);
+  const std::string stdout_file = Temp("sweep_term.out");
+  const int pid = StartSweepAndWaitForARecord(spec, out, stdout_file);
   ASSERT_GT(pid, 0);
   const auto start = std::chrono::steady_clock::now();
-  while (Lines(out + "/results.jsonl").empty() && std::chrono::steady_clock::now() - start < std::chrono::seconds(300)) {
-    std::this_thread::sleep_for(std::chrono::milliseconds(100));
-  }
   const auto second = RunSortcell("sweep " + spec + " -j 1 --resume --out " + out);
   EXPECT_EQ(second.exit_code, 2);
   EXPECT_NE(second.err.find("another sweep is running in it"), std::string::npos) << second.err;
