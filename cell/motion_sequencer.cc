@@ -109,7 +109,10 @@ bool MotionSequencer::Run(const MotionChain& chain, const ChainHooks& hooks) {
   }
   bool watched = !hooks.when;  // Whether the `when` hook has fired (or there is none).
   int from = 0;
-  for (const auto& [phase, last] : chain.phase_ends()) {
+  for (const auto& phase_end : chain.phase_ends()) {
+    // Named, not structured bindings: a C++17 lambda cannot capture those (clang refuses).
+    const auto& phase = phase_end.first;
+    const int last = phase_end.second;
     // The first sample of this phase where `when` holds splits it in two, with `then` in between.
     int split = last;
     for (int k = from; !watched && k < last; k += kWatchStride) {

@@ -7,6 +7,7 @@
 #include <cerrno>
 #include <cstring>
 #include <fstream>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <type_traits>
@@ -103,10 +104,11 @@ void CheckFormat(const Reader& r) {
   if (format.empty() || !format.isString() || format.string() != kFormat) {
     r.Fail(std::string("not a SortCell recognition model (expected \"format\": \"") + kFormat + "\")");
   }
-  const int version = static_cast<int>(r.Number(r.root, "version"));
+  const double version = r.Number(r.root, "version");
   if (version != kModelFormatVersion) {
-    r.Fail("format version " + std::to_string(version) + ", this build reads version " +
-           std::to_string(kModelFormatVersion));
+    std::ostringstream message;
+    message << "format version " << version << ", this build reads version " << kModelFormatVersion;
+    r.Fail(message.str());
   }
 }
 

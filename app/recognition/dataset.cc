@@ -43,7 +43,7 @@ nlohmann::json ReadManifest(const std::filesystem::path& dir, const std::string&
     throw std::invalid_argument(where + ": manifest.json is not valid JSON");
   }
   const std::string mwhere = where + ": manifest.json";
-  if (!m.is_object() || m.value("format", "") != kFormat) {
+  if (!m.is_object() || !m.contains("format") || m["format"] != kFormat) {
     throw std::invalid_argument(mwhere + " is not a SortCell dataset manifest");
   }
   const int version = Get<int>(m, "version", mwhere);

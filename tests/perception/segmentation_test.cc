@@ -229,7 +229,23 @@ TEST(PcdIo, ReadsAnOpenNiStyleXyzrgbaCaptureAndRejectsBadFiles) {
                                            "WIDTH 640\nHEIGHT 480\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS 307200\n"
                                            "DATA binary_compressed\nabc";
   EXPECT_EQ(ErrorOf([&] { LoadCloud(dir + "/truncated.pcd", true); }),
-            "PCD '" + dir + "/truncated.pcd': not a readable PCD file (damaged data)");
+            "PCD '" + dir + "/truncated.pcd': not a readable PCD file (the header claims 640x480 points, more than "
+            "the file holds)");
+  // Found by fuzzing (fuzz/regressions/pcd): PCL 1.13 allocates a compressed block's stored size
+  // unchecked, and reads a field by its name whatever its size.
+  std::ofstream(dir + "/huge_block.pcd") << "VERSION .7\nFIELDS x y z rgb\nSIZE 4 4 4 4\nTYPE F F F U\nCOUNT 1 1 1 1\n"
+                                            "WIDTH 2\nHEIGHT 1\nPOINTS 2\nDATA binary_compressed\n"
+                                         << std::string("\x10\x00\x00\x00\xff\xff\xff\xff", 8) << std::string(16, '\0');
+  EXPECT_EQ(ErrorOf([&] { LoadCloud(dir + "/huge_block.pcd", false); }),
+            "PCD '" + dir + "/huge_block.pcd': not a readable PCD file (damaged compressed data: sizes do not match the "
+            "header)");
+  std::ofstream(dir + "/short_rgb.pcd") << "VERSION .7\nFIELDS x y z rgb\nSIZE 4 4 4 1\nTYPE F F F U\nCOUNT 1 1 1 1\n"
+                                           "WIDTH 1\nHEIGHT 1\nPOINTS 1\nDATA ascii\n0.1 0.2 0.3 7\n";
+  EXPECT_EQ(ErrorOf([&] { LoadCloud(dir + "/short_rgb.pcd", false); }),
+            "PCD '" + dir + "/short_rgb.pcd': field 'rgb': expected one 4-byte packed colour per point");
+  std::ofstream(dir + "/empty.pcd");
+  EXPECT_EQ(ErrorOf([&] { LoadMosdObjectIds(dir + "/empty.pcd"); }),
+            "PCD '" + dir + "/empty.pcd': not a readable PCD file (no FIELDS or no points in the header)");
   EXPECT_EQ(ErrorOf([&] { LoadCloud(dir + "/none.pcd", true); }), "PCD '" + dir + "/none.pcd': no such file");
 }
 
