@@ -125,7 +125,15 @@ bool ResetToObserve(const Model& model, Data& data) {
 StepStatus Step(const Model& model, Data& data, int n) {
   std::array<int, mjNWARNING> before{};
   for (int i = 0; i < mjNWARNING; ++i) before[i] = data->warning[i].number;
-  for (int k = 0; k < n; ++k) mj_step(model.get(), data.get());
+  bool reset = false;
+  for (int k = 0; k < n; ++k) {
+    const double t = data->time;
+    mj_step(model.get(), data.get());
+    // A diverged state is reset by mj_resetData, which also clears the warning counters before it
+    // counts the new one: a second divergence leaves the counter where the first left it. Time going
+    // back to the start is the sign that always shows.
+    if (data->time <= t) reset = true;
+  }
 
   static constexpr std::array<const char*, mjNWARNING> kNames = {
       "inertia", "contactfull", "cnstrfull", "vgeomfull", "badqpos", "badqvel", "badqacc", "badctrl"};
@@ -141,6 +149,10 @@ StepStatus Step(const Model& model, Data& data, int n) {
                       std::to_string(data->time) + " s";
     }
     if (diverged) break;
+  }
+  if (reset && status.code != StepStatus::kDiverged) {
+    status.code = StepStatus::kDiverged;
+    status.detail = "state reset by MuJoCo (bad qpos, qvel or qacc) at t=" + std::to_string(data->time) + " s";
   }
   return status;
 }

@@ -89,7 +89,8 @@ struct StepStatus {
 /// in place) if it has one, else to the default state. Returns whether the keyframe exists.
 bool ResetToObserve(const Model& model, Data& data);
 
-/// Steps `n` times and checks d->warning[] for counters that grew during these steps.
+/// Steps `n` times and checks d->warning[] for counters that grew during these steps; a state MuJoCo
+/// reset (time back at the start) is kDiverged even when the counters do not show it.
 StepStatus Step(const Model& model, Data& data, int n = 1);
 
 /// Names of the free bodies (the movable objects), in body order.

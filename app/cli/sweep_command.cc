@@ -33,6 +33,9 @@ void AddSweepCommand(CLI::App& app, std::function<int()>& run, const std::vector
   cmd->add_option("--out", o->out, "Output folder (created if missing)")->required();
   cmd->add_option("-j,--jobs", o->jobs, "Worker processes")->check(CLI::Range(1, 256))->capture_default_str();
   cmd->add_flag("--resume", o->resume, "Keep results.jsonl and run only the episodes missing from it");
+  cmd->add_flag("--metrics-only", o->metrics_only,
+                "For large sweeps: keep only results.jsonl and the summaries; an episode's folder is removed once its "
+                "record is written, except when its worker crashed or timed out (its log.txt stays)");
   cmd->add_option("--shard", *shard, "Run share i of N (episodes whose index is i-1 modulo N)")->capture_default_str();
   cmd->add_option("--set", o->sets,
                   "Override a key of the spec (repeatable): scene, object_set, model, seed, episodes, seeds, mode, "

@@ -15,6 +15,8 @@
 #include <stdexcept>
 #include <system_error>
 
+#include <unistd.h>
+
 #include "sortcell/git_revision.h"
 
 namespace sortcell::app {
@@ -43,11 +45,38 @@ void CloseChecked(std::ofstream& out, const std::filesystem::path& path) {
   }
 }
 
-void WriteTextFile(const std::filesystem::path& path, const std::string& text) {
+namespace {
+
+void WriteInPlace(const std::filesystem::path& path, const std::string& text) {
   errno = 0;
   std::ofstream out(path, std::ios::binary | std::ios::trunc);
   out << text;
   CloseChecked(out, path);
+}
+
+}  // namespace
+
+void WriteTextFile(const std::filesystem::path& path, const std::string& text) {
+  std::error_code ec;
+  const auto status = std::filesystem::status(path, ec);
+  if (std::filesystem::exists(status) && !std::filesystem::is_regular_file(status)) return WriteInPlace(path, text);  // A device or pipe.
+  // Written beside it and renamed over it: a process killed mid-write (a sweep's SIGKILL) leaves the
+  // old file or the new one, never half of one.
+  const std::filesystem::path partial = path.string() + ".partial" + std::to_string(::getpid());
+  try {
+    WriteInPlace(partial, text);
+  } catch (const std::runtime_error&) {
+    const int reason = errno;
+    std::error_code ignored;
+    std::filesystem::remove(partial, ignored);
+    throw std::runtime_error("cannot write '" + path.string() + "'" +
+                             (reason != 0 ? std::string(": ") + std::strerror(reason) : std::string()));
+  }
+  std::filesystem::rename(partial, path, ec);
+  if (ec) {
+    std::filesystem::remove(partial, ec);
+    throw std::runtime_error("cannot write '" + path.string() + "': " + ec.message());
+  }
 }
 
 void WriteJson(const std::filesystem::path& path, const nlohmann::json& json) {

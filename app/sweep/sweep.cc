@@ -3,6 +3,7 @@
 #include <fcntl.h>
 #include <signal.h>
 #include <sys/prctl.h>
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -114,9 +115,7 @@ std::filesystem::path CheckModels(const SweepSpec& spec, const ObjectSet& set, c
 void DropUnreadableRecords(const std::filesystem::path& file, const SweepResults& results) {
   if (!results.damaged.empty()) {
     for (const auto& line : results.damaged) spdlog::warn("{}: dropped; its episode runs again", line);
-    const std::filesystem::path rewritten = file.string() + ".rewrite";
-    WriteTextFile(rewritten, results.good_text);
-    std::filesystem::rename(rewritten, file);
+    WriteTextFile(file, results.good_text);  // Atomic: the old file stays until the new one is whole.
     return;
   }
   if (results.file_bytes <= results.complete_bytes) return;
@@ -254,12 +253,13 @@ std::string LastLine(const std::filesystem::path& file) {
 
 // The record of a worker that ended with wait status `status`: its metrics.json if it exited 0 and
 // left a readable one, else what is known of the failure.
-SweepRecord FinishedRecord(const Worker& w, int status, bool timed_out) {
+SweepRecord FinishedRecord(const Worker& w, int status, const rusage& usage, bool timed_out) {
   SweepRecord record;
   record.episode = w.episode;
   record.seed = w.seed;
   record.axes = w.axes;
   record.wall_time_s = SecondsSince(w.started);
+  record.peak_memory_mb = usage.ru_maxrss / 1024.0;  // Linux gives kibibytes.
   const std::filesystem::path metrics_file = w.dir / "metrics.json";
   std::string problem;
   if (!timed_out && WIFEXITED(status) && WEXITSTATUS(status) == 0 && std::filesystem::exists(metrics_file)) {
@@ -318,10 +318,11 @@ class EpisodeRunner {
   // Records a worker that has ended, if one has. Returns whether one had.
   bool ReapOne(Progress& progress) {
     int status = 0;
-    const pid_t pid = waitpid(-1, &status, WNOHANG);
+    rusage usage{};
+    const pid_t pid = wait4(-1, &status, WNOHANG, &usage);
     const auto it = running_.find(pid);
     if (pid <= 0 || it == running_.end()) return false;
-    Finish(it->second, status, false, progress);
+    Finish(it->second, status, usage, false, progress);
     running_.erase(it);
     return true;
   }
@@ -330,9 +331,10 @@ class EpisodeRunner {
     for (auto it = running_.begin(); it != running_.end();) {
       if (SecondsSince(it->second.started) > setup_.spec.episode_timeout_s) {
         int status = 0;
+        rusage usage{};
         kill(it->first, SIGKILL);
-        waitpid(it->first, &status, 0);
-        Finish(it->second, status, true, progress);
+        wait4(it->first, &status, 0, &usage);
+        Finish(it->second, status, usage, true, progress);
         it = running_.erase(it);
       } else {
         ++it;
@@ -340,13 +342,14 @@ class EpisodeRunner {
     }
   }
 
-  void Finish(const Worker& w, int status, bool timed_out, Progress& progress) {
-    SweepRecord record = FinishedRecord(w, status, timed_out);
+  void Finish(const Worker& w, int status, const rusage& usage, bool timed_out, Progress& progress) {
+    SweepRecord record = FinishedRecord(w, status, usage, timed_out);
     if (!record.ok()) {
       ++run_.crashed;
       spdlog::warn("episode {} {}: {}", record.episode, ToString(record.status), record.error.value_or(""));
     }
     writer_.Append(record);
+    if (setup_.options.metrics_only && record.ok()) std::filesystem::remove_all(w.dir);
     records_.push_back(std::move(record));
     ++run_.ran;
     progress.Advance();

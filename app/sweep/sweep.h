@@ -21,6 +21,9 @@ struct SweepOptions {
   int jobs = 1;
   bool resume = false;
   int shard = 1, shards = 1;  ///< This is shard `shard` (1-based) of `shards`.
+  /// Keep only results.jsonl and the summaries: an episode's folder goes once its record is written,
+  /// unless its worker crashed or timed out. Results do not depend on it.
+  bool metrics_only = false;
   /// --set KEY=VALUE: overrides of the spec's keys (LoadSweepSpec). They are part of the sweep:
   /// spec.yaml in the output folder lists them, and a --resume must give the same ones.
   std::vector<std::string> sets;

@@ -55,7 +55,7 @@ SweepRecord ParseRecord(std::string_view line) {
   nlohmann::json j;
   try {
     j = nlohmann::json::parse(line.begin(), line.end());
-  } catch (const nlohmann::json::parse_error& e) {
+  } catch (const nlohmann::json::exception& e) {  // parse_error, or out_of_range for a number past a double.
     throw std::invalid_argument(std::string("not a JSON record (damaged line?): ") + e.what());
   }
   try {
@@ -98,6 +98,7 @@ void to_json(nlohmann::json& j, const SweepRecord& v) {
        {"axes", v.axes},
        {"wall_time_s", v.wall_time_s},
        {"status", ToString(v.status)}};
+  if (v.peak_memory_mb) j["peak_memory_mb"] = *v.peak_memory_mb;
   if (v.ok()) {
     j["summary"] = v.summary;
     j["items"] = v.items;
@@ -114,6 +115,7 @@ void from_json(const nlohmann::json& j, SweepRecord& v) {
   ReadField(j, "", "axes", v.axes);
   if (!v.axes.is_object()) throw std::invalid_argument(std::string("axes: expected an object, found ") + v.axes.type_name());
   ReadField(j, "", "wall_time_s", v.wall_time_s);
+  ReadOptional(j, "peak_memory_mb", v.peak_memory_mb);
   ReadStatus(j, v.status);
   v.summary = EpisodeSummary{};
   v.items.clear();

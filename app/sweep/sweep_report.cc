@@ -320,6 +320,13 @@ std::vector<AxisGroup> GroupByObject(const std::vector<SweepRecord>& records) {
 
 // The episodes' hand-eye self-calibrations: how many succeeded, the camera error they left (median
 // and largest) against the nominal pose's, and what they cost. Null when no episode calibrated.
+// The upper median and the largest of values (not empty).
+double Median(std::vector<double> v) {
+  std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
+  return v[v.size() / 2];
+}
+double Largest(const std::vector<double>& v) { return *std::max_element(v.begin(), v.end()); }
+
 nlohmann::json CalibrationSummary(const std::vector<SweepRecord>& records) {
   std::vector<double> error_m, error_rad, prior_m, prior_rad, duration_s;
   int ok = 0;
@@ -332,15 +339,10 @@ nlohmann::json CalibrationSummary(const std::vector<SweepRecord>& records) {
     duration_s.push_back(c.duration_s);
   }
   if (error_m.empty()) return nullptr;
-  const auto median = [](std::vector<double> v) {
-    std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
-    return v[v.size() / 2];
-  };
-  const auto largest = [](const std::vector<double>& v) { return *std::max_element(v.begin(), v.end()); };
   return {{"episodes", error_m.size()},       {"ok", ok},
-          {"median_error_m", median(error_m)}, {"max_error_m", largest(error_m)},
-          {"median_error_rad", median(error_rad)}, {"max_error_rad", largest(error_rad)},
-          {"max_prior_error_m", largest(prior_m)}, {"max_prior_error_rad", largest(prior_rad)},
+          {"median_error_m", Median(error_m)}, {"max_error_m", Largest(error_m)},
+          {"median_error_rad", Median(error_rad)}, {"max_error_rad", Largest(error_rad)},
+          {"max_prior_error_m", Largest(prior_m)}, {"max_prior_error_rad", Largest(prior_rad)},
           {"mean_duration_s", std::accumulate(duration_s.begin(), duration_s.end(), 0.0) / duration_s.size()}};
 }
 
@@ -353,6 +355,50 @@ std::string MarkdownCalibration(const nlohmann::json& c) {
       c["median_error_rad"].get<double>(), 1000 * c["max_error_m"].get<double>(), c["max_error_rad"].get<double>(),
       1000 * c["max_prior_error_m"].get<double>(), c["max_prior_error_rad"].get<double>(),
       c["mean_duration_s"].get<double>());
+}
+
+// How the workers ended (by status, with the episodes that did not end ok), and what they used.
+nlohmann::json RunsSummary(const std::vector<SweepRecord>& records) {
+  std::map<std::string, int> by_status{{"ok", 0}, {"crashed", 0}, {"timeout", 0}};
+  nlohmann::json failed = nlohmann::json::array();
+  for (const auto& r : records) {
+    ++by_status[ToString(r.status)];
+    if (!r.ok()) failed.push_back({{"episode", r.episode}, {"status", ToString(r.status)}, {"error", r.error.value_or("")}});
+  }
+  nlohmann::json runs = by_status;
+  runs["not_ok"] = failed;
+  return runs;
+}
+
+// The machine's figures: peak memory per worker and wall time per episode (median and largest).
+nlohmann::json ResourcesSummary(const std::vector<SweepRecord>& records) {
+  std::vector<double> memory_mb, wall_s;
+  for (const auto& r : records) {
+    if (r.peak_memory_mb) memory_mb.push_back(*r.peak_memory_mb);
+    wall_s.push_back(r.wall_time_s);
+  }
+  nlohmann::json resources = nlohmann::json::object();
+  if (!memory_mb.empty()) {
+    resources["worker_peak_memory_mb"] = {{"median", Median(memory_mb)}, {"max", Largest(memory_mb)}};
+  }
+  if (!wall_s.empty()) {
+    resources["episode_wall_time_s"] = {{"median", Median(wall_s)}, {"max", Largest(wall_s)}};
+  }
+  return resources;
+}
+
+std::string MarkdownRuns(const nlohmann::json& runs, const nlohmann::json& resources) {
+  std::string md = fmt::format("Worker runs: ok {}, crashed {}, timeout {}", runs["ok"].get<int>(), runs["crashed"].get<int>(),
+                               runs["timeout"].get<int>());
+  for (const auto& f : runs["not_ok"]) {
+    md += fmt::format("; episode {} {} ({})", f["episode"].get<int>(), f["status"].get<std::string>(), f["error"].get<std::string>());
+  }
+  md += ".";
+  if (resources.contains("worker_peak_memory_mb")) {
+    const auto& m = resources["worker_peak_memory_mb"];
+    md += fmt::format(" Peak memory per worker: median {:.0f} MiB, largest {:.0f} MiB.", m["median"].get<double>(), m["max"].get<double>());
+  }
+  return md + "\n\n";
 }
 
 nlohmann::json WriteSweepReport(const std::filesystem::path& dir, const SweepSpec& spec,
@@ -370,6 +416,9 @@ nlohmann::json WriteSweepReport(const std::filesystem::path& dir, const SweepSpe
   nlohmann::json by_axis = nlohmann::json::object();
   std::string csv = CsvHeader() + CsvRow("all", "all", all);
   std::string md = MarkdownOverview(spec, all);
+  summary["runs"] = RunsSummary(records);
+  summary["resources"] = ResourcesSummary(records);
+  md += MarkdownRuns(summary["runs"], summary["resources"]);
   summary["calibration"] = CalibrationSummary(records);
   md += MarkdownCalibration(summary["calibration"]);
   for (const auto& axis : spec.axes) {

@@ -16,10 +16,13 @@
 #include <nlohmann/json.hpp>
 
 #include "run_sortcell.h"
+#include "sweep_test_support.h"
 
 namespace {
 
+using sortcell_test::Lines;
 using sortcell_test::RunSortcell;
+using sortcell_test::WithoutWallClock;
 
 const std::string kSource = SORTCELL_SOURCE_DIR;
 const std::string kScene = kSource + "/scenes/cell.xml";
@@ -192,17 +195,6 @@ TEST(EpisodeScenario, OutOfReachObjectIsReportedAndTheRestSorted) {
   EXPECT_EQ(m["summary"]["outcomes"]["unreachable"], 1);
 }
 
-// metrics.json without its wall-clock figures.
-nlohmann::json WithoutWallClock(nlohmann::json m) {
-  for (const char* key : {"wall_time_s", "real_time_factor", "perception_ms_per_frame", "render_ms_per_frame",
-                          "video_render_wall_s", "profile_wall_s"}) {
-    m["summary"].erase(key);
-  }
-  // The physics profile's seconds are wall clock; its counts (steps, contacts, rows) are not.
-  for (const char* key : {"collision_s", "constraint_s", "smooth_s", "step_s"}) m["summary"]["physics_profile"].erase(key);
-  return m;
-}
-
 TEST(EpisodeScenario, SameSeedSameMetrics) {
   const auto a = Episode("det_a", "--seed 5 --objects 3");
   const auto b = Episode("det_b", "--seed 5 --objects 3");
@@ -212,22 +204,9 @@ TEST(EpisodeScenario, SameSeedSameMetrics) {
   EXPECT_NE(WithoutWallClock(a)["items"], WithoutWallClock(c)["items"]);
 }
 
-std::vector<nlohmann::json> Lines(const std::string& file) {
-  std::vector<nlohmann::json> lines;
-  std::ifstream in(file);
-  std::string line;
-  while (std::getline(in, line)) {
-    if (!line.empty()) lines.push_back(nlohmann::json::parse(line));
-  }
-  return lines;
-}
-
 // A sweep spec of `episodes` episodes of 1 or 2 objects, sorted with the test model.
 std::string SmallSweepSpec(const std::string& name, int seed, int episodes) {
-  const std::string spec = Temp(name + ".yaml");
-  std::ofstream(spec) << "scene: " << kScene << "\nobject_set: " << kSet << "\nmodel: " << SORTCELL_TEST_MODEL
-                      << "\nseed: " << seed << "\nepisodes: " << episodes << "\naxes:\n  objects: [1, 2]\n";
-  return spec;
+  return sortcell_test::SmallSweepSpec(Temp(name + ".yaml"), seed, episodes);
 }
 
 // Starts `sortcell sweep spec -j 2 --out out` in the background (its output into `log`) and waits
@@ -278,14 +257,7 @@ TEST(EpisodeScenario, SweepKilledAndResumedRunsEveryEpisodeOnce) {
 // episode, wall-clock figures aside.
 TEST(EpisodeScenario, SweepResultsDoNotDependOnTheExecutionPlan) {
   const std::string spec = SmallSweepSpec("plans", 30, 4);
-  const auto by_episode = [](const std::string& dir) {
-    std::map<int, nlohmann::json> records;
-    for (auto record : Lines(dir + "/results.jsonl")) {
-      record.erase("wall_time_s");
-      records[record["episode"].get<int>()] = WithoutWallClock(record);
-    }
-    return records;
-  };
+  const auto by_episode = [](const std::string& dir) { return sortcell_test::RecordsByEpisode(dir + "/results.jsonl"); };
   const std::string one = Temp("plan_j1"), two = Temp("plan_j2"), merged = Temp("plan_merged");
   for (const auto& dir : {one, two, merged}) std::filesystem::remove_all(dir);
   ASSERT_EQ(RunSortcell("sweep " + spec + " -j 1 --out " + one).exit_code, 0);

@@ -42,7 +42,7 @@ std::string ParallelRecipe() {
 // A summary without what depends on the wall clock.
 nlohmann::json WithoutWallClock(nlohmann::json j) {
   if (j.is_object()) {
-    for (const char* key : {"episode_wall_time_s", "real_time_factor"}) j.erase(key);
+    for (const char* key : {"episode_wall_time_s", "real_time_factor", "resources"}) j.erase(key);
     for (auto& [key, value] : j.items()) value = WithoutWallClock(value);
   }
   return j;

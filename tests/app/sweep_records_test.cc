@@ -114,14 +114,41 @@ TEST(SweepRecord, RoundTripKeepsEveryField) {
   failed.status = RunStatus::kTimeout;
   failed.signal = 9;
   failed.error = "killed after 900 s";
+  failed.peak_memory_mb = 312.5;
   const nlohmann::json f = failed;
   EXPECT_EQ(f["status"], "timeout");
+  EXPECT_EQ(f["peak_memory_mb"], 312.5);
+  EXPECT_FALSE(j.contains("peak_memory_mb")) << "absent when not measured";
   EXPECT_FALSE(f.contains("summary"));
   EXPECT_FALSE(f.contains("exit_code"));
   const SweepRecord failed_back = f.get<SweepRecord>();
   EXPECT_EQ(nlohmann::json(failed_back), f);
   EXPECT_EQ(failed_back.signal, 9);
+  EXPECT_EQ(failed_back.peak_memory_mb, 312.5);
   EXPECT_FALSE(failed_back.exit_code.has_value());
+}
+
+TEST(SweepReport, WorkerRunsAndTheirMemoryAreSummarised) {
+  const TempDir dir("report_runs");
+  SweepRecord ok = OkRecord(0, {});
+  ok.peak_memory_mb = 300;
+  SweepRecord slow;
+  slow.episode = 1;
+  slow.status = RunStatus::kTimeout;
+  slow.error = "killed after 1 s";
+  slow.peak_memory_mb = 500;
+  const nlohmann::json summary = WriteSweepReport(dir.path(), SweepSpec(), {slow, ok});
+  EXPECT_EQ(summary["runs"]["ok"], 1);
+  EXPECT_EQ(summary["runs"]["timeout"], 1);
+  EXPECT_EQ(summary["runs"]["crashed"], 0);
+  ASSERT_EQ(summary["runs"]["not_ok"].size(), 1u);
+  EXPECT_EQ(summary["runs"]["not_ok"][0]["episode"], 1);
+  EXPECT_EQ(summary["resources"]["worker_peak_memory_mb"]["max"], 500.0);
+  EXPECT_EQ(summary["resources"]["worker_peak_memory_mb"]["median"], 500.0) << "the upper median of two";
+  EXPECT_NE(Read(dir / "summary.md").find("Worker runs: ok 1, crashed 0, timeout 1; episode 1 timeout (killed after 1 s). "
+                                          "Peak memory per worker: median 500 MiB, largest 500 MiB."),
+            std::string::npos)
+      << Read(dir / "summary.md");
 }
 
 TEST(SweepRecord, StatusSpellings) {

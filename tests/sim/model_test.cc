@@ -38,6 +38,12 @@ TEST(Model, StepReportsDivergence) {
   const StepStatus status = Step(model, data, 1);
   EXPECT_EQ(status.code, StepStatus::kDiverged);
   EXPECT_NE(status.detail.find("badqvel"), std::string::npos) << status.detail;
+  // The second divergence: MuJoCo's reset clears the counter before counting it, so it stays at 1;
+  // the reset itself is seen.
+  EXPECT_EQ(Step(model, data, 50).code, StepStatus::kOk);
+  data->qvel[2] = std::numeric_limits<double>::quiet_NaN();
+  const StepStatus again = Step(model, data, 3);
+  EXPECT_EQ(again.code, StepStatus::kDiverged) << again.detail;
   EXPECT_EQ(FreeBodyNames(model), std::vector<std::string>{"ball"});
 }
 

@@ -1,0 +1,78 @@
+#pragma once
+// What the sweep tests share: small specs on the default cell with the test model, results.jsonl read
+// back, records without their wall-clock figures, and a sweep started in the background.
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+namespace sortcell_test {
+
+inline const std::string kSweepScene = std::string(SORTCELL_SOURCE_DIR) + "/scenes/cell.xml";
+inline const std::string kSweepSet = std::string(SORTCELL_SOURCE_DIR) + "/scenes/objects/paper.yaml";
+
+/// Every non-empty line of a results.jsonl, parsed.
+inline std::vector<nlohmann::json> Lines(const std::string& file) {
+  std::vector<nlohmann::json> lines;
+  std::ifstream in(file);
+  for (std::string line; std::getline(in, line);) {
+    if (!line.empty()) lines.push_back(nlohmann::json::parse(line));
+  }
+  return lines;
+}
+
+/// Writes a sweep spec at `file`: `episodes` episodes of 1 or 2 objects sorted with the test model,
+/// then `extra` (YAML lines) appended.
+inline std::string SmallSweepSpec(const std::string& file, int seed, int episodes, const std::string& extra = "") {
+  std::ofstream(file) << "scene: " << kSweepScene << "\nobject_set: " << kSweepSet << "\nmodel: " << SORTCELL_TEST_MODEL
+                      << "\nseed: " << seed << "\nepisodes: " << episodes << "\naxes:\n  objects: [1, 2]\n"
+                      << extra;
+  return file;
+}
+
+/// metrics.json (or a record of results.jsonl) without its wall-clock figures.
+inline nlohmann::json WithoutWallClock(nlohmann::json m) {
+  m.erase("wall_time_s");
+  m.erase("peak_memory_mb");
+  for (const char* key : {"wall_time_s", "real_time_factor", "perception_ms_per_frame", "render_ms_per_frame",
+                          "video_render_wall_s", "profile_wall_s"}) {
+    m["summary"].erase(key);
+  }
+  // The physics profile's seconds are wall clock; its counts (steps, contacts, rows) are not.
+  for (const char* key : {"collision_s", "constraint_s", "smooth_s", "step_s"}) m["summary"]["physics_profile"].erase(key);
+  return m;
+}
+
+/// The records of a results.jsonl by episode, without wall-clock figures.
+inline std::map<int, nlohmann::json> RecordsByEpisode(const std::string& results) {
+  std::map<int, nlohmann::json> records;
+  for (const auto& record : Lines(results)) records[record["episode"].get<int>()] = WithoutWallClock(record);
+  return records;
+}
+
+/// Starts `sortcell <args>` as a child of this process, its stdout and stderr into `log`; returns its pid.
+inline pid_t StartSortcell(const std::vector<std::string>& args, const std::string& log) {
+  std::vector<std::string> argv_text{SORTCELL_BINARY};
+  argv_text.insert(argv_text.end(), args.begin(), args.end());
+  std::vector<char*> argv;
+  for (auto& a : argv_text) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  const pid_t pid = fork();
+  if (pid == 0) {
+    if (!freopen(log.c_str(), "a", stdout) || !freopen(log.c_str(), "a", stderr)) _exit(126);
+    execv(SORTCELL_BINARY, argv.data());
+    _exit(127);
+  }
+  return pid;
+}
+
+}  // namespace sortcell_test
