@@ -13,7 +13,8 @@ packages=(
   nlohmann-json3-dev libcli11-dev libyaml-cpp-dev libspdlog-dev libsvm-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   ffmpeg gnuplot-nox
-  parallel
+  parallel slurm-wlm munge
+  clang
 )
 
 missing=()

@@ -1,0 +1,70 @@
+#!/usr/bin/env bash
+# Runs a sweep on a Slurm cluster: a job array of N shards, each `sortcell sweep SPEC --shard i/N` into
+# OUT/shard<i>, and a merge job that starts when all of them have ended (however they ended): it
+# concatenates their results.jsonl into OUT/merged and runs `sortcell sweep SPEC --resume` there, which
+# runs any episode a failed shard left out and writes the summary (OUT/merged/summary.md).
+#   scripts/slurm_sweep.sh SPEC N OUT [sortcell sweep options...]
+#   scripts/slurm_sweep.sh scenes/sweeps/paper_objects_100.yaml 8 out/cluster -j 2 --metrics-only
+# Options after OUT go to every shard and to the merge (--set ones must, so that the merge's --resume
+# matches). The job array and every shard resume (--resume), so a requeued shard continues where it
+# stopped. Environment: SORTCELL (the sortcell binary; default build/app/sortcell of this checkout, which
+# every node must see at the same path, as it must SPEC and OUT), SORTCELL_SLURM_WAIT=1 (wait for the
+# merge job to end and exit with its status), SBATCH_* (Slurm's own, e.g. SBATCH_PARTITION).
+set -euo pipefail
+if [ $# -lt 3 ]; then
+  echo "usage: $0 SPEC N OUT [sortcell sweep options...]" >&2
+  exit 2
+fi
+spec=$(realpath "$1")
+shards=$2
+out=$(realpath -m "$3")
+shift 3
+case "$shards" in ''|*[!0-9]*|0) echo "$0: N: expected a whole number of shards >= 1, got '$shards'" >&2; exit 2 ;; esac
+[ -f "$spec" ] || { echo "$0: SPEC '$1': no such file" >&2; exit 2; }
+sortcell=$(realpath "${SORTCELL:-$(dirname "$0")/../build/app/sortcell}")
+[ -x "$sortcell" ] || { echo "$0: no sortcell binary at '$sortcell' (build first, or set SORTCELL)" >&2; exit 2; }
+command -v sbatch >/dev/null || { echo "$0: sbatch not found: this is not a Slurm login node" >&2; exit 2; }
+# -j N among the options: that many CPUs per shard.
+cpus=1
+args=("$@")
+for ((i = 0; i < ${#args[@]}; ++i)); do
+  case "${args[i]}" in
+    -j|--jobs) cpus=${args[i + 1]:-1} ;;
+    -j*) cpus=${args[i]#-j} ;;
+    --jobs=*) cpus=${args[i]#--jobs=} ;;
+  esac
+done
+
+mkdir -p "$out/slurm"
+quoted_options=$(printf ' %q' "$@")
+cat > "$out/slurm/shard.sh" <<JOB
+#!/usr/bin/env bash
+set -euo pipefail
+exec $(printf %q "$sortcell") sweep $(printf %q "$spec")$quoted_options --resume \\
+  --shard "\${SLURM_ARRAY_TASK_ID}/$shards" --out $(printf %q "$out")/shard"\${SLURM_ARRAY_TASK_ID}"
+JOB
+cat > "$out/slurm/merge.sh" <<JOB
+#!/usr/bin/env bash
+set -euo pipefail
+merged=$(printf %q "$out/merged")
+mkdir -p "\$merged"
+: > "\$merged/results.jsonl"
+for shard in \$(seq 1 $shards); do
+  dir=$(printf %q "$out")/shard\$shard
+  [ -f "\$dir/spec.yaml" ] && [ ! -f "\$merged/spec.yaml" ] && cp "\$dir/spec.yaml" "\$merged/"
+  [ -f "\$dir/results.jsonl" ] && cat "\$dir/results.jsonl" >> "\$merged/results.jsonl"
+done
+exec $(printf %q "$sortcell") sweep $(printf %q "$spec")$quoted_options --resume --out "\$merged"
+JOB
+chmod +x "$out/slurm/shard.sh" "$out/slurm/merge.sh"
+
+array=$(sbatch --parsable --job-name=sortcell-sweep --array="1-$shards" --cpus-per-task="$cpus" \
+  --output="$out/slurm/shard_%a.log" "$out/slurm/shard.sh")
+array=${array%%;*}
+wait_flag=()
+[ "${SORTCELL_SLURM_WAIT:-0}" = 1 ] && wait_flag=(--wait)
+echo "Submitted $shards shards as job array $array; the merge waits for them. Results: $out/merged/summary.md"
+merge_status=0
+sbatch --parsable "${wait_flag[@]}" --job-name=sortcell-merge --dependency="afterany:$array" --cpus-per-task="$cpus" \
+  --output="$out/slurm/merge.log" "$out/slurm/merge.sh" || merge_status=$?
+exit "$merge_status"

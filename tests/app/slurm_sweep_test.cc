@@ -1,0 +1,91 @@
+// The Slurm path run, not only documented (label slow): a one-node cluster stood up on this machine
+// (scripts/slurm_local_cluster.sh: munged, slurmctld, slurmd on localhost), a small sweep submitted
+// through scripts/slurm_sweep.sh as a job array of 2 shards and a dependent merge job, and the merged
+// summary checked against the unsharded run's. Skipped without root or without the packages slurm-wlm
+// and munge (scripts/setup.sh installs them).
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "run_sortcell.h"
+#include "sweep_test_support.h"
+#include "temp_dir.h"
+
+namespace {
+
+const std::string kSource = SORTCELL_SOURCE_DIR;
+
+std::string Read(const std::string& file) {
+  std::ifstream in(file);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// A summary without what depends on the wall clock or the machine.
+nlohmann::json WithoutMachineFigures(nlohmann::json j) {
+  if (j.is_object()) {
+    for (const char* key : {"episode_wall_time_s", "real_time_factor", "resources"}) j.erase(key);
+    for (auto& [key, value] : j.items()) value = WithoutMachineFigures(value);
+  }
+  return j;
+}
+
+// The cluster, stopped however the test ends.
+class LocalCluster {
+ public:
+  explicit LocalCluster(std::string dir) : dir_(std::move(dir)) {
+    // Ports of this test process's own, so that a cluster already on this machine is left alone.
+    const int port = 20000 + static_cast<int>(getpid() % 20000);
+    env_ = "SORTCELL_SLURMCTLD_PORT=" + std::to_string(port) + " SORTCELL_SLURMD_PORT=" + std::to_string(port + 1) +
+           " SLURM_CONF=" + dir_ + "/slurm.conf ";
+    status_ = std::system((env_ + kSource + "/scripts/slurm_local_cluster.sh start " + dir_ + " > " + dir_ + ".log 2>&1").c_str());
+  }
+  ~LocalCluster() { std::system((kSource + "/scripts/slurm_local_cluster.sh stop " + dir_).c_str()); }
+  LocalCluster(const LocalCluster&) = delete;
+  LocalCluster& operator=(const LocalCluster&) = delete;
+
+  int exit_code() const { return WIFEXITED(status_) ? WEXITSTATUS(status_) : -1; }
+  const std::string& env() const { return env_; }
+
+ private:
+  std::string dir_, env_;
+  int status_ = -1;
+};
+
+TEST(SlurmSweep, AJobArrayOfShardsAndItsMergeGiveTheUnshardedSummary) {
+  if (getuid() != 0) GTEST_SKIP() << "slurmd needs root";
+  if (std::system("command -v slurmctld > /dev/null && command -v munged > /dev/null") != 0) {
+    GTEST_SKIP() << "Slurm is not installed (Debian packages slurm-wlm and munge)";
+  }
+  const sortcell_test::TempDir dir("slurm");
+  const LocalCluster cluster((dir / "cluster").string());
+  ASSERT_EQ(cluster.exit_code(), 0) << Read((dir / "cluster").string() + ".log");
+
+  const std::string spec = sortcell_test::SmallSweepSpec(dir / "spec.yaml", 43, 4);
+  const std::string out = (dir / "out").string();
+  const std::string submit = cluster.env() + "SORTCELL=" + SORTCELL_BINARY + " SORTCELL_SLURM_WAIT=1 " + kSource +
+                             "/scripts/slurm_sweep.sh " + spec + " 2 " + out + " -j 1 > " + out + ".log 2>&1";
+  ASSERT_EQ(std::system(submit.c_str()), 0) << Read(out + ".log") << Read(out + "/slurm/merge.log");
+  for (const char* shard : {"/shard1/results.jsonl", "/shard2/results.jsonl"}) {
+    EXPECT_EQ(sortcell_test::Lines(out + shard).size(), 2u) << shard << ": each shard ran its 2 episodes";
+  }
+  EXPECT_NE(Read(out + "/slurm/merge.log").find("0 of 4 episodes in this shard run now (4 were already done"),
+            std::string::npos)
+      << "the merge ran nothing itself: " << Read(out + "/slurm/merge.log");
+
+  const auto unsharded = sortcell_test::RunSortcell("sweep " + spec + " -j 2 --out " + (dir / "whole").string());
+  ASSERT_EQ(unsharded.exit_code, 0) << unsharded.err;
+  const auto merged = nlohmann::json::parse(Read(out + "/merged/summary.json"));
+  const auto whole = nlohmann::json::parse(Read((dir / "whole" / "summary.json").string()));
+  EXPECT_EQ(merged["episodes"], 4);
+  EXPECT_EQ(WithoutMachineFigures(merged), WithoutMachineFigures(whole));
+}
+
+}  // namespace
