@@ -8,6 +8,10 @@
 #include <algorithm>
 #include <cstdint>
 #include <fstream>
+#include <cstdlib>
+#include <map>
+#include <sstream>
+#include <utility>
 #include <stdexcept>
 #include <string>
 
@@ -34,47 +38,95 @@ void CheckCompressedSizes(const std::filesystem::path& file, unsigned int data_s
   }
 }
 
-// The file's header and data, checked where PCL 1.13 does not check (it crashes instead): a file
-// without a header, data shorter than the header says.
-pcl::PCLPointCloud2 ReadBlob(const std::filesystem::path& file, const std::string& where) {
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(file, ec)) throw std::invalid_argument(where + "no such file");
-  pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS);  // Errors are ours, one line each.
-  pcl::PCLPointCloud2 blob;
-  pcl::PCDReader reader;
-  Eigen::Vector4f origin;
-  Eigen::Quaternionf orientation;
-  int version = 0, binary = 0;
-  unsigned int data_start = 0;
-  int header = -1;
-  try {
-    header = reader.readHeader(file.string(), blob, origin, orientation, version, binary, data_start);
-  } catch (const std::exception& e) {  // PCL 1.13 throws std::out_of_range for some malformed headers.
-    throw std::invalid_argument(where + "not a readable PCD file (damaged header: " + e.what() + ")");
+// What the header's text says, read before PCL reads it: PCL 1.13 lets a later header line override an
+// earlier one and then sizes the data by one while it lays the points out by the other (its ASCII
+// reader writes past the cloud: found by fuzzing, seen by valgrind), and it allocates the points the
+// header claims before it looks at the data. Lines are matched as PCL matches them: the first word
+// (leading blanks skipped) by its prefix, COLUMNS for FIELDS, '#' for comments, up to the first line
+// that is none of these (PCL reads on past DATA while lines look like its own).
+struct HeaderText {
+  std::vector<std::string> fields;  ///< FIELDS.
+  double points = 0;       ///< POINTS, else WIDTH x HEIGHT.
+  double point_bytes = 0;  ///< The sum of SIZE x COUNT over the fields.
+};
+
+std::vector<std::string> Words(std::istringstream& line) {
+  std::vector<std::string> words;
+  for (std::string w; line >> w;) words.push_back(w);
+  return words;
+}
+
+double Number(const std::vector<std::string>& words, size_t i) {
+  return i < words.size() ? std::strtod(words[i].c_str(), nullptr) : 0.0;
+}
+
+// PCL drops a field with a COUNT below 1 and then reads freed memory for the others' names (valgrind):
+// one SIZE (1, 2, 4 or 8), TYPE (I, U, F) and COUNT (a whole number >= 1) per field.
+void CheckFieldLines(std::map<std::string, std::vector<std::string>>& lines, const std::string& where) {
+  const size_t fields = lines["FIELDS"].size();
+  const auto fail = [&](const std::string& what) {
+    throw std::invalid_argument(where + "not a readable PCD file (" + what + ")");
+  };
+  for (const char* key : {"SIZE", "TYPE", "COUNT"}) {
+    if (lines.count(key) && lines[key].size() != fields) fail(std::string(key) + " does not give one value per field");
   }
-  if (header < 0 || blob.fields.empty() || blob.width == 0 || blob.height == 0) {
-    throw std::invalid_argument(where + "not a readable PCD file (no FIELDS or no points in the header)");
+  for (const std::string& size : lines["SIZE"]) {
+    if (size != "1" && size != "2" && size != "4" && size != "8") fail("SIZE '" + size + "': expected 1, 2, 4 or 8");
   }
-  // PCL allocates what the header claims before it reads: a header that claims more points than the
-  // file could hold (even compressed: LZF shrinks at most ~100 times) is refused before that.
-  const double claimed_bytes = static_cast<double>(blob.width) * blob.height * blob.point_step;
-  const double file_bytes = static_cast<double>(std::filesystem::file_size(file, ec));
-  if (ec || claimed_bytes > 128 * file_bytes + (1 << 20)) {
-    throw std::invalid_argument(where + "not a readable PCD file (the header claims " + std::to_string(blob.width) + "x" +
-                                std::to_string(blob.height) + " points, more than the file holds)");
+  for (const std::string& type : lines["TYPE"]) {
+    if (type != "I" && type != "U" && type != "F") fail("TYPE '" + type + "': expected I, U or F");
   }
-  if (binary == 2) CheckCompressedSizes(file, data_start, claimed_bytes, where);
-  int read = -1;
-  try {
-    read = reader.read(file.string(), blob);
-  } catch (const std::exception& e) {
-    throw std::invalid_argument(where + "not a readable PCD file (damaged: " + e.what() + ")");
+  for (const std::string& count : lines["COUNT"]) {
+    if (count.empty() || count.size() > 7 || count.find_first_not_of("0123456789") != std::string::npos || std::stoi(count) < 1) {
+      fail("COUNT '" + count + "': expected a whole number of at least 1");
+    }
   }
-  if (read < 0) throw std::invalid_argument(where + "not a readable PCD file (damaged data)");
-  if (blob.data.size() != static_cast<size_t>(blob.width) * blob.height * blob.point_step) {
-    throw std::invalid_argument(where + "not a readable PCD file (the data does not match the header)");
+}
+
+HeaderText ScanHeaderText(const std::filesystem::path& file, const std::string& where) {
+  static const std::vector<std::pair<std::string, std::string>> kPrefixes{
+      {"VERSION", "VERSION"}, {"FIELDS", "FIELDS"}, {"COLUMNS", "FIELDS"}, {"SIZE", "SIZE"}, {"TYPE", "TYPE"}, {"COUNT", "COUNT"},
+      {"WIDTH", "WIDTH"},   {"HEIGHT", "HEIGHT"},  {"VIEWPOINT", "VIEWPOINT"}, {"POINTS", "POINTS"}, {"DATA", "DATA"}};
+  std::ifstream in(file, std::ios::binary);
+  std::map<std::string, std::vector<std::string>> values;
+  for (std::string line; std::getline(in, line);) {
+    std::istringstream words(line);
+    std::string word;
+    if (!(words >> word) || word[0] == '#') continue;
+    const auto known = std::find_if(kPrefixes.begin(), kPrefixes.end(),
+                                    [&](const auto& p) { return word.compare(0, p.first.size(), p.first) == 0; });
+    if (known == kPrefixes.end()) break;  // PCL's header ends at the first line that is none of its own.
+    if (values.count(known->second)) {
+      throw std::invalid_argument(where + "not a readable PCD file (header line '" + known->second + "' given twice)");
+    }
+    values[known->second] = Words(words);
   }
-  return blob;
+  CheckFieldLines(values, where);
+  HeaderText h;
+  h.fields = values["FIELDS"];
+  h.points = values.count("POINTS") ? Number(values["POINTS"], 0) : Number(values["WIDTH"], 0) * Number(values["HEIGHT"], 0);
+  // Without SIZE or COUNT lines PCL takes 4-byte fields of one value each.
+  const std::vector<std::string>& sizes = values["SIZE"];
+  const std::vector<std::string>& counts = values["COUNT"];
+  for (size_t i = 0; i < h.fields.size(); ++i) {
+    h.point_bytes += (i < sizes.size() ? Number(sizes, i) : 4.0) * (i < counts.size() ? Number(counts, i) : 1.0);
+  }
+  return h;
+}
+
+// The fields PCL made of the header lie one after the other and add up to a point.
+void CheckFieldLayout(const pcl::PCLPointCloud2& blob, const std::string& where) {
+  size_t point_bytes = 0;
+  for (const pcl::PCLPointField& f : blob.fields) {
+    const size_t size = pcl::getFieldSize(f.datatype);
+    if (size == 0 || f.count == 0 || f.offset != point_bytes) {
+      throw std::invalid_argument(where + "not a readable PCD file (field '" + f.name + "': bad SIZE, TYPE or COUNT)");
+    }
+    point_bytes += size * f.count;
+  }
+  if (point_bytes != blob.point_step) {
+    throw std::invalid_argument(where + "not a readable PCD file (the fields do not add up to a point)");
+  }
 }
 
 // PCL converts a field by its name whatever its type and size says: one that is not `size` bytes
@@ -92,6 +144,59 @@ void CheckField(const pcl::PCLPointCloud2& blob, const std::string& name, std::i
   }
 }
 
+// The file's header and data, checked where PCL 1.13 does not check (it crashes instead): a file
+// without a header, data shorter than the header says.
+pcl::PCLPointCloud2 ReadBlob(const std::filesystem::path& file, const std::string& where) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(file, ec)) throw std::invalid_argument(where + "no such file");
+  pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS);  // Errors are ours, one line each.
+  pcl::PCLPointCloud2 blob;
+  pcl::PCDReader reader;
+  Eigen::Vector4f origin;
+  Eigen::Quaternionf orientation;
+  int version = 0, binary = 0;
+  unsigned int data_start = 0;
+  // A header that claims more points than the file could hold (even compressed: LZF shrinks at most
+  // ~100 times) is refused before PCL allocates them.
+  const HeaderText text = ScanHeaderText(file, where);
+  const double file_bytes = static_cast<double>(std::filesystem::file_size(file, ec));
+  if (ec || text.points * text.point_bytes > 128 * file_bytes + (1 << 20)) {
+    throw std::invalid_argument(where + "not a readable PCD file (the header claims more points than the file holds)");
+  }
+  int header = -1;
+  try {
+    header = reader.readHeader(file.string(), blob, origin, orientation, version, binary, data_start);
+  } catch (const std::exception& e) {  // PCL 1.13 throws std::out_of_range for some malformed headers.
+    throw std::invalid_argument(where + "not a readable PCD file (damaged header: " + e.what() + ")");
+  }
+  if (header < 0 || blob.fields.empty() || blob.width == 0 || blob.height == 0) {
+    throw std::invalid_argument(where + "not a readable PCD file (no FIELDS or no points in the header)");
+  }
+  // PCL may read on past a DATA line it does not take for one; then what it read is not the header.
+  bool same_fields = blob.fields.size() == text.fields.size();
+  for (size_t i = 0; same_fields && i < blob.fields.size(); ++i) same_fields = blob.fields[i].name == text.fields[i];
+  if (!same_fields) throw std::invalid_argument(where + "not a readable PCD file (damaged header: FIELDS after DATA)");
+  CheckFieldLayout(blob, where);
+  // PCL's binary reader reads x, y and z of every point as floats (to see whether the cloud is dense).
+  for (const char* field : {"x", "y", "z"}) CheckField(blob, field, {pcl::PCLPointField::FLOAT32}, where);
+  const double claimed_bytes = static_cast<double>(blob.width) * blob.height * blob.point_step;
+  if (claimed_bytes > 128 * file_bytes + (1 << 20)) {
+    throw std::invalid_argument(where + "not a readable PCD file (the header claims more points than the file holds)");
+  }
+  if (binary == 2) CheckCompressedSizes(file, data_start, claimed_bytes, where);
+  int read = -1;
+  try {
+    read = reader.read(file.string(), blob);
+  } catch (const std::exception& e) {
+    throw std::invalid_argument(where + "not a readable PCD file (damaged: " + e.what() + ")");
+  }
+  if (read < 0) throw std::invalid_argument(where + "not a readable PCD file (damaged data)");
+  if (blob.data.size() != static_cast<size_t>(blob.width) * blob.height * blob.point_step) {
+    throw std::invalid_argument(where + "not a readable PCD file (the data does not match the header)");
+  }
+  return blob;
+}
+
 }  // namespace
 
 std::vector<int> LoadMosdObjectIds(const std::filesystem::path& file) {
@@ -99,7 +204,6 @@ std::vector<int> LoadMosdObjectIds(const std::filesystem::path& file) {
   pcl::PCLPointCloud2 blob = ReadBlob(file, where);
   if (!HasField(blob, "label")) throw std::invalid_argument(where + "no 'label' field");
   CheckField(blob, "label", {pcl::PCLPointField::UINT32, pcl::PCLPointField::INT32}, where);
-  for (const char* field : {"x", "y", "z"}) CheckField(blob, field, {pcl::PCLPointField::FLOAT32}, where);
   pcl::PointCloud<pcl::PointXYZL> labelled;
   pcl::fromPCLPointCloud2(blob, labelled);
   std::vector<int> ids(labelled.size(), 0);
@@ -114,7 +218,6 @@ Cloud::Ptr LoadCloud(const std::filesystem::path& file, bool organized) {
   pcl::PCLPointCloud2 blob = ReadBlob(file, where);
   for (const char* field : {"x", "y", "z"}) {
     if (!HasField(blob, field)) throw std::invalid_argument(where + "missing field '" + field + "'");
-    CheckField(blob, field, {pcl::PCLPointField::FLOAT32}, where);
   }
   if (!HasField(blob, "rgb")) {
     auto rgba = std::find_if(blob.fields.begin(), blob.fields.end(), [](const auto& f) { return f.name == "rgba"; });

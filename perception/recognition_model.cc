@@ -4,6 +4,8 @@
 #include <opencv2/core/persistence.hpp>
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 #include <cerrno>
 #include <cstring>
 #include <fstream>
@@ -50,6 +52,14 @@ struct Reader {
     if (!n.isReal() && !n.isInt()) Fail("key '" + key + "' is not a number");
     return n.real();
   }
+  /// A whole number an int holds (casting any other to int is undefined behaviour).
+  int Integer(const cv::FileNode& parent, const std::string& key) const {
+    const double number = Number(parent, key);
+    if (number != std::floor(number) || std::fabs(number) > std::numeric_limits<int>::max()) {
+      Fail("key '" + key + "' is not a whole number");
+    }
+    return static_cast<int>(number);
+  }
   cv::Mat Matrix(const cv::FileNode& parent, const std::string& key) const {
     cv::Mat m;
     cv::FileNode n = Node(parent, key);
@@ -77,7 +87,12 @@ DescriptorParams ReadDescriptorParams(const Reader& r) {
   const cv::FileNode node = r.Node(r.root, "descriptor_params");
   DescriptorParams params;
   VisitDescriptorParams(params, [&](const char* key, auto& value) {
-    value = static_cast<std::remove_reference_t<decltype(value)>>(r.Number(node, key));
+    using T = std::remove_reference_t<decltype(value)>;
+    if constexpr (std::is_integral_v<T>) {
+      value = static_cast<T>(r.Integer(node, key));
+    } else {
+      value = static_cast<T>(r.Number(node, key));
+    }
   });
   return params;
 }
@@ -238,7 +253,7 @@ RecognitionModel LoadModel(const std::filesystem::path& file, std::optional<Desc
     ReadClasses(r, expected, model);
     model.params = ReadDescriptorParams(r);
     const cv::FileNode training = r.Node(r.root, "training");
-    model.train_samples = static_cast<int>(r.Number(training, "samples"));
+    model.train_samples = r.Integer(training, "samples");
     model.cv_accuracy = r.Number(training, "cv_accuracy");
     FeatureScaling scaling = ReadScaling(r, model.descriptor);
     const SvmClassifier::Arrays arrays = ReadSvmArrays(r);

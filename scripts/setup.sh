@@ -14,7 +14,7 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   ffmpeg gnuplot-nox
   parallel slurm-wlm munge
-  clang
+  clang valgrind
 )
 
 missing=()

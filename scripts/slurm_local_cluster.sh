@@ -12,13 +12,19 @@ usage() { echo "usage: $0 start|stop DIR" >&2; exit 2; }
 [ $# -eq 2 ] || usage
 action=$1
 dir=$(realpath -m "$2")
+case "$dir" in *[[:space:]]*) echo "$0: DIR '$dir': no blanks please (it is written into slurm.conf)" >&2; exit 2 ;; esac
 
 stop() {
   for daemon in slurmd slurmctld munged; do
-    if [ -f "$dir/$daemon.pid" ]; then
-      kill "$(cat "$dir/$daemon.pid")" 2>/dev/null || true
-      rm -f "$dir/$daemon.pid"
+    [ -f "$dir/$daemon.pid" ] || continue
+    local pid
+    pid=$(cat "$dir/$daemon.pid")
+    # Only the daemon this folder started (a stale pid file may name another process by now).
+    if [ "$(cat "/proc/$pid/comm" 2>/dev/null)" = "$daemon" ]; then
+      kill "$pid" 2>/dev/null || true
+      for _ in $(seq 1 100); do kill -0 "$pid" 2>/dev/null || break; sleep 0.1; done
     fi
+    rm -f "$dir/$daemon.pid"
   done
 }
 

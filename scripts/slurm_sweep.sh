@@ -15,12 +15,12 @@ if [ $# -lt 3 ]; then
   echo "usage: $0 SPEC N OUT [sortcell sweep options...]" >&2
   exit 2
 fi
+[ -f "$1" ] || { echo "$0: SPEC '$1': no such file" >&2; exit 2; }
 spec=$(realpath "$1")
 shards=$2
 out=$(realpath -m "$3")
 shift 3
 case "$shards" in ''|*[!0-9]*|0) echo "$0: N: expected a whole number of shards >= 1, got '$shards'" >&2; exit 2 ;; esac
-[ -f "$spec" ] || { echo "$0: SPEC '$1': no such file" >&2; exit 2; }
 sortcell=$(realpath "${SORTCELL:-$(dirname "$0")/../build/app/sortcell}")
 [ -x "$sortcell" ] || { echo "$0: no sortcell binary at '$sortcell' (build first, or set SORTCELL)" >&2; exit 2; }
 command -v sbatch >/dev/null || { echo "$0: sbatch not found: this is not a Slurm login node" >&2; exit 2; }
@@ -36,7 +36,8 @@ for ((i = 0; i < ${#args[@]}; ++i)); do
 done
 
 mkdir -p "$out/slurm"
-quoted_options=$(printf ' %q' "$@")
+quoted_options=""
+[ $# -gt 0 ] && quoted_options=$(printf ' %q' "$@")
 cat > "$out/slurm/shard.sh" <<JOB
 #!/usr/bin/env bash
 set -euo pipefail
@@ -52,7 +53,12 @@ mkdir -p "\$merged"
 for shard in \$(seq 1 $shards); do
   dir=$(printf %q "$out")/shard\$shard
   [ -f "\$dir/spec.yaml" ] && [ ! -f "\$merged/spec.yaml" ] && cp "\$dir/spec.yaml" "\$merged/"
-  [ -f "\$dir/results.jsonl" ] && cat "\$dir/results.jsonl" >> "\$merged/results.jsonl"
+  if [ -f "\$dir/results.jsonl" ]; then
+    cat "\$dir/results.jsonl" >> "\$merged/results.jsonl"
+    # A shard killed mid-line: end the cut line there, so that the next shard's first record stays whole
+    # (--resume reports the cut one as damaged and runs its episode again).
+    [ -n "\$(tail -c 1 "\$dir/results.jsonl")" ] && echo >> "\$merged/results.jsonl"
+  fi
 done
 exec $(printf %q "$sortcell") sweep $(printf %q "$spec")$quoted_options --resume --out "\$merged"
 JOB

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <optional>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -125,14 +126,14 @@ bool ResetToObserve(const Model& model, Data& data) {
 StepStatus Step(const Model& model, Data& data, int n) {
   std::array<int, mjNWARNING> before{};
   for (int i = 0; i < mjNWARNING; ++i) before[i] = data->warning[i].number;
-  bool reset = false;
-  for (int k = 0; k < n; ++k) {
+  std::optional<double> reset_at;
+  for (int k = 0; k < n && !reset_at; ++k) {
     const double t = data->time;
     mj_step(model.get(), data.get());
     // A diverged state is reset by mj_resetData, which also clears the warning counters before it
     // counts the new one: a second divergence leaves the counter where the first left it. Time going
     // back to the start is the sign that always shows.
-    if (data->time <= t) reset = true;
+    if (data->time <= t) reset_at = t;
   }
 
   static constexpr std::array<const char*, mjNWARNING> kNames = {
@@ -150,9 +151,9 @@ StepStatus Step(const Model& model, Data& data, int n) {
     }
     if (diverged) break;
   }
-  if (reset && status.code != StepStatus::kDiverged) {
+  if (reset_at && status.code != StepStatus::kDiverged) {
     status.code = StepStatus::kDiverged;
-    status.detail = "state reset by MuJoCo (bad qpos, qvel or qacc) at t=" + std::to_string(data->time) + " s";
+    status.detail = "state reset by MuJoCo (bad qpos, qvel or qacc) at t=" + std::to_string(*reset_at) + " s";
   }
   return status;
 }

@@ -58,8 +58,9 @@ void WriteInPlace(const std::filesystem::path& path, const std::string& text) {
 
 void WriteTextFile(const std::filesystem::path& path, const std::string& text) {
   std::error_code ec;
-  const auto status = std::filesystem::status(path, ec);
-  if (std::filesystem::exists(status) && !std::filesystem::is_regular_file(status)) return WriteInPlace(path, text);  // A device or pipe.
+  const auto status = std::filesystem::symlink_status(path, ec);
+  // A device, pipe or link is written in place (through the link): replacing it would lose what it is.
+  if (std::filesystem::exists(status) && !std::filesystem::is_regular_file(status)) return WriteInPlace(path, text);
   // Written beside it and renamed over it: a process killed mid-write (a sweep's SIGKILL) leaves the
   // old file or the new one, never half of one.
   const std::filesystem::path partial = path.string() + ".partial" + std::to_string(::getpid());
@@ -74,7 +75,8 @@ void WriteTextFile(const std::filesystem::path& path, const std::string& text) {
   }
   std::filesystem::rename(partial, path, ec);
   if (ec) {
-    std::filesystem::remove(partial, ec);
+    std::error_code ignored;
+    std::filesystem::remove(partial, ignored);
     throw std::runtime_error("cannot write '" + path.string() + "': " + ec.message());
   }
 }

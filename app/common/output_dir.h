@@ -19,7 +19,8 @@ void PrepareOutputDir(const std::filesystem::path& dir);
 /// Writes `text` to `path` (replacing it) and checks the write after the file is closed, so a full
 /// disk or a lost folder is an error, not a short file. Atomic: the text goes to a file beside `path`
 /// that is renamed over it, so `path` is never seen half written, even if the process is killed (a
-/// device or pipe, e.g. /dev/stdout, is written in place).
+/// device, pipe or symbolic link, e.g. /dev/stdout, is written in place). Not synced to disk: it
+/// survives a killed process, not a lost machine.
 /// @throws std::runtime_error "cannot write '<path>'" (with the system's reason when it gives one).
 void WriteTextFile(const std::filesystem::path& path, const std::string& text);
 

@@ -35,7 +35,9 @@ void YamlReader::Fail(const std::string& what) const {
 void YamlReader::RejectUnknownKeys(const YAML::Node& map, const std::string& where,
                                    const std::set<std::string>& allowed) const {
   for (const auto& item : map) {
-    const std::string key = item.first.as<std::string>();
+    // YAML allows a map or a list as a key ("? - a"); none of ours is one.
+    if (!item.first.IsScalar()) Fail("a key in " + where + " is " + NodeKind(item.first) + ", expected a name");
+    const std::string key = item.first.Scalar();
     if (!allowed.count(key)) {
       std::string list;
       for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + a;

@@ -3,13 +3,13 @@
 #include <fcntl.h>
 #include <signal.h>
 #include <sys/prctl.h>
-#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <spdlog/fmt/fmt.h>
 #include <spdlog/spdlog.h>
 
+#include <cerrno>
 #include <chrono>
 #include <csignal>
 #include <fstream>
@@ -147,7 +147,27 @@ struct Worker {
   nlohmann::json axes;
   std::filesystem::path dir;
   WallClock::time_point started;
+  long peak_memory_kb = 0;  ///< The largest VmHWM seen while it ran.
 };
+
+// The worker's peak resident memory so far (VmHWM of /proc/<pid>/status), 0 once it is gone. Read
+// while it runs rather than from its rusage: that would count the sweep's own pages, which the
+// child shares until it runs `sortcell episode`.
+long PeakMemoryKb(pid_t pid) {
+  std::ifstream status("/proc/" + std::to_string(pid) + "/status");
+  for (std::string line; std::getline(status, line);) {
+    if (line.rfind("VmHWM:", 0) == 0) return std::atol(line.c_str() + 6);
+  }
+  return 0;
+}
+
+// waitpid for `pid`, again when a signal (the sweep's SIGINT/SIGTERM) interrupts it.
+int WaitFor(pid_t pid) {
+  int status = 0;
+  while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+  }
+  return status;
+}
 
 // A SIGINT or SIGTERM asks the sweep to stop: set by the handler, read by the runner's loop.
 volatile std::sig_atomic_t g_stop_signal = 0;
@@ -253,13 +273,13 @@ std::string LastLine(const std::filesystem::path& file) {
 
 // The record of a worker that ended with wait status `status`: its metrics.json if it exited 0 and
 // left a readable one, else what is known of the failure.
-SweepRecord FinishedRecord(const Worker& w, int status, const rusage& usage, bool timed_out) {
+SweepRecord FinishedRecord(const Worker& w, int status, bool timed_out) {
   SweepRecord record;
   record.episode = w.episode;
   record.seed = w.seed;
   record.axes = w.axes;
   record.wall_time_s = SecondsSince(w.started);
-  record.peak_memory_mb = usage.ru_maxrss / 1024.0;  // Linux gives kibibytes.
+  if (w.peak_memory_kb > 0) record.peak_memory_mb = w.peak_memory_kb / 1024.0;
   const std::filesystem::path metrics_file = w.dir / "metrics.json";
   std::string problem;
   if (!timed_out && WIFEXITED(status) && WEXITSTATUS(status) == 0 && std::filesystem::exists(metrics_file)) {
@@ -295,6 +315,7 @@ class EpisodeRunner {
         Worker w = StartEpisode(setup_, todo[next++]);
         running_[w.pid] = w;
       }
+      for (auto& [pid, worker] : running_) worker.peak_memory_kb = std::max(worker.peak_memory_kb, PeakMemoryKb(pid));
       if (ReapOne(progress)) continue;
       KillOverdue(progress);
       std::this_thread::sleep_for(std::chrono::milliseconds(50));
@@ -307,9 +328,8 @@ class EpisodeRunner {
   // Asked to stop: the episodes still running are ended and not recorded (a --resume runs them).
   void EndInFlight() {
     for (const auto& [pid, worker] : running_) {
-      int status = 0;
       kill(pid, SIGKILL);
-      waitpid(pid, &status, 0);
+      WaitFor(pid);
       ++run_.ended_in_flight;
     }
     running_.clear();
@@ -318,11 +338,10 @@ class EpisodeRunner {
   // Records a worker that has ended, if one has. Returns whether one had.
   bool ReapOne(Progress& progress) {
     int status = 0;
-    rusage usage{};
-    const pid_t pid = wait4(-1, &status, WNOHANG, &usage);
+    const pid_t pid = waitpid(-1, &status, WNOHANG);
     const auto it = running_.find(pid);
     if (pid <= 0 || it == running_.end()) return false;
-    Finish(it->second, status, usage, false, progress);
+    Finish(it->second, status, false, progress);
     running_.erase(it);
     return true;
   }
@@ -330,11 +349,8 @@ class EpisodeRunner {
   void KillOverdue(Progress& progress) {
     for (auto it = running_.begin(); it != running_.end();) {
       if (SecondsSince(it->second.started) > setup_.spec.episode_timeout_s) {
-        int status = 0;
-        rusage usage{};
         kill(it->first, SIGKILL);
-        wait4(it->first, &status, 0, &usage);
-        Finish(it->second, status, usage, true, progress);
+        Finish(it->second, WaitFor(it->first), true, progress);
         it = running_.erase(it);
       } else {
         ++it;
@@ -342,14 +358,18 @@ class EpisodeRunner {
     }
   }
 
-  void Finish(const Worker& w, int status, const rusage& usage, bool timed_out, Progress& progress) {
-    SweepRecord record = FinishedRecord(w, status, usage, timed_out);
+  void Finish(const Worker& w, int status, bool timed_out, Progress& progress) {
+    SweepRecord record = FinishedRecord(w, status, timed_out);
     if (!record.ok()) {
       ++run_.crashed;
       spdlog::warn("episode {} {}: {}", record.episode, ToString(record.status), record.error.value_or(""));
     }
     writer_.Append(record);
-    if (setup_.options.metrics_only && record.ok()) std::filesystem::remove_all(w.dir);
+    if (setup_.options.metrics_only && record.ok()) {
+      std::error_code ec;
+      std::filesystem::remove_all(w.dir, ec);  // Only space is at stake: the record is written.
+      if (ec) spdlog::warn("--metrics-only: cannot remove {}: {}", w.dir.string(), ec.message());
+    }
     records_.push_back(std::move(record));
     ++run_.ran;
     progress.Advance();

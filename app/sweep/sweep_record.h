@@ -44,8 +44,8 @@ struct SweepRecord {
   uint64_t seed = 0;
   nlohmann::json axes = nlohmann::json::object();  ///< The episode's axis values, as the spec gave them.
   double wall_time_s = 0;
-  /// The worker process's peak resident memory (its rusage), in MiB; absent in results written before
-  /// it was recorded. A machine figure, like the wall time.
+  /// The worker process's peak resident memory (VmHWM, read while it ran), in MiB; absent in results
+  /// written before it was recorded. A machine figure, like the wall time.
   std::optional<double> peak_memory_mb;
   RunStatus status = RunStatus::kOk;
   // kOk: the episode's metrics.

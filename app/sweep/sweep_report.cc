@@ -150,7 +150,8 @@ std::string ValueLabel(const SweepAxis& axis, const SweepRecord& record) {
   if (text) return value.get<std::string>();
   if (axis.is_range() && axis.name != "objects" && axis.max > axis.min) {
     const double width = (axis.max - axis.min) / 4;
-    const int bin = std::min(3, static_cast<int>((value.get<double>() - axis.min) / width));
+    // Clamped before the cast: a value from a results file may lie outside the spec's range.
+    const int bin = static_cast<int>(std::clamp(std::floor((value.get<double>() - axis.min) / width), 0.0, 3.0));
     return fmt::format("{:.3g}-{:.3g}", axis.min + bin * width, axis.min + (bin + 1) * width);
   }
   if (value.is_number_integer()) return std::to_string(value.get<long long>());

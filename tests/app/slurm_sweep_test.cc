@@ -70,7 +70,8 @@ TEST(SlurmSweep, AJobArrayOfShardsAndItsMergeGiveTheUnshardedSummary) {
 
   const std::string spec = sortcell_test::SmallSweepSpec(dir / "spec.yaml", 43, 4);
   const std::string out = (dir / "out").string();
-  const std::string submit = cluster.env() + "SORTCELL=" + SORTCELL_BINARY + " SORTCELL_SLURM_WAIT=1 " + kSource +
+  // At most 10 minutes: a job that never leaves the queue fails the test rather than hanging it.
+  const std::string submit = cluster.env() + "SORTCELL=" + SORTCELL_BINARY + " SORTCELL_SLURM_WAIT=1 timeout 600 " + kSource +
                              "/scripts/slurm_sweep.sh " + spec + " 2 " + out + " -j 1 > " + out + ".log 2>&1";
   ASSERT_EQ(std::system(submit.c_str()), 0) << Read(out + ".log") << Read(out + "/slurm/merge.log");
   for (const char* shard : {"/shard1/results.jsonl", "/shard2/results.jsonl"}) {

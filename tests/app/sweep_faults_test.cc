@@ -12,8 +12,8 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <numeric>
 #include <random>
-#include <regex>
 #include <set>
 #include <string>
 #include <thread>
@@ -61,34 +61,43 @@ std::multiset<int> EpisodesOf(const std::vector<nlohmann::json>& records) {
 // the end: every episode recorded exactly once, each record as an uninterrupted run's.
 TEST(SweepFaults, KilledTwentyTimesAtRandomMomentsThenResumedGivesTheUninterruptedResults) {
   const TempDir dir("kill20");
-  const std::string spec = SmallSweepSpec(dir / "kill20.yaml", 40, 10);
+  constexpr int kEpisodes = 16;
+  const std::string spec = SmallSweepSpec(dir / "kill20.yaml", 40, kEpisodes);
   const std::string reference = dir / "reference", out = dir / "killed";
   ASSERT_EQ(RunSortcell("sweep " + spec + " -j 2 --out " + reference).exit_code, 0);
 
   std::mt19937 random(2026);  // The moments are random but the same in every run of the test.
   std::uniform_int_distribution<int> delay_ms(150, 2500);
   size_t recorded = 0;
-  for (int kill = 0; kill < 20; ++kill) {
+  int kills = 0;
+  for (int attempt = 0; attempt < 20; ++attempt) {
     const pid_t pid = StartSortcell({"sweep", spec, "-j", "2", "--resume", "--out", out}, dir / "killed.log");
     std::this_thread::sleep_for(std::chrono::milliseconds(delay_ms(random)));
     ::kill(pid, SIGKILL);
     int status = 0;
     waitpid(pid, &status, 0);
-    ASSERT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGKILL)
-        << "kill " << kill + 1 << ": the sweep ended before it (exit " << WEXITSTATUS(status) << ")";
+    if (WIFEXITED(status)) {  // A fast machine: the sweep finished before this kill.
+      EXPECT_EQ(WEXITSTATUS(status), 0);
+      break;
+    }
+    ASSERT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGKILL);
+    ++kills;
     if (!std::filesystem::exists(out + "/results.jsonl")) continue;
     const auto records = CompleteRecords(out + "/results.jsonl");
-    EXPECT_GE(records.size(), recorded) << "kill " << kill + 1 << ": finished results lost";
+    EXPECT_GE(records.size(), recorded) << "kill " << kills << ": finished results lost";
     recorded = records.size();
-    for (int episode : EpisodesOf(records)) EXPECT_EQ(EpisodesOf(records).count(episode), 1u) << "kill " << kill + 1;
+    for (int episode : EpisodesOf(records)) EXPECT_EQ(EpisodesOf(records).count(episode), 1u) << "kill " << kills;
   }
+  EXPECT_GE(kills, 10) << "most of the 20 kills must land while the sweep runs";
   const auto r = RunSortcell("sweep " + spec + " -j 2 --resume --out " + out);
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_EQ(EpisodesOf(Lines(out + "/results.jsonl")), (std::multiset<int>{0, 1, 2, 3, 4, 5, 6, 7, 8, 9}));
+  std::multiset<int> all;
+  for (int e = 0; e < kEpisodes; ++e) all.insert(e);
+  EXPECT_EQ(EpisodesOf(Lines(out + "/results.jsonl")), all);
   EXPECT_EQ(RecordsByEpisode(out + "/results.jsonl"), RecordsByEpisode(reference + "/results.jsonl"));
   const auto summary = nlohmann::json::parse(ReadText(out + "/summary.json"));
   const auto unkilled = nlohmann::json::parse(ReadText(reference + "/summary.json"));
-  EXPECT_EQ(summary["episodes"], 10);
+  EXPECT_EQ(summary["episodes"], kEpisodes);
   EXPECT_EQ(summary["outcomes"], unkilled["outcomes"]);
   EXPECT_EQ(summary["correct_sort_rate"], unkilled["correct_sort_rate"]);
 }
@@ -133,29 +142,37 @@ TEST(SweepFaults, AFullDiskStopsTheSweepNamingTheFileAndKeepsWhatFinished) {
     if (f.is_regular_file()) largest_episode_file = std::max(largest_episode_file, f.file_size());
   }
   const rlim_t limit = std::max<rlim_t>(largest_episode_file + 4096, line_bytes[0] + line_bytes[1] + line_bytes[2] / 2);
-  size_t fit = 0;
-  for (size_t sum = 0; fit < line_bytes.size() && sum + line_bytes[fit] <= limit; ++fit) sum += line_bytes[fit];
-  ASSERT_LT(fit, kEpisodes) << "the limit leaves room for every record: nothing to test";
+  ASSERT_LT(limit, std::accumulate(line_bytes.begin(), line_bytes.end(), size_t{0}) * 3 / 4)
+      << "the limit leaves room for nearly every record: nothing to test";
 
   const int status = RunWithFileSizeLimit({"sweep", spec, "-j", "1", "--out", out}, limit, dir / "full.err");
   ASSERT_TRUE(WIFEXITED(status));
   EXPECT_EQ(WEXITSTATUS(status), 2);
   const std::string err = ReadText(dir / "full.err");
-  EXPECT_TRUE(std::regex_search(err, std::regex("sortcell sweep: error: cannot write '" + out + "/results.jsonl': File too large\n$")))
-      << err;
+  const std::string expected = "sortcell sweep: error: cannot write '" + out + "/results.jsonl': File too large\n";
+  EXPECT_TRUE(err.size() >= expected.size() && err.compare(err.size() - expected.size(), expected.size(), expected) == 0)
+      << "the last line names the file: " << err;
+  // The records that fitted (their number depends on this run's wall-clock digits) are kept whole,
+  // each as the uninterrupted run's.
   const auto kept = CompleteRecords(out + "/results.jsonl");
-  EXPECT_EQ(kept.size(), fit) << "every record that fitted is kept whole";
+  EXPECT_GE(kept.size(), 1u);
+  EXPECT_LT(kept.size(), kEpisodes);
+  const auto unlimited = RecordsByEpisode(reference + "/results.jsonl");
+  for (const auto& record : kept) {
+    EXPECT_EQ(sortcell_test::WithoutWallClock(record), unlimited.at(record["episode"].get<int>()));
+  }
 
   const auto r = RunSortcell("sweep " + spec + " -j 1 --resume --out " + out);
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_EQ(RecordsByEpisode(out + "/results.jsonl"), RecordsByEpisode(reference + "/results.jsonl"));
+  EXPECT_EQ(RecordsByEpisode(out + "/results.jsonl"), unlimited);
 }
 
-// An episode that hangs (here: every episode runs past a 1 s timeout) is ended and recorded with its
-// outcome, and the sweep goes on to the next; the summary counts them.
+// An episode that hangs (here: every episode runs past a 0.5 s timeout; starting one and loading its
+// scene and model take longer) is ended and recorded with its outcome, and the sweep goes on to the
+// next; the summary counts them.
 TEST(SweepFaults, AHungEpisodeIsRecordedAsATimeoutAndTheSweepGoesOn) {
   const TempDir dir("hang");
-  const std::string spec = SmallSweepSpec(dir / "hang.yaml", 42, 3, "episode_timeout_s: 1\n");
+  const std::string spec = SmallSweepSpec(dir / "hang.yaml", 42, 3, "episode_timeout_s: 0.5\n");
   const std::string out = dir / "out";
   const auto r = RunSortcell("sweep " + spec + " -j 2 --metrics-only --out " + out);
   EXPECT_EQ(r.exit_code, 0) << r.err;
@@ -164,7 +181,7 @@ TEST(SweepFaults, AHungEpisodeIsRecordedAsATimeoutAndTheSweepGoesOn) {
   EXPECT_TRUE(std::filesystem::exists(out + "/episodes/000001/log.txt")) << "--metrics-only keeps a failed run's log";
   for (const auto& record : records) {
     EXPECT_EQ(record["status"], "timeout") << record.dump();
-    EXPECT_GE(record["wall_time_s"].get<double>(), 1.0);
+    EXPECT_GE(record["wall_time_s"].get<double>(), 0.5);
   }
   const auto summary = nlohmann::json::parse(ReadText(out + "/summary.json"));
   EXPECT_EQ(summary["episodes"], 3);
