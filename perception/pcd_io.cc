@@ -42,8 +42,9 @@ void CheckCompressedSizes(const std::filesystem::path& file, unsigned int data_s
 // earlier one and then sizes the data by one while it lays the points out by the other (its ASCII
 // reader writes past the cloud: found by fuzzing, seen by valgrind), and it allocates the points the
 // header claims before it looks at the data. Lines are matched as PCL matches them: the first word
-// (leading blanks skipped) by its prefix, COLUMNS for FIELDS, '#' for comments, up to the first line
-// that is none of these (PCL reads on past DATA while lines look like its own).
+// (leading blanks skipped) by its prefix, COLUMNS for FIELDS, '#' for comments. PCL reads on past lines
+// it does not know and past DATA (fuzzing showed both), so the whole file is scanned: a header line
+// twice anywhere is refused (data lines are numbers or binary, which never spell a keyword in practice).
 struct HeaderText {
   std::vector<std::string> fields;  ///< FIELDS.
   double points = 0;       ///< POINTS, else WIDTH x HEIGHT.
@@ -95,7 +96,7 @@ HeaderText ScanHeaderText(const std::filesystem::path& file, const std::string& 
     if (!(words >> word) || word[0] == '#') continue;
     const auto known = std::find_if(kPrefixes.begin(), kPrefixes.end(),
                                     [&](const auto& p) { return word.compare(0, p.first.size(), p.first) == 0; });
-    if (known == kPrefixes.end()) break;  // PCL's header ends at the first line that is none of its own.
+    if (known == kPrefixes.end()) continue;
     if (values.count(known->second)) {
       throw std::invalid_argument(where + "not a readable PCD file (header line '" + known->second + "' given twice)");
     }
