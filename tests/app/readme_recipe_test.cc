@@ -12,18 +12,14 @@
 #include <nlohmann/json.hpp>
 
 #include "run_sortcell.h"
+#include "sweep_test_support.h"
 #include "temp_dir.h"
 
 namespace {
 
 const std::string kSource = SORTCELL_SOURCE_DIR;
 
-std::string Read(const std::string& file) {
-  std::ifstream in(file);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+std::string Read(const std::string& file) { return sortcell_test::ReadFile(file); }
 
 // The recipe's commands: the lines after its "SPEC=... OUT=..." line up to the Slurm comment.
 std::string ParallelRecipe() {
@@ -37,15 +33,6 @@ std::string ParallelRecipe() {
     recipe.replace(at, std::string("./build/app/sortcell").size(), SORTCELL_BINARY);
   }
   return recipe;
-}
-
-// A summary without what depends on the wall clock.
-nlohmann::json WithoutWallClock(nlohmann::json j) {
-  if (j.is_object()) {
-    for (const char* key : {"episode_wall_time_s", "real_time_factor", "resources"}) j.erase(key);
-    for (auto& [key, value] : j.items()) value = WithoutWallClock(value);
-  }
-  return j;
 }
 
 TEST(ReadmeRecipe, GnuParallelShardsMergeToTheUnshardedSummary) {
@@ -65,7 +52,7 @@ TEST(ReadmeRecipe, GnuParallelShardsMergeToTheUnshardedSummary) {
   nlohmann::json merged = nlohmann::json::parse(Read(out + "/merged/summary.json"));
   nlohmann::json whole = nlohmann::json::parse(Read((dir / "whole" / "summary.json").string()));
   EXPECT_EQ(merged["episodes"], 4);
-  EXPECT_EQ(WithoutWallClock(merged), WithoutWallClock(whole));
+  EXPECT_EQ(sortcell_test::SummaryWithoutMachineFigures(merged), sortcell_test::SummaryWithoutMachineFigures(whole));
 }
 
 }  // namespace

@@ -21,21 +21,7 @@ namespace {
 
 const std::string kSource = SORTCELL_SOURCE_DIR;
 
-std::string Read(const std::string& file) {
-  std::ifstream in(file);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-// A summary without what depends on the wall clock or the machine.
-nlohmann::json WithoutMachineFigures(nlohmann::json j) {
-  if (j.is_object()) {
-    for (const char* key : {"episode_wall_time_s", "real_time_factor", "resources"}) j.erase(key);
-    for (auto& [key, value] : j.items()) value = WithoutMachineFigures(value);
-  }
-  return j;
-}
+std::string Read(const std::string& file) { return sortcell_test::ReadFile(file); }
 
 // The cluster, stopped however the test ends.
 class LocalCluster {
@@ -86,7 +72,7 @@ TEST(SlurmSweep, AJobArrayOfShardsAndItsMergeGiveTheUnshardedSummary) {
   const auto merged = nlohmann::json::parse(Read(out + "/merged/summary.json"));
   const auto whole = nlohmann::json::parse(Read((dir / "whole" / "summary.json").string()));
   EXPECT_EQ(merged["episodes"], 4);
-  EXPECT_EQ(WithoutMachineFigures(merged), WithoutMachineFigures(whole));
+  EXPECT_EQ(sortcell_test::SummaryWithoutMachineFigures(merged), sortcell_test::SummaryWithoutMachineFigures(whole));
 }
 
 }  // namespace

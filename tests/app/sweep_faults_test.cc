@@ -33,10 +33,7 @@ using sortcell_test::SmallSweepSpec;
 using sortcell_test::StartSortcell;
 using sortcell_test::TempDir;
 
-std::string ReadText(const std::filesystem::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-}
+std::string ReadText(const std::filesystem::path& file) { return sortcell_test::ReadFile(file.string()); }
 
 // The complete lines of results.jsonl (a last line cut short by a kill is no record), each of which
 // must be a whole JSON record.

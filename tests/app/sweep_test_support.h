@@ -9,6 +9,8 @@
 #include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
+#include <map>
 #include <string>
 #include <thread>
 #include <vector>
@@ -19,6 +21,21 @@ namespace sortcell_test {
 
 inline const std::string kSweepScene = std::string(SORTCELL_SOURCE_DIR) + "/scenes/cell.xml";
 inline const std::string kSweepSet = std::string(SORTCELL_SOURCE_DIR) + "/scenes/objects/paper.yaml";
+
+/// A file's whole text ("" if it cannot be read).
+inline std::string ReadFile(const std::string& file) {
+  std::ifstream in(file, std::ios::binary);
+  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
+/// A sweep's summary.json without what depends on the wall clock or the machine.
+inline nlohmann::json SummaryWithoutMachineFigures(nlohmann::json j) {
+  if (j.is_object()) {
+    for (const char* key : {"episode_wall_time_s", "real_time_factor", "resources"}) j.erase(key);
+    for (auto& [key, value] : j.items()) value = SummaryWithoutMachineFigures(value);
+  }
+  return j;
+}
 
 /// Every non-empty line of a results.jsonl, parsed.
 inline std::vector<nlohmann::json> Lines(const std::string& file) {
