@@ -99,28 +99,6 @@ TEST(SweepFaults, KilledTwentyTimesAtRandomMomentsThenResumedGivesTheUninterrupt
   EXPECT_EQ(summary["correct_sort_rate"], unkilled["correct_sort_rate"]);
 }
 
-// Runs `sortcell <args>` with files limited to `max_file_bytes` (RLIMIT_FSIZE, SIGXFSZ ignored: a write
-// past it fails with EFBIG, as one on a full disk fails with ENOSPC). Returns the wait status.
-int RunWithFileSizeLimit(const std::vector<std::string>& args, rlim_t max_file_bytes, const std::string& log) {
-  const pid_t pid = fork();
-  if (pid == 0) {
-    signal(SIGXFSZ, SIG_IGN);
-    const rlimit limit{max_file_bytes, max_file_bytes};
-    if (setrlimit(RLIMIT_FSIZE, &limit) != 0) _exit(125);
-    std::vector<std::string> argv_text{SORTCELL_BINARY};
-    argv_text.insert(argv_text.end(), args.begin(), args.end());
-    std::vector<char*> argv;
-    for (auto& a : argv_text) argv.push_back(a.data());
-    argv.push_back(nullptr);
-    if (!freopen(log.c_str(), "w", stderr)) _exit(126);
-    execv(SORTCELL_BINARY, argv.data());
-    _exit(127);
-  }
-  int status = 0;
-  waitpid(pid, &status, 0);
-  return status;
-}
-
 // The disk fills while the sweep runs (here: no file may grow past a few records' size, room for each
 // episode's own files but not for every record in results.jsonl): the sweep stops with one line naming
 // the file, exit 2; the records written before stay whole; --resume on a disk with room completes the
@@ -142,7 +120,8 @@ TEST(SweepFaults, AFullDiskStopsTheSweepNamingTheFileAndKeepsWhatFinished) {
   ASSERT_LT(limit, std::accumulate(line_bytes.begin(), line_bytes.end(), size_t{0}) * 3 / 4)
       << "the limit leaves room for nearly every record: nothing to test";
 
-  const int status = RunWithFileSizeLimit({"sweep", spec, "-j", "1", "--out", out}, limit, dir / "full.err");
+  int status = 0;
+  waitpid(StartSortcell({"sweep", spec, "-j", "1", "--out", out}, dir / "full.err", limit), &status, 0);
   ASSERT_TRUE(WIFEXITED(status));
   EXPECT_EQ(WEXITSTATUS(status), 2);
   const std::string err = ReadText(dir / "full.err");

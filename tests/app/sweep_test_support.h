@@ -3,6 +3,7 @@
 // back, records without their wall-clock figures, and a sweep started in the background.
 #include <gtest/gtest.h>
 #include <signal.h>
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -11,6 +12,7 @@
 #include <fstream>
 #include <iterator>
 #include <map>
+#include <optional>
 #include <string>
 #include <thread>
 #include <vector>
@@ -76,8 +78,11 @@ inline std::map<int, nlohmann::json> RecordsByEpisode(const std::string& results
   return records;
 }
 
-/// Starts `sortcell <args>` as a child of this process, its stdout and stderr into `log`; returns its pid.
-inline pid_t StartSortcell(const std::vector<std::string>& args, const std::string& log) {
+/// Starts `sortcell <args>` as a child of this process, its stdout and stderr appended to `log`; returns
+/// its pid. With `max_file_bytes`, no file it writes may grow past that (RLIMIT_FSIZE, SIGXFSZ ignored:
+/// a write past it fails with EFBIG, as one on a full disk fails with ENOSPC).
+inline pid_t StartSortcell(const std::vector<std::string>& args, const std::string& log,
+                           std::optional<rlim_t> max_file_bytes = std::nullopt) {
   std::vector<std::string> argv_text{SORTCELL_BINARY};
   argv_text.insert(argv_text.end(), args.begin(), args.end());
   std::vector<char*> argv;
@@ -85,6 +90,11 @@ inline pid_t StartSortcell(const std::vector<std::string>& args, const std::stri
   argv.push_back(nullptr);
   const pid_t pid = fork();
   if (pid == 0) {
+    if (max_file_bytes) {
+      signal(SIGXFSZ, SIG_IGN);
+      const rlimit limit{*max_file_bytes, *max_file_bytes};
+      if (setrlimit(RLIMIT_FSIZE, &limit) != 0) _exit(125);
+    }
     if (!freopen(log.c_str(), "a", stdout) || !freopen(log.c_str(), "a", stderr)) _exit(126);
     execv(SORTCELL_BINARY, argv.data());
     _exit(127);
