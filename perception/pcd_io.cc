@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <fstream>
 #include <cstdlib>
+#include <cstring>
 #include <map>
 #include <sstream>
 #include <utility>
@@ -25,15 +26,11 @@ bool HasField(const pcl::PCLPointCloud2& blob, const std::string& name) {
 // DATA binary_compressed starts with the compressed and the uncompressed sizes, which PCL allocates
 // before it checks them: the uncompressed must be what the header's points take, the compressed must
 // be in the file.
-void CheckCompressedSizes(const std::filesystem::path& file, unsigned int data_start, double claimed_bytes,
+void CheckCompressedSizes(const std::string& bytes, unsigned int data_start, double claimed_bytes,
                           const std::string& where) {
-  std::ifstream in(file, std::ios::binary);
   uint32_t sizes[2] = {0, 0};
-  in.seekg(data_start);
-  in.read(reinterpret_cast<char*>(sizes), sizeof sizes);
-  std::error_code ec;
-  const double file_bytes = static_cast<double>(std::filesystem::file_size(file, ec));
-  if (!in || ec || sizes[1] != claimed_bytes || data_start + 8.0 + sizes[0] > file_bytes) {
+  if (data_start + 8.0 <= bytes.size()) std::memcpy(sizes, bytes.data() + data_start, sizeof sizes);
+  if (data_start + 8.0 > bytes.size() || sizes[1] != claimed_bytes || data_start + 8.0 + sizes[0] > bytes.size()) {
     throw std::invalid_argument(where + "not a readable PCD file (damaged compressed data: sizes do not match the header)");
   }
 }
@@ -84,11 +81,11 @@ void CheckFieldLines(std::map<std::string, std::vector<std::string>>& lines, con
   }
 }
 
-HeaderText ScanHeaderText(const std::filesystem::path& file, const std::string& where) {
+HeaderText ScanHeaderText(const std::string& bytes, const std::string& where) {
   static const std::vector<std::pair<std::string, std::string>> kPrefixes{
       {"VERSION", "VERSION"}, {"FIELDS", "FIELDS"}, {"COLUMNS", "FIELDS"}, {"SIZE", "SIZE"}, {"TYPE", "TYPE"}, {"COUNT", "COUNT"},
       {"WIDTH", "WIDTH"},   {"HEIGHT", "HEIGHT"},  {"VIEWPOINT", "VIEWPOINT"}, {"POINTS", "POINTS"}, {"DATA", "DATA"}};
-  std::ifstream in(file, std::ios::binary);
+  std::istringstream in(bytes);
   std::map<std::string, std::vector<std::string>> values;
   for (std::string line; std::getline(in, line);) {
     std::istringstream words(line);
@@ -145,28 +142,35 @@ void CheckField(const pcl::PCLPointCloud2& blob, const std::string& name, std::i
   }
 }
 
-// The file's header and data, checked where PCL 1.13 does not check (it crashes instead): a file
-// without a header, data shorter than the header says.
-pcl::PCLPointCloud2 ReadBlob(const std::filesystem::path& file, const std::string& where) {
+// The whole file, read once: the header scan, the size checks and PCL's parsers all work on these
+// bytes (PCL's own read opens the file twice more and maps it).
+std::string ReadFileBytes(const std::filesystem::path& file, const std::string& where) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(file, ec)) throw std::invalid_argument(where + "no such file");
-  pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS);  // Errors are ours, one line each.
-  pcl::PCLPointCloud2 blob;
-  pcl::PCDReader reader;
+  std::ifstream in(file, std::ios::binary | std::ios::ate);
+  const std::streamoff size = in ? static_cast<std::streamoff>(in.tellg()) : -1;
+  std::string bytes(size > 0 ? static_cast<size_t>(size) : 0, '\0');
+  if (size < 0 || !in.seekg(0) || !in.read(bytes.data(), size)) throw std::invalid_argument(where + "cannot read the file");
+  return bytes;
+}
+
+struct PcdLayout {
+  int version = 0;
+  int data_type = 0;  ///< PCL's: 0 ascii, 1 binary, 2 binary_compressed.
+  unsigned int data_start = 0;
+};
+
+// PCL's header parse, checked where PCL 1.13 does not check (it crashes instead): the fields it made
+// must be the scanned ones, laid end to end, with x, y, z as floats.
+PcdLayout ReadCheckedHeader(const std::string& bytes, const HeaderText& text, pcl::PCLPointCloud2& blob,
+                            const std::string& where) {
+  PcdLayout layout;
   Eigen::Vector4f origin;
   Eigen::Quaternionf orientation;
-  int version = 0, binary = 0;
-  unsigned int data_start = 0;
-  // A header that claims more points than the file could hold (even compressed: LZF shrinks at most
-  // ~100 times) is refused before PCL allocates them.
-  const HeaderText text = ScanHeaderText(file, where);
-  const double file_bytes = static_cast<double>(std::filesystem::file_size(file, ec));
-  if (ec || text.points * text.point_bytes > 128 * file_bytes + (1 << 20)) {
-    throw std::invalid_argument(where + "not a readable PCD file (the header claims more points than the file holds)");
-  }
+  std::istringstream in(bytes);
   int header = -1;
   try {
-    header = reader.readHeader(file.string(), blob, origin, orientation, version, binary, data_start);
+    header = pcl::PCDReader().readHeader(in, blob, origin, orientation, layout.version, layout.data_type, layout.data_start);
   } catch (const std::exception& e) {  // PCL 1.13 throws std::out_of_range for some malformed headers.
     throw std::invalid_argument(where + "not a readable PCD file (damaged header: " + e.what() + ")");
   }
@@ -180,21 +184,58 @@ pcl::PCLPointCloud2 ReadBlob(const std::filesystem::path& file, const std::strin
   CheckFieldLayout(blob, where);
   // PCL's binary reader reads x, y and z of every point as floats (to see whether the cloud is dense).
   for (const char* field : {"x", "y", "z"}) CheckField(blob, field, {pcl::PCLPointField::FLOAT32}, where);
+  return layout;
+}
+
+// The points, through PCL's body parsers, from the bytes: the binary data must lie in the file (PCL
+// checks that against the file's size, which it no longer sees).
+void ReadBody(const std::string& bytes, const PcdLayout& layout, pcl::PCLPointCloud2& blob, const std::string& where) {
   const double claimed_bytes = static_cast<double>(blob.width) * blob.height * blob.point_step;
-  if (claimed_bytes > 128 * file_bytes + (1 << 20)) {
-    throw std::invalid_argument(where + "not a readable PCD file (the header claims more points than the file holds)");
+  // PCL takes the end of the stream (-1) for the data's start when DATA is the file's last line; its
+  // ASCII parser would then wait forever on a stream that failed without reaching its end.
+  if (layout.data_start >= bytes.size()) throw std::invalid_argument(where + "not a readable PCD file (no data after DATA)");
+  if (layout.data_type == 2) CheckCompressedSizes(bytes, layout.data_start, claimed_bytes, where);
+  if (layout.data_type == 1 && layout.data_start + claimed_bytes > bytes.size()) {
+    throw std::invalid_argument(where + "not a readable PCD file (the data is shorter than the header says)");
   }
-  if (binary == 2) CheckCompressedSizes(file, data_start, claimed_bytes, where);
   int read = -1;
   try {
-    read = reader.read(file.string(), blob);
+    pcl::PCDReader reader;
+    if (layout.data_type == 0) {
+      std::istringstream in(bytes);
+      in.seekg(layout.data_start);
+      read = reader.readBodyASCII(in, blob, layout.version);
+    } else {
+      read = reader.readBodyBinary(reinterpret_cast<const unsigned char*>(bytes.data()), blob, layout.version,
+                                   layout.data_type == 2, layout.data_start);
+    }
   } catch (const std::exception& e) {
     throw std::invalid_argument(where + "not a readable PCD file (damaged: " + e.what() + ")");
   }
   if (read < 0) throw std::invalid_argument(where + "not a readable PCD file (damaged data)");
-  if (blob.data.size() != static_cast<size_t>(blob.width) * blob.height * blob.point_step) {
+  if (blob.data.size() != claimed_bytes) {
     throw std::invalid_argument(where + "not a readable PCD file (the data does not match the header)");
   }
+}
+
+// The file's header and data, read once and checked where PCL 1.13 does not check.
+pcl::PCLPointCloud2 ReadBlob(const std::filesystem::path& file, const std::string& where) {
+  const std::string bytes = ReadFileBytes(file, where);
+  pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS);  // Errors are ours, one line each.
+  // A header that claims more points than the file could hold (even compressed: LZF shrinks at most
+  // ~100 times) is refused before PCL allocates them; the limit is checked again on the sizes PCL
+  // derived, which may differ from the text's where a line does not parse as a number.
+  const HeaderText text = ScanHeaderText(bytes, where);
+  const double most_bytes = 128.0 * bytes.size() + (1 << 20);
+  if (text.points * text.point_bytes > most_bytes) {
+    throw std::invalid_argument(where + "not a readable PCD file (the header claims more points than the file holds)");
+  }
+  pcl::PCLPointCloud2 blob;
+  const PcdLayout layout = ReadCheckedHeader(bytes, text, blob, where);
+  if (static_cast<double>(blob.width) * blob.height * blob.point_step > most_bytes) {
+    throw std::invalid_argument(where + "not a readable PCD file (the header claims more points than the file holds)");
+  }
+  ReadBody(bytes, layout, blob, where);
   return blob;
 }
 
