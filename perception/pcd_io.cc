@@ -223,18 +223,13 @@ pcl::PCLPointCloud2 ReadBlob(const std::filesystem::path& file, const std::strin
   const std::string bytes = ReadFileBytes(file, where);
   pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS);  // Errors are ours, one line each.
   // A header that claims more points than the file could hold (even compressed: LZF shrinks at most
-  // ~100 times) is refused before PCL allocates them; the limit is checked again on the sizes PCL
-  // derived, which may differ from the text's where a line does not parse as a number.
+  // ~100 times) is refused before PCL allocates them (its readHeader does, at the POINTS line).
   const HeaderText text = ScanHeaderText(bytes, where);
-  const double most_bytes = 128.0 * bytes.size() + (1 << 20);
-  if (text.points * text.point_bytes > most_bytes) {
+  if (text.points * text.point_bytes > 128.0 * bytes.size() + (1 << 20)) {
     throw std::invalid_argument(where + "not a readable PCD file (the header claims more points than the file holds)");
   }
   pcl::PCLPointCloud2 blob;
   const PcdLayout layout = ReadCheckedHeader(bytes, text, blob, where);
-  if (static_cast<double>(blob.width) * blob.height * blob.point_step > most_bytes) {
-    throw std::invalid_argument(where + "not a readable PCD file (the header claims more points than the file holds)");
-  }
   ReadBody(bytes, layout, blob, where);
   return blob;
 }

@@ -19,11 +19,11 @@ namespace {
 
 const std::string kSource = SORTCELL_SOURCE_DIR;
 
-std::string Read(const std::string& file) { return sortcell_test::ReadFile(file); }
+using sortcell_test::ReadFile;
 
 // The recipe's commands: the lines after its "SPEC=... OUT=..." line up to the Slurm comment.
 std::string ParallelRecipe() {
-  const std::string readme = Read(kSource + "/README.md");
+  const std::string readme = ReadFile(kSource + "/README.md");
   const size_t heading = readme.find("# GNU parallel");
   const size_t first = readme.find('\n', readme.find("SPEC=", heading)) + 1;
   const size_t last = readme.find("# Slurm", first);
@@ -46,11 +46,11 @@ TEST(ReadmeRecipe, GnuParallelShardsMergeToTheUnshardedSummary) {
                       << "\nseed: 40\nepisodes: 4\naxes:\n  objects: [1, 2]\n";
   std::ofstream(dir / "recipe.sh") << "set -e\nSPEC=" << spec << " OUT=" << out << "\n" << recipe;
   ASSERT_EQ(std::system(("cd " + dir.str() + " && bash recipe.sh > recipe.log 2>&1").c_str()), 0)
-      << Read((dir / "recipe.log").string());
+      << ReadFile((dir / "recipe.log").string());
   const auto unsharded = sortcell_test::RunSortcell("sweep " + spec + " -j 2 --out " + (dir / "whole").string());
   ASSERT_EQ(unsharded.exit_code, 0) << unsharded.err;
-  nlohmann::json merged = nlohmann::json::parse(Read(out + "/merged/summary.json"));
-  nlohmann::json whole = nlohmann::json::parse(Read((dir / "whole" / "summary.json").string()));
+  nlohmann::json merged = nlohmann::json::parse(ReadFile(out + "/merged/summary.json"));
+  nlohmann::json whole = nlohmann::json::parse(ReadFile((dir / "whole" / "summary.json").string()));
   EXPECT_EQ(merged["episodes"], 4);
   EXPECT_EQ(sortcell_test::SummaryWithoutMachineFigures(merged), sortcell_test::SummaryWithoutMachineFigures(whole));
 }

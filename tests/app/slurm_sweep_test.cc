@@ -21,7 +21,7 @@ namespace {
 
 const std::string kSource = SORTCELL_SOURCE_DIR;
 
-std::string Read(const std::string& file) { return sortcell_test::ReadFile(file); }
+using sortcell_test::ReadFile;
 
 // The cluster, stopped however the test ends.
 class LocalCluster {
@@ -52,25 +52,25 @@ TEST(SlurmSweep, AJobArrayOfShardsAndItsMergeGiveTheUnshardedSummary) {
   }
   const sortcell_test::TempDir dir("slurm");
   const LocalCluster cluster((dir / "cluster").string());
-  ASSERT_EQ(cluster.exit_code(), 0) << Read((dir / "cluster").string() + ".log");
+  ASSERT_EQ(cluster.exit_code(), 0) << ReadFile((dir / "cluster").string() + ".log");
 
   const std::string spec = sortcell_test::SmallSweepSpec(dir / "spec.yaml", 43, 4);
   const std::string out = (dir / "out").string();
   // At most 10 minutes: a job that never leaves the queue fails the test rather than hanging it.
   const std::string submit = cluster.env() + "SORTCELL=" + SORTCELL_BINARY + " SORTCELL_SLURM_WAIT=1 timeout 600 " + kSource +
                              "/scripts/slurm_sweep.sh " + spec + " 2 " + out + " -j 1 > " + out + ".log 2>&1";
-  ASSERT_EQ(std::system(submit.c_str()), 0) << Read(out + ".log") << Read(out + "/slurm/merge.log");
+  ASSERT_EQ(std::system(submit.c_str()), 0) << ReadFile(out + ".log") << ReadFile(out + "/slurm/merge.log");
   for (const char* shard : {"/shard1/results.jsonl", "/shard2/results.jsonl"}) {
     EXPECT_EQ(sortcell_test::Lines(out + shard).size(), 2u) << shard << ": each shard ran its 2 episodes";
   }
-  EXPECT_NE(Read(out + "/slurm/merge.log").find("0 of 4 episodes in this shard run now (4 were already done"),
+  EXPECT_NE(ReadFile(out + "/slurm/merge.log").find("0 of 4 episodes in this shard run now (4 were already done"),
             std::string::npos)
-      << "the merge ran nothing itself: " << Read(out + "/slurm/merge.log");
+      << "the merge ran nothing itself: " << ReadFile(out + "/slurm/merge.log");
 
   const auto unsharded = sortcell_test::RunSortcell("sweep " + spec + " -j 2 --out " + (dir / "whole").string());
   ASSERT_EQ(unsharded.exit_code, 0) << unsharded.err;
-  const auto merged = nlohmann::json::parse(Read(out + "/merged/summary.json"));
-  const auto whole = nlohmann::json::parse(Read((dir / "whole" / "summary.json").string()));
+  const auto merged = nlohmann::json::parse(ReadFile(out + "/merged/summary.json"));
+  const auto whole = nlohmann::json::parse(ReadFile((dir / "whole" / "summary.json").string()));
   EXPECT_EQ(merged["episodes"], 4);
   EXPECT_EQ(sortcell_test::SummaryWithoutMachineFigures(merged), sortcell_test::SummaryWithoutMachineFigures(whole));
 }

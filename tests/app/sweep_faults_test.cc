@@ -33,12 +33,12 @@ using sortcell_test::SmallSweepSpec;
 using sortcell_test::StartSortcell;
 using sortcell_test::TempDir;
 
-std::string ReadText(const std::filesystem::path& file) { return sortcell_test::ReadFile(file.string()); }
+using sortcell_test::ReadFile;
 
 // The complete lines of results.jsonl (a last line cut short by a kill is no record), each of which
 // must be a whole JSON record.
 std::vector<nlohmann::json> CompleteRecords(const std::filesystem::path& results) {
-  std::string text = ReadText(results);
+  std::string text = ReadFile(results);
   text.erase(text.rfind('\n') == std::string::npos ? 0 : text.rfind('\n') + 1);
   std::vector<nlohmann::json> records;
   std::istringstream lines(text);
@@ -92,8 +92,8 @@ TEST(SweepFaults, KilledTwentyTimesAtRandomMomentsThenResumedGivesTheUninterrupt
   for (int e = 0; e < kEpisodes; ++e) all.insert(e);
   EXPECT_EQ(EpisodesOf(Lines(out + "/results.jsonl")), all);
   EXPECT_EQ(RecordsByEpisode(out + "/results.jsonl"), RecordsByEpisode(reference + "/results.jsonl"));
-  const auto summary = nlohmann::json::parse(ReadText(out + "/summary.json"));
-  const auto unkilled = nlohmann::json::parse(ReadText(reference + "/summary.json"));
+  const auto summary = nlohmann::json::parse(ReadFile(out + "/summary.json"));
+  const auto unkilled = nlohmann::json::parse(ReadFile(reference + "/summary.json"));
   EXPECT_EQ(summary["episodes"], kEpisodes);
   EXPECT_EQ(summary["outcomes"], unkilled["outcomes"]);
   EXPECT_EQ(summary["correct_sort_rate"], unkilled["correct_sort_rate"]);
@@ -124,7 +124,7 @@ TEST(SweepFaults, AFullDiskStopsTheSweepNamingTheFileAndKeepsWhatFinished) {
   waitpid(StartSortcell({"sweep", spec, "-j", "1", "--out", out}, dir / "full.err", limit), &status, 0);
   ASSERT_TRUE(WIFEXITED(status));
   EXPECT_EQ(WEXITSTATUS(status), 2);
-  const std::string err = ReadText(dir / "full.err");
+  const std::string err = ReadFile(dir / "full.err");
   const std::string expected = "sortcell sweep: error: cannot write '" + out + "/results.jsonl': File too large\n";
   EXPECT_TRUE(err.size() >= expected.size() && err.compare(err.size() - expected.size(), expected.size(), expected) == 0)
       << "the last line names the file: " << err;
@@ -159,7 +159,7 @@ TEST(SweepFaults, AHungEpisodeIsRecordedAsATimeoutAndTheSweepGoesOn) {
     EXPECT_EQ(record["status"], "timeout") << record.dump();
     EXPECT_GE(record["wall_time_s"].get<double>(), 0.5);
   }
-  const auto summary = nlohmann::json::parse(ReadText(out + "/summary.json"));
+  const auto summary = nlohmann::json::parse(ReadFile(out + "/summary.json"));
   EXPECT_EQ(summary["episodes"], 3);
   EXPECT_EQ(summary["runs"]["timeout"], 3) << summary.dump();
 }
@@ -173,12 +173,12 @@ TEST(SweepFaults, ADivergingSimulationIsRecordedWithItsOutcomeAndTheSweepGoesOn)
   std::filesystem::create_directories(dir / "scenes");
   std::filesystem::create_symlink(std::string(SORTCELL_SOURCE_DIR) + "/models", dir / "models");
   std::filesystem::create_symlink(std::string(SORTCELL_SOURCE_DIR) + "/scenes/flange_tool.inc.xml", dir / "scenes/flange_tool.inc.xml");
-  std::string scene = ReadText(sortcell_test::kSweepScene);
+  std::string scene = ReadFile(sortcell_test::kSweepScene);
   const std::string cell = "<include file=\"../models/cell/cell.inc.xml\"/>";
   ASSERT_NE(scene.find(cell), std::string::npos);
   scene.replace(scene.find(cell), cell.size(), cell + "\n  <option gravity=\"0 0 -1e11\"/>");
   std::ofstream(dir / "scenes/diverging.xml") << scene;
-  std::string spec_text = ReadText(SmallSweepSpec(dir / "diverge.yaml", 44, 2, "episode_timeout_s: 120\n"));
+  std::string spec_text = ReadFile(SmallSweepSpec(dir / "diverge.yaml", 44, 2, "episode_timeout_s: 120\n"));
   spec_text.replace(0, spec_text.find('\n'), "scene: " + (dir / "scenes/diverging.xml").string());
   std::ofstream(dir / "diverge.yaml") << spec_text;
 
