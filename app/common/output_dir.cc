@@ -12,14 +12,46 @@
 #include <cstring>
 #include <ctime>
 #include <fstream>
+#include <sstream>
 #include <stdexcept>
+#include <string_view>
 #include <system_error>
 
+#include <fcntl.h>
+#include <signal.h>
 #include <unistd.h>
 
 #include "sortcell/git_revision.h"
 
 namespace sortcell::app {
+
+namespace {
+
+constexpr std::string_view kPartialMark = ".partial";
+
+// The process that writes `file` beside its final name (WriteTextFile: "<name>.partial<pid>"), or 0
+// when `file` is not such a file.
+pid_t PartialFileWriter(const std::filesystem::path& file) {
+  const std::string name = file.filename().string();
+  const size_t mark = name.rfind(kPartialMark);
+  if (mark == std::string::npos || mark == 0) return 0;
+  const std::string digits = name.substr(mark + kPartialMark.size());
+  if (digits.empty() || digits.size() > 9 || digits.find_first_not_of("0123456789") != std::string::npos) return 0;
+  return static_cast<pid_t>(std::stol(digits));
+}
+
+}  // namespace
+
+void RemoveStalePartialFiles(const std::filesystem::path& dir) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  for (const auto& entry : fs::directory_iterator(dir, ec)) {
+    const pid_t writer = PartialFileWriter(entry.path());
+    // A live writer may be about to rename it; a dead one (killed mid-write) never will.
+    if (writer <= 0 || !entry.is_regular_file(ec) || ::kill(writer, 0) == 0 || errno != ESRCH) continue;
+    fs::remove(entry.path(), ec);
+  }
+}
 
 void PrepareOutputDir(const std::filesystem::path& dir) {
   namespace fs = std::filesystem;
@@ -35,6 +67,7 @@ void PrepareOutputDir(const std::filesystem::path& dir) {
     if (!out.good()) throw std::invalid_argument("output folder '" + dir.string() + "': not writable");
   }
   fs::remove(probe, ec);
+  RemoveStalePartialFiles(dir);
 }
 
 void CloseChecked(std::ofstream& out, const std::filesystem::path& path) {
@@ -54,6 +87,25 @@ void WriteInPlace(const std::filesystem::path& path, const std::string& text) {
   CloseChecked(out, path);
 }
 
+// Before the rename: otherwise a lost machine (power, kernel) may keep the rename but not the text,
+// leaving an empty file where the old one was (a sweep's spec.yaml, read again by --resume).
+void SyncFile(const std::filesystem::path& path) {
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  const bool synced = fd >= 0 && ::fsync(fd) == 0;
+  const int reason = errno;
+  if (fd >= 0) ::close(fd);
+  errno = reason;
+  if (!synced) throw std::runtime_error("cannot sync '" + path.string() + "'");
+}
+
+// So that the rename itself outlives a lost machine. Best effort: not every file system syncs folders.
+void SyncFolder(const std::filesystem::path& dir) {
+  const int fd = ::open(dir.empty() ? "." : dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  if (fd < 0) return;
+  if (::fsync(fd) != 0) errno = 0;
+  ::close(fd);
+}
+
 }  // namespace
 
 void WriteTextFile(const std::filesystem::path& path, const std::string& text) {
@@ -66,6 +118,7 @@ void WriteTextFile(const std::filesystem::path& path, const std::string& text) {
   const std::filesystem::path partial = path.string() + ".partial" + std::to_string(::getpid());
   try {
     WriteInPlace(partial, text);
+    SyncFile(partial);
   } catch (const std::runtime_error&) {
     const int reason = errno;
     std::error_code ignored;
@@ -79,6 +132,19 @@ void WriteTextFile(const std::filesystem::path& path, const std::string& text) {
     std::filesystem::remove(partial, ignored);
     throw std::runtime_error("cannot write '" + path.string() + "': " + ec.message());
   }
+  SyncFolder(path.parent_path());
+}
+
+std::string ReadTextFile(const std::filesystem::path& path) {
+  errno = 0;
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream text;
+  if (in) text << in.rdbuf();
+  if (!in || in.bad()) {
+    throw std::runtime_error("cannot read '" + path.string() + "'" +
+                             (errno != 0 ? std::string(": ") + std::strerror(errno) : std::string()));
+  }
+  return text.str();
 }
 
 void WriteJson(const std::filesystem::path& path, const nlohmann::json& json) {

@@ -12,17 +12,26 @@
 
 namespace sortcell::app {
 
-/// Creates `dir` (and parents) and checks that a file can be written in it, before any work starts.
+/// Creates `dir` (and parents) and checks that a file can be written in it, before any work starts;
+/// removes what a killed WriteTextFile left in it (RemoveStalePartialFiles).
 /// @throws std::invalid_argument "output folder '<dir>': <reason>" otherwise.
 void PrepareOutputDir(const std::filesystem::path& dir);
 
 /// Writes `text` to `path` (replacing it) and checks the write after the file is closed, so a full
 /// disk or a lost folder is an error, not a short file. Atomic: the text goes to a file beside `path`
 /// that is renamed over it, so `path` is never seen half written, even if the process is killed (a
-/// device, pipe or symbolic link, e.g. /dev/stdout, is written in place). Not synced to disk: it
-/// survives a killed process, not a lost machine.
+/// device, pipe or symbolic link, e.g. /dev/stdout, is written in place). Synced to disk before the
+/// rename (and the folder after it), so it also survives a lost machine.
 /// @throws std::runtime_error "cannot write '<path>'" (with the system's reason when it gives one).
 void WriteTextFile(const std::filesystem::path& path, const std::string& text);
+
+/// Removes the files "<name>.partial<pid>" in `dir` (not below it) whose writing process is gone: what
+/// WriteTextFile leaves when its process is killed mid-write. A live process's file is kept.
+void RemoveStalePartialFiles(const std::filesystem::path& dir);
+
+/// The whole of `path` as it is on disk (bytes, no conversions).
+/// @throws std::runtime_error "cannot read '<path>'" (with the system's reason when it gives one).
+std::string ReadTextFile(const std::filesystem::path& path);
 
 /// Writes `json` (pretty-printed) to `path`. @throws std::runtime_error naming the file on failure.
 void WriteJson(const std::filesystem::path& path, const nlohmann::json& json);

@@ -35,13 +35,6 @@
 namespace sortcell::app {
 namespace {
 
-std::string ReadText(const std::filesystem::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
 // ---- Checks before anything runs ----
 
 void CheckOptions(const SweepOptions& options) {
@@ -53,7 +46,7 @@ void CheckOptions(const SweepOptions& options) {
 
 // What spec.yaml in the output folder holds: the spec's text, and the --set overrides after it.
 std::string SpecCopyText(const SweepOptions& options) {
-  std::string text = ReadText(options.spec);
+  std::string text = ReadTextFile(options.spec);
   if (options.sets.empty()) return text;
   if (!text.empty() && text.back() != '\n') text += '\n';
   text += "# Overridden on the command line (sortcell sweep --set), applied over the keys above:\n";
@@ -62,7 +55,7 @@ std::string SpecCopyText(const SweepOptions& options) {
 }
 
 void CheckSameSpec(const std::filesystem::path& out, const std::filesystem::path& spec_copy, const std::string& spec_text) {
-  if (std::filesystem::exists(spec_copy) && ReadText(spec_copy) != spec_text) {
+  if (std::filesystem::exists(spec_copy) && ReadTextFile(spec_copy) != spec_text) {
     throw std::invalid_argument("output folder '" + out.string() + "' holds a sweep of another spec (" + spec_copy.string() +
                                 "): use another --out");
   }
@@ -74,7 +67,7 @@ SweepResults ReadFinishedResults(const std::filesystem::path& file, const SweepO
   if (options.resume) return ReadSweepResults(file);
   SweepResults results;
   if (!std::filesystem::exists(file)) return results;
-  const std::string text = ReadText(file);
+  const std::string text = ReadTextFile(file);
   results.file_bytes = text.size();
   int lines = 0;
   for (size_t start = 0, end; (end = text.find('\n', start)) != std::string::npos; start = end + 1) {
@@ -256,14 +249,21 @@ Worker StartEpisode(const SweepSetup& s, int episode) {
   std::tie(w.seed, w.axes) = s.spec.Episode(episode);
   w.dir = s.options.out / fmt::format("episodes/{:06d}", episode);
   std::filesystem::create_directories(w.dir);
+  RemoveStalePartialFiles(w.dir);  // A worker killed mid-write in an earlier, killed run.
   std::filesystem::remove(w.dir / "metrics.json");
   w.started = WallClock::now();
   w.pid = Spawn(EpisodeArguments(s, w), w.dir / "log.txt");
   return w;
 }
 
+// The last line of a worker's log, or "" when it left none.
 std::string LastLine(const std::filesystem::path& file) {
-  std::string text = ReadText(file);
+  std::string text;
+  try {
+    text = ReadTextFile(file);
+  } catch (const std::runtime_error&) {
+    return "";
+  }
   while (!text.empty() && (text.back() == '\n' || text.back() == '\r')) text.pop_back();
   const size_t nl = text.rfind('\n');
   std::string line = nl == std::string::npos ? text : text.substr(nl + 1);
@@ -284,13 +284,15 @@ SweepRecord FinishedRecord(const Worker& w, int status, bool timed_out) {
   std::string problem;
   if (!timed_out && WIFEXITED(status) && WEXITSTATUS(status) == 0 && std::filesystem::exists(metrics_file)) {
     try {
-      ReadSummaryAndItems(nlohmann::json::parse(ReadText(metrics_file)), record.summary, record.items);
+      ReadSummaryAndItems(nlohmann::json::parse(ReadTextFile(metrics_file)), record.summary, record.items);
       record.status = RunStatus::kOk;
       return record;
     } catch (const nlohmann::json::exception& e) {
       problem = metrics_file.string() + ": not JSON: " + e.what();
     } catch (const std::invalid_argument& e) {
       problem = metrics_file.string() + ": " + e.what();
+    } catch (const std::runtime_error& e) {
+      problem = e.what();
     }
   }
   record.status = timed_out ? RunStatus::kTimeout : RunStatus::kCrashed;

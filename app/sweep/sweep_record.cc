@@ -65,15 +65,6 @@ SweepRecord ParseRecord(std::string_view line) {
   }
 }
 
-std::string ReadText(const std::filesystem::path& file) {
-  errno = 0;
-  std::ifstream in(file, std::ios::binary);
-  std::stringstream text;
-  if (in) text << in.rdbuf();
-  if (!in || in.bad()) throw std::runtime_error("cannot read '" + file.string() + "'" + SystemReason());
-  return text.str();
-}
-
 }  // namespace
 
 const char* ToString(RunStatus status) {
@@ -150,7 +141,7 @@ SweepResults ReadSweepResults(const std::filesystem::path& file) {
   SweepResults results;
   std::error_code ec;
   if (!std::filesystem::exists(file, ec)) return results;
-  const std::string text = ReadText(file);
+  const std::string text = ReadTextFile(file);
   results.file_bytes = text.size();
   size_t start = 0;
   int line = 0;

@@ -6,6 +6,10 @@
 
 #include <fstream>
 #include <string>
+#include <vector>
+
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include "temp_dir.h"
 
@@ -54,6 +58,35 @@ TEST(WriteTextFile, AMissingFolderIsAnErrorNamingTheFile) {
   const std::filesystem::path file = dir / "gone" / "tables.md";
   EXPECT_EQ(RuntimeErrorOf([&] { WriteTextFile(file, "x"); }),
             "cannot write '" + file.string() + "': No such file or directory");
+}
+
+// The pid of a process that has ended (and been reaped): what a SIGKILLed writer leaves behind.
+pid_t PidOfAnEndedProcess() {
+  const pid_t child = fork();
+  if (child == 0) _exit(0);
+  waitpid(child, nullptr, 0);
+  return child;
+}
+
+TEST(RemoveStalePartialFiles, RemovesOnlyWhatAnEndedWriterLeft) {
+  const sortcell_test::TempDir dir("output_dir");
+  const std::string dead = std::to_string(PidOfAnEndedProcess());
+  const std::string alive = std::to_string(::getpid());
+  for (const std::string& name : std::vector<std::string>{"summary.json.partial" + dead, "spec.yaml.partial" + alive, "notes.partial",
+                                 "notes.partialx1", "keep.json"}) {
+    std::ofstream(dir / name) << "x";
+  }
+  std::filesystem::create_directories(dir / "episodes");
+  std::ofstream(dir / "episodes" / ("metrics.json.partial" + dead)) << "x";
+  PrepareOutputDir(dir.path());
+  EXPECT_FALSE(std::filesystem::exists(dir / ("summary.json.partial" + dead)));
+  EXPECT_TRUE(std::filesystem::exists(dir / ("spec.yaml.partial" + alive))) << "its writer may still rename it";
+  EXPECT_TRUE(std::filesystem::exists(dir / "notes.partial"));
+  EXPECT_TRUE(std::filesystem::exists(dir / "notes.partialx1"));
+  EXPECT_TRUE(std::filesystem::exists(dir / "keep.json"));
+  EXPECT_TRUE(std::filesystem::exists(dir / "episodes" / ("metrics.json.partial" + dead))) << "only the folder itself";
+  RemoveStalePartialFiles(dir / "episodes");
+  EXPECT_FALSE(std::filesystem::exists(dir / "episodes" / ("metrics.json.partial" + dead)));
 }
 
 TEST(CloseChecked, ReportsAStreamThatFailed) {

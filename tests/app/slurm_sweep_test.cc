@@ -4,6 +4,8 @@
 // summary checked against the unsharded run's. Skipped without root or without the packages slurm-wlm
 // and munge (scripts/setup.sh installs them).
 #include <gtest/gtest.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
 #include <unistd.h>
 
 #include <cstdlib>
@@ -23,12 +25,34 @@ const std::string kSource = SORTCELL_SOURCE_DIR;
 
 using sortcell_test::ReadFile;
 
+// Whether a TCP port can be bound on every address, as slurmctld and slurmd bind theirs.
+bool PortIsFree(int port) {
+  const int fd = socket(AF_INET, SOCK_STREAM, 0);
+  if (fd < 0) return false;
+  sockaddr_in address{};
+  address.sin_family = AF_INET;
+  address.sin_addr.s_addr = htonl(INADDR_ANY);
+  address.sin_port = htons(static_cast<uint16_t>(port));
+  const bool free = bind(fd, reinterpret_cast<const sockaddr*>(&address), sizeof(address)) == 0;
+  close(fd);
+  return free;
+}
+
+// Two neighbouring free ports (slurmctld's, slurmd's), searched from one of this test process's own so
+// that a cluster already on this machine, or another run of this test, is left alone.
+int FreePortPair() {
+  const int first = 20000 + static_cast<int>(getpid() % 20000);
+  for (int port = first; port < first + 200; port += 2) {
+    if (PortIsFree(port) && PortIsFree(port + 1)) return port;
+  }
+  return first;  // Then the cluster's start fails, and its log says why.
+}
+
 // The cluster, stopped however the test ends.
 class LocalCluster {
  public:
   explicit LocalCluster(std::string dir) : dir_(std::move(dir)) {
-    // Ports of this test process's own, so that a cluster already on this machine is left alone.
-    const int port = 20000 + static_cast<int>(getpid() % 20000);
+    const int port = FreePortPair();
     env_ = "SORTCELL_SLURMCTLD_PORT=" + std::to_string(port) + " SORTCELL_SLURMD_PORT=" + std::to_string(port + 1) +
            " SLURM_CONF=" + dir_ + "/slurm.conf ";
     status_ = std::system((env_ + kSource + "/scripts/slurm_local_cluster.sh start " + dir_ + " > " + dir_ + ".log 2>&1").c_str());
