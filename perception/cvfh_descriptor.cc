@@ -10,11 +10,12 @@
 #include <stdexcept>
 #include <string>
 
+#include "perception/seconds_since.h"
+
 namespace sortcell::perception {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-double Since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
 // `result` marked as an object that cannot be described (its histogram stays empty).
 const CvfhResult& Unusable(CvfhResult& result, DescriptorStatus status, std::string detail) {
@@ -77,7 +78,7 @@ CvfhResult ComputeCvfh(const Cloud& object_C, const CvfhParams& params) {
       clean_normals->push_back(n);
     }
   }
-  result.normals_s = Since(t);
+  result.normals_s = SecondsSince(t);
   if (static_cast<int>(with_normal->size()) < params.min_points) {
     return Unusable(result, DescriptorStatus::kTooFewPoints,
                     "CVFH: only " + std::to_string(with_normal->size()) + " points have a normal, need " +
@@ -96,7 +97,7 @@ CvfhResult ComputeCvfh(const Cloud& object_C, const CvfhParams& params) {
   cvfh.setNormalizeBins(false);  // Raw counts; normalisation is the descriptor's choice.
   pcl::PointCloud<pcl::VFHSignature308> regions;
   cvfh.compute(regions);
-  result.cvfh_s = Since(t);
+  result.cvfh_s = SecondsSince(t);
   result.regions = static_cast<int>(regions.size());
   if (regions.empty()) {
     return Unusable(result, DescriptorStatus::kNoHistogram,

@@ -6,6 +6,8 @@
 #include <utility>
 #include <vector>
 
+#include "perception/seconds_since.h"
+
 namespace sortcell::perception {
 namespace {
 
@@ -68,7 +70,7 @@ DescriptorParts ComputeDescriptorParts(const Cloud& object_C, const DescriptorPa
   if (parts.status != DescriptorStatus::kOk) return parts;
   const auto t = std::chrono::steady_clock::now();
   parts.hsv = HsvHistogram(object_C, params.hsv);
-  parts.hsv_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+  parts.hsv_s = SecondsSince(t);
   return parts;
 }
 

@@ -18,11 +18,12 @@
 #include <stdexcept>
 #include <string>
 
+#include "perception/seconds_since.h"
+
 namespace sortcell::perception {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-double Since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
 bool Finite(const PointT& p) { return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z); }
 
@@ -249,7 +250,7 @@ void ClusterObjects(const Cloud& cloud, const std::vector<int>& above, const std
   grid.setLeafSize(leaf, leaf, leaf);
   grid.setSaveLeafLayout(true);
   grid.filter(*voxels);
-  result.timings.voxel_s = Since(t);
+  result.timings.voxel_s = SecondsSince(t);
 
   t = Clock::now();
   const std::vector<pcl::PointIndices> clusters = params.clustering == SegmentationParams::Clustering::kConvex
@@ -267,7 +268,7 @@ void ClusterObjects(const Cloud& cloud, const std::vector<int>& above, const std
   }
   const Eigen::Isometry3d X_OC = X_WC.value_or(Eigen::Isometry3d::Identity());  // Output frame O.
   for (size_t c = 0; c < clusters.size(); ++c) DescribeSegment(cloud, *voxels, clusters[c], X_OC, result.segments[c]);
-  result.timings.cluster_s = Since(t);
+  result.timings.cluster_s = SecondsSince(t);
 }
 
 }  // namespace
@@ -296,7 +297,7 @@ SegmentationResult SegmentObjects(const Cloud& cloud, const std::optional<Eigen:
   }
   const std::vector<int> candidates =
       background != nullptr ? SubtractBackground(cloud, *background, roi, params.background_tolerance_m) : roi;
-  result.timings.crop_s = Since(t);
+  result.timings.crop_s = SecondsSince(t);
 
   t = Clock::now();
   const std::optional<PlaneFit> fit = FitSupportingPlane(cloud, roi, X_WC, params, result.detail);
@@ -307,7 +308,7 @@ SegmentationResult SegmentObjects(const Cloud& cloud, const std::optional<Eigen:
   result.plane_C = fit->plane_C;
   const std::vector<int> above =
       X_WC ? AbovePlane(cloud, candidates, fit->plane_C, params) : OnPlaneArea(cloud, candidates, *fit, params);
-  result.timings.plane_s = Since(t);
+  result.timings.plane_s = SecondsSince(t);
   if (!above.empty()) ClusterObjects(cloud, above, X_WC, params, result);
   return result;
 }

@@ -25,4 +25,10 @@ inline constexpr std::array<DhRow, 6> kUr5Dh = {{
     {0.0823, 0.0, 0.0},
 }};
 
+/// The table's lengths by the names the closed-form FK and IK use (m).
+namespace ur5_lengths {
+inline constexpr double d1 = kUr5Dh[0].d, a2 = kUr5Dh[1].a, a3 = kUr5Dh[2].a;
+inline constexpr double d4 = kUr5Dh[3].d, d5 = kUr5Dh[4].d, d6 = kUr5Dh[5].d;
+}  // namespace ur5_lengths
+
 }  // namespace sortcell::robot

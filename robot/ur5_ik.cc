@@ -7,8 +7,7 @@
 namespace sortcell::robot {
 namespace {
 
-constexpr double d1 = kUr5Dh[0].d, a2 = kUr5Dh[1].a, a3 = kUr5Dh[2].a;
-constexpr double d4 = kUr5Dh[3].d, d5 = kUr5Dh[4].d, d6 = kUr5Dh[5].d;
+using namespace ur5_lengths;  // NOLINT(google-build-using-namespace): the formulas' own names.
 // A cosine this little past +-1 is rounding at a boundary (elbow straight, wrist aligned) and is
 // clamped; anything further is out of reach.
 constexpr double kCosineSlack = 1e-9;

@@ -7,12 +7,8 @@
 #include "robot/ur5_dh.h"
 
 namespace sortcell::robot {
-namespace {
 
-constexpr double d1 = kUr5Dh[0].d, a2 = kUr5Dh[1].a, a3 = kUr5Dh[2].a;
-constexpr double d4 = kUr5Dh[3].d, d5 = kUr5Dh[4].d, d6 = kUr5Dh[5].d;
-
-}  // namespace
+using namespace ur5_lengths;  // NOLINT(google-build-using-namespace): the formulas' own names.
 
 Eigen::Isometry3d DhLinkTransform(int i, double q_i) {
   const DhRow& row = kUr5Dh.at(static_cast<size_t>(i));

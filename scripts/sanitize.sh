@@ -1,16 +1,19 @@
 #!/usr/bin/env bash
 # Builds what the unit tests need with AddressSanitizer + UndefinedBehaviorSanitizer into
-# build-sanitize/ and runs them there (ctest -L unit; CI runs this after the main suite). Needs the
+# build-sanitize/ and runs them there (ctest -L unit; .ci/run runs this after the main suite). Needs the
 # packages scripts/setup.sh installs.
 #   scripts/sanitize.sh            build (-O1 -g1: ASan's advice, and 2.5 times quicker to compile than
 #                                  -O2 -g; no benchmarks, no sim tests) and run the unit tests
 #   SORTCELL_SANITIZE_DIR=dir      build somewhere else
+# A unity build (16 sources per compiler run): a library's sources share one parse of the heavy
+# headers (PCL, Eigen, MuJoCo). It also keeps the names in anonymous namespaces unique within a
+# library: two files' helpers of one name no longer compile.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build_dir=${SORTCELL_SANITIZE_DIR:-build-sanitize}
 cmake -S . -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSORTCELL_SANITIZE=ON \
   "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g1" "-DCMAKE_C_FLAGS_RELWITHDEBINFO=-O1 -g1" \
-  -DSORTCELL_BUILD_BENCHMARKS=OFF >/dev/null
+  -DSORTCELL_BUILD_BENCHMARKS=OFF -DCMAKE_UNITY_BUILD=ON -DCMAKE_UNITY_BUILD_BATCH_SIZE=16 >/dev/null
 cmake --build "$build_dir" --target sortcell_unit_tests -j "$(nproc)"
 # Leaks count as findings; UBSan prints the stack of what it finds and stops the test.
 # alloc_dealloc_mismatch=0: Debian's PCL allocates a supervoxel's shared state with malloc (Eigen's aligned

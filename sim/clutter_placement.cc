@@ -6,7 +6,6 @@
 namespace sortcell::sim {
 namespace {
 
-constexpr int kArrangements = 50;  // Fresh starts before giving up: early objects can block the rest.
 constexpr int kBisections = 30;    // Sliding an object against another: 2^-30 of the start distance.
 constexpr double kTouching = 0.001;  // Footprints this much beyond the contact gap still touch (m).
 
@@ -168,7 +167,7 @@ std::optional<std::vector<TablePose>> SampleSparse(const std::vector<ObjectShape
   const auto middle = [&](size_t i, const TablePose& p) -> Eigen::Vector2d {
     return p.lying ? Eigen::Rotation2Dd(p.yaw) * shapes[i].lying->middle : Eigen::Vector2d::Zero();
   };
-  for (int tries = 0; tries < kArrangements; ++tries) {
+  for (int tries = 0; tries < kPlacementArrangements; ++tries) {
     // Which lie, drawn afresh for each arrangement: long lying objects may not fit together.
     std::vector<bool> lying;
     std::vector<double> radii;
@@ -252,7 +251,7 @@ std::optional<std::vector<TablePose>> SampleClutter(const std::vector<ObjectShap
                                 std::to_string(options.lying_fraction));
   }
   if (options.mode == PlacementMode::kSparse) return SampleSparse(shapes, fixed, area, options, rng, max_tries);
-  for (int arrangement = 0; arrangement < kArrangements; ++arrangement) {
+  for (int arrangement = 0; arrangement < kPlacementArrangements; ++arrangement) {
     if (auto poses = ArrangeOnce(shapes, fixed, area, options, rng, max_tries)) return poses;
   }
   return std::nullopt;

@@ -36,8 +36,9 @@ struct PlacementOptions {
 
 /// Poses for objects of `shapes` inside `area` (every outline inside the rectangle), the first
 /// `fixed.size()` as given (upright or lying as their pose says; they keep the area's gap from the
-/// drawn ones in sparse and clustered mode, and may be touched in dense mode). Up to 50 fresh
-/// arrangements of up to `max_tries` draws per object; nullopt when the objects do not fit.
+/// drawn ones in sparse and clustered mode, and may be touched in dense mode). Up to
+/// kPlacementArrangements fresh arrangements of up to `max_tries` draws per object; nullopt when the
+/// objects do not fit.
 /// @throws std::invalid_argument for more fixed poses than shapes or a lying fraction outside [0, 1].
 std::optional<std::vector<TablePose>> SampleClutter(const std::vector<ObjectShape>& shapes,
                                                     const std::vector<TablePose>& fixed, const PlacementArea& area,

@@ -67,8 +67,6 @@ void StowObject(const Model& model, Data& data, int body, int slot) {
 
 namespace {
 
-constexpr int kArrangements = 50;  // Fresh starts before giving up: early objects can block the rest.
-
 std::optional<std::vector<TablePose>> SampleOnce(const std::vector<double>& radii, const Eigen::Vector2d& min,
                                                  const Eigen::Vector2d& max, double gap, std::mt19937_64& rng,
                                                  int max_tries, std::uniform_real_distribution<double>& unit) {
@@ -96,7 +94,7 @@ std::optional<std::vector<TablePose>> SampleTablePoses(const std::vector<double>
                                                        const Eigen::Vector2d& max, double gap, std::mt19937_64& rng,
                                                        int max_tries) {
   std::uniform_real_distribution<double> unit(0.0, 1.0);
-  for (int arrangement = 0; arrangement < kArrangements; ++arrangement) {
+  for (int arrangement = 0; arrangement < kPlacementArrangements; ++arrangement) {
     if (auto poses = SampleOnce(radii, min, max, gap, rng, max_tries, unit)) return poses;
   }
   return std::nullopt;

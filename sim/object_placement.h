@@ -14,6 +14,9 @@
 
 namespace sortcell::sim {
 
+/// Fresh starts of a random arrangement before it gives up (early objects can block the rest).
+inline constexpr int kPlacementArrangements = 50;
+
 /// Sets free body `body` upright with its base centre at (x, y, 0) and yaw about z, velocity zero.
 /// @throws std::invalid_argument naming the scene and body if it is not a free body.
 void PlaceObject(const Model& model, Data& data, int body, double x, double y, double yaw);
@@ -50,7 +53,8 @@ struct PlacementArea {
 
 /// Random non-overlapping poses for objects of footprint `radii` inside the rectangle [min, max]
 /// (x, y): centres at least r_i + r_j + gap apart, yaw uniform. Rejection sampling, at most
-/// `max_tries` draws per object and up to 50 fresh arrangements; nullopt when the objects do not fit.
+/// `max_tries` draws per object and up to kPlacementArrangements fresh arrangements; nullopt when the
+/// objects do not fit.
 std::optional<std::vector<TablePose>> SampleTablePoses(const std::vector<double>& radii, const Eigen::Vector2d& min,
                                                        const Eigen::Vector2d& max, double gap, std::mt19937_64& rng,
                                                        int max_tries = 500);

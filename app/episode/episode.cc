@@ -31,7 +31,7 @@
 namespace sortcell::app {
 namespace {
 
-constexpr double kSettleTime = 1.0;  // s, after placing the objects and before scoring
+constexpr double kSceneSettleTime = 1.0;  // s, after placing the objects and before scoring
 
 class EpisodeRun {
  public:
@@ -145,12 +145,12 @@ EpisodeMetrics EpisodeRun::Run(const std::vector<std::string>& command_line) {
   recorder_ = std::make_unique<EpisodeRecorder>(*scorer_, rig_->cell(), model_, rig_->data(), rig_->video(), options_.seed,
                                                 options_.max_attempts_per_object);
   recorder_->ShowStatus("settling");
-  rig_->cell().Wait("settle", kSettleTime);
+  rig_->cell().Wait("settle", kSceneSettleTime);
 
   cell::SortingPolicy policy(rig_->cell(), layout_, calibration_, recognizer_, Budget(), recorder_.get());
   const cell::PolicyResult result = policy.Run();
   recorder_->ShowStatus(std::string("episode over: ") + cell::ToString(result.status));
-  rig_->cell().Wait("settle_result", kSettleTime);
+  rig_->cell().Wait("settle_result", kSceneSettleTime);
   if (rig_->video()) rig_->video()->Close();
 
   const EpisodeMetrics metrics = Metrics(result, SecondsSince(wall_start));

@@ -24,7 +24,7 @@
 namespace sortcell::app {
 namespace {
 
-constexpr double kSettleTime = 0.5;  // s, before the pick and before judging the result
+constexpr double kPickSettleTime = 0.5;  // s, before the pick and before judging the result
 
 std::string Join(const std::vector<std::string>& names) {
   std::string text;
@@ -145,7 +145,7 @@ PickResult RunPick(const PickOptions& options, const std::vector<std::string>& c
   SimCell cell(model, data, nullptr, nullptr, nullptr, video.get(), layout.control_period);
   cell.Reset(layout.q_observe, layout.observe_half_gap);
   cell::MotionSequencer motions(cell);
-  motions.Wait("settle", kSettleTime);
+  motions.Wait("settle", kPickSettleTime);
 
   const sim::ObjectExtent extent = sim::ObjectExtentOf(model, data, target.object);
   const robot::GraspPlan grasp = robot::PlanTopDownGrasp(FootprintFromScene(extent), cell.CommandedJoints());
@@ -188,7 +188,7 @@ PickResult RunPick(const PickOptions& options, const std::vector<std::string>& c
     }
   }
   result.cycle_time_s = cell.Now() - t0;
-  motions.Wait("settle_result", kSettleTime);
+  motions.Wait("settle_result", kPickSettleTime);
   result.in_bin = sim::InBin(data, target.object, target.bin.body);
   result.status = outcome ? PickStatus(*outcome, result.in_bin) : robot::ToString(grasp.status);
   if (video) {
