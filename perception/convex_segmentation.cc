@@ -12,6 +12,7 @@
 #include <cmath>
 #include <iterator>
 #include <map>
+#include <set>
 
 namespace sortcell::perception {
 namespace {
@@ -202,7 +203,53 @@ void CutColourCreases(const Supervoxels& supervoxels, const ConvexClusteringPara
   }
 }
 
-// Voxel i's LCCP segment label (0: none), in the input's order.
+// Segments of at most this many supervoxels join their largest neighbouring segment (LCCP's noise filter).
+constexpr size_t kSmallSegmentSupervoxels = 3;
+
+// Each supervoxel's segment, named by the segment's smallest supervoxel label. LCCP numbers its
+// segments, and runs its own small-segment merge, in the order of its graph's vertices, which boost
+// keeps in a set of pointers: the order of heap addresses, so it changes from run to run (ASLR). The
+// supervoxels and their adjacency do not; segments named by them, merged in their order, are the
+// same every run.
+std::map<std::uint32_t, std::uint32_t> CanonicalSegments(const std::map<std::uint32_t, std::uint32_t>& lccp_segment_of,
+                                                         const Adjacency& adjacency) {
+  std::map<std::uint32_t, std::uint32_t> name_of_lccp;  // LCCP's segment label -> its smallest supervoxel.
+  for (const auto& [sv, seg] : lccp_segment_of) name_of_lccp.try_emplace(seg, sv);  // Supervoxels ascend.
+  std::map<std::uint32_t, std::uint32_t> segment_of;
+  for (const auto& [sv, seg] : lccp_segment_of) segment_of[sv] = name_of_lccp[seg];
+  for (bool merged = true; merged;) {  // As LCCP's merge: passes until no small segment can join another.
+    merged = false;
+    std::map<std::uint32_t, size_t> size;
+    std::map<std::uint32_t, std::set<std::uint32_t>> neighbours;
+    for (const auto& [sv, seg] : segment_of) ++size[seg];
+    for (const auto& [a, b] : adjacency) {
+      const auto sa = segment_of.find(a), sb = segment_of.find(b);
+      if (sa == segment_of.end() || sb == segment_of.end() || sa->second == sb->second) continue;
+      neighbours[sa->second].insert(sb->second);
+      neighbours[sb->second].insert(sa->second);
+    }
+    std::map<std::uint32_t, std::uint32_t> joins;  // Small segment -> the segment it joins, this pass.
+    std::set<std::uint32_t> joined;
+    for (const auto& [seg, n] : size) {
+      if (n > kSmallSegmentSupervoxels || neighbours[seg].empty()) continue;
+      std::uint32_t largest = seg;
+      for (std::uint32_t other : neighbours[seg]) {  // Ties: the lowest name.
+        if (size[other] < n) continue;  // As LCCP's: a neighbour at least as large.
+        if (largest == seg || size[other] > size[largest]) largest = other;
+      }
+      if (largest == seg || joined.count(largest) || joins.count(largest)) continue;  // Or it joins another.
+      joins[seg] = largest;
+      joined.insert(seg);
+    }
+    for (auto& [sv, seg] : segment_of) {
+      const auto join = joins.find(seg);
+      if (join != joins.end()) seg = join->second, merged = true;
+    }
+  }
+  return segment_of;
+}
+
+// Voxel i's segment (0: none), in the input's order; segments named as CanonicalSegments names them.
 pcl::PointCloud<pcl::PointXYZL>::Ptr LccpLabels(const Cloud::Ptr& voxels, const ConvexClusteringParams& params) {
   pcl::SupervoxelClustering<PointT> clustering(static_cast<float>(params.voxel_m), static_cast<float>(params.seed_m));
   // The input is unorganized (voxel centres): no single-camera depth transform.
@@ -222,11 +269,18 @@ pcl::PointCloud<pcl::PointXYZL>::Ptr LccpLabels(const Cloud::Ptr& voxels, const 
   lccp.setSanityCheck(true);
   lccp.setSmoothnessCheck(true, static_cast<float>(params.voxel_m), static_cast<float>(params.seed_m), 0.1f);
   lccp.setKFactor(0);
-  lccp.setMinSegmentSize(3);
+  lccp.setMinSegmentSize(0);  // Merged in CanonicalSegments instead.
   lccp.setInputSupervoxels(supervoxels, adjacency);
   lccp.segment();
+  std::map<std::uint32_t, std::uint32_t> lccp_segment_of;
+  lccp.getSupervoxelToSegmentMap(lccp_segment_of);
+  const std::map<std::uint32_t, std::uint32_t> segment_of = CanonicalSegments(lccp_segment_of, adjacency);
   pcl::PointCloud<pcl::PointXYZL>::Ptr labelled = clustering.getLabeledCloud();
-  lccp.relabelCloud(*labelled);
+  for (auto& voxel : *labelled) {
+    const auto segment = segment_of.find(voxel.label);
+    // Supervoxel labels start at 1, so a segment's name is never 0 (none).
+    voxel.label = segment == segment_of.end() ? 0 : segment->second;
+  }
   return labelled;
 }
 
@@ -245,9 +299,10 @@ std::vector<pcl::PointIndices> ConvexClusters(const Cloud::Ptr& voxels, const Ei
   std::vector<pcl::PointIndices> out;
   for (auto& [label, indices] : by_label) out.push_back(std::move(indices));
   const auto larger = [](const pcl::PointIndices& a, const pcl::PointIndices& b) { return a.indices.size() > b.indices.size(); };
-  std::sort(out.begin(), out.end(), larger);
+  // Stable: clusters of one size stay in the order of their names, so the order is the same every run.
+  std::stable_sort(out.begin(), out.end(), larger);
   JoinPiecesInsideOthers(*voxels, MakePlaneFrame(plane_C), params, out);
-  std::sort(out.begin(), out.end(), larger);
+  std::stable_sort(out.begin(), out.end(), larger);
   out.erase(std::remove_if(out.begin(), out.end(),
                            [&params](const pcl::PointIndices& c) {
                              const int n = static_cast<int>(c.indices.size());
