@@ -13,6 +13,7 @@
 #include <iterator>
 #include <map>
 #include <set>
+#include <utility>
 
 namespace sortcell::perception {
 namespace {
@@ -206,46 +207,68 @@ void CutColourCreases(const Supervoxels& supervoxels, const ConvexClusteringPara
 // Segments of at most this many supervoxels join their largest neighbouring segment (LCCP's noise filter).
 constexpr size_t kSmallSegmentSupervoxels = 3;
 
-// Each supervoxel's segment, named by the segment's smallest supervoxel label. LCCP numbers its
-// segments, and runs its own small-segment merge, in the order of its graph's vertices, which boost
-// keeps in a set of pointers: the order of heap addresses, so it changes from run to run (ASLR). The
-// supervoxels and their adjacency do not; segments named by them, merged in their order, are the
-// same every run.
-std::map<std::uint32_t, std::uint32_t> CanonicalSegments(const std::map<std::uint32_t, std::uint32_t>& lccp_segment_of,
-                                                         const Adjacency& adjacency) {
-  std::map<std::uint32_t, std::uint32_t> name_of_lccp;  // LCCP's segment label -> its smallest supervoxel.
-  for (const auto& [sv, seg] : lccp_segment_of) name_of_lccp.try_emplace(seg, sv);  // Supervoxels ascend.
-  std::map<std::uint32_t, std::uint32_t> segment_of;
-  for (const auto& [sv, seg] : lccp_segment_of) segment_of[sv] = name_of_lccp[seg];
-  for (bool merged = true; merged;) {  // As LCCP's merge: passes until no small segment can join another.
-    merged = false;
-    std::map<std::uint32_t, size_t> size;
-    std::map<std::uint32_t, std::set<std::uint32_t>> neighbours;
-    for (const auto& [sv, seg] : segment_of) ++size[seg];
-    for (const auto& [a, b] : adjacency) {
-      const auto sa = segment_of.find(a), sb = segment_of.find(b);
-      if (sa == segment_of.end() || sb == segment_of.end() || sa->second == sb->second) continue;
-      neighbours[sa->second].insert(sb->second);
-      neighbours[sb->second].insert(sa->second);
+using SegmentOf = std::map<std::uint32_t, std::uint32_t>;  // Supervoxel label -> its segment's name.
+
+// Each segment renamed after its smallest supervoxel (supervoxel labels start at 1: never 0, none).
+void NameBySmallestSupervoxel(SegmentOf& segment_of) {
+  std::map<std::uint32_t, std::uint32_t> name_of;
+  for (const auto& [sv, seg] : segment_of) name_of.try_emplace(seg, sv);  // Supervoxels ascend.
+  for (auto& [sv, seg] : segment_of) seg = name_of[seg];
+}
+
+// The segments each segment touches across the (cut) supervoxel adjacency.
+std::map<std::uint32_t, std::set<std::uint32_t>> SegmentNeighbours(const SegmentOf& segment_of,
+                                                                  const Adjacency& adjacency) {
+  std::map<std::uint32_t, std::set<std::uint32_t>> neighbours;
+  for (const auto& [a, b] : adjacency) {
+    const auto sa = segment_of.find(a), sb = segment_of.find(b);
+    if (sa == segment_of.end() || sb == segment_of.end() || sa->second == sb->second) continue;
+    neighbours[sa->second].insert(sb->second);
+    neighbours[sb->second].insert(sa->second);
+  }
+  return neighbours;
+}
+
+// One pass of LCCP's noise filter, in name order: a small segment joins its largest neighbour of at
+// least its own size (ties: the lowest name), unless that one has joined another in this pass. A
+// segment grows as others join it (LCCP moves their supervoxels at once) and joins none itself in that
+// pass. Returns each joining segment and the one it joins.
+std::map<std::uint32_t, std::uint32_t> PlanJoins(const SegmentOf& segment_of, const Adjacency& adjacency) {
+  std::map<std::uint32_t, size_t> size;
+  for (const auto& [sv, seg] : segment_of) ++size[seg];
+  const auto neighbours = SegmentNeighbours(segment_of, adjacency);
+  std::map<std::uint32_t, std::uint32_t> joins;
+  std::set<std::uint32_t> joined_by_others;
+  for (const auto& [seg, n] : size) {
+    const auto near = neighbours.find(seg);
+    if (n > kSmallSegmentSupervoxels || near == neighbours.end() || joined_by_others.count(seg)) continue;
+    std::uint32_t largest = seg;
+    for (std::uint32_t other : near->second) {
+      if (size.at(other) < n) continue;
+      if (largest == seg || size.at(other) > size.at(largest)) largest = other;
     }
-    std::map<std::uint32_t, std::uint32_t> joins;  // Small segment -> the segment it joins, this pass.
-    std::set<std::uint32_t> joined;
-    for (const auto& [seg, n] : size) {
-      if (n > kSmallSegmentSupervoxels || neighbours[seg].empty()) continue;
-      std::uint32_t largest = seg;
-      for (std::uint32_t other : neighbours[seg]) {  // Ties: the lowest name.
-        if (size[other] < n) continue;  // As LCCP's: a neighbour at least as large.
-        if (largest == seg || size[other] > size[largest]) largest = other;
-      }
-      if (largest == seg || joined.count(largest) || joins.count(largest)) continue;  // Or it joins another.
-      joins[seg] = largest;
-      joined.insert(seg);
-    }
+    if (largest == seg || joins.count(largest)) continue;
+    joins[seg] = largest;
+    joined_by_others.insert(largest);
+    size[largest] += n;
+  }
+  return joins;
+}
+
+// Each supervoxel's segment, named after the segment's smallest supervoxel. LCCP numbers its segments,
+// and runs its own small-segment merge, in the order of its graph's vertices, which boost keeps in a
+// set of pointers: the order of heap addresses, so it changes from run to run (ASLR). The supervoxels
+// and their adjacency do not; segments named after them, merged in that order, are the same every run.
+SegmentOf CanonicalSegments(SegmentOf segment_of, const Adjacency& adjacency) {
+  NameBySmallestSupervoxel(segment_of);
+  // Passes until no small segment can join another (each pass that joins leaves fewer segments).
+  for (auto joins = PlanJoins(segment_of, adjacency); !joins.empty(); joins = PlanJoins(segment_of, adjacency)) {
     for (auto& [sv, seg] : segment_of) {
       const auto join = joins.find(seg);
-      if (join != joins.end()) seg = join->second, merged = true;
+      if (join != joins.end()) seg = join->second;  // No chains: a segment joined this pass joins none.
     }
   }
+  NameBySmallestSupervoxel(segment_of);
   return segment_of;
 }
 
@@ -272,13 +295,12 @@ pcl::PointCloud<pcl::PointXYZL>::Ptr LccpLabels(const Cloud::Ptr& voxels, const 
   lccp.setMinSegmentSize(0);  // Merged in CanonicalSegments instead.
   lccp.setInputSupervoxels(supervoxels, adjacency);
   lccp.segment();
-  std::map<std::uint32_t, std::uint32_t> lccp_segment_of;
+  SegmentOf lccp_segment_of;
   lccp.getSupervoxelToSegmentMap(lccp_segment_of);
-  const std::map<std::uint32_t, std::uint32_t> segment_of = CanonicalSegments(lccp_segment_of, adjacency);
+  const SegmentOf segment_of = CanonicalSegments(std::move(lccp_segment_of), adjacency);
   pcl::PointCloud<pcl::PointXYZL>::Ptr labelled = clustering.getLabeledCloud();
   for (auto& voxel : *labelled) {
     const auto segment = segment_of.find(voxel.label);
-    // Supervoxel labels start at 1, so a segment's name is never 0 (none).
     voxel.label = segment == segment_of.end() ? 0 : segment->second;
   }
   return labelled;

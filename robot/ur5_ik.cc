@@ -7,7 +7,6 @@
 namespace sortcell::robot {
 namespace {
 
-using namespace ur5_lengths;  // NOLINT(google-build-using-namespace): the formulas' own names.
 // A cosine this little past +-1 is rounding at a boundary (elbow straight, wrist aligned) and is
 // clamped; anything further is out of reach.
 constexpr double kCosineSlack = 1e-9;
@@ -38,6 +37,7 @@ bool SameModulo2Pi(const Joints& a, const Joints& b) {
 
 // R46 and p46 (frame 6 in frame 4) from the sines and cosines of q5, q6 (see FlangePose).
 void WristTransform(double c5, double s5, double c6, double s6, Eigen::Matrix3d& R46, Eigen::Vector3d& p46) {
+  using namespace ur5_lengths;  // NOLINT(google-build-using-namespace): the formulas' own names.
   R46 << c5 * c6, -c5 * s6, -s5,  //
       s5 * c6, -s5 * s6, c5,      //
       -s6, -c6, 0;
@@ -62,6 +62,7 @@ void AddChecked(const Eigen::Isometry3d& X_BF, const Joints& q_raw, bool singula
 }  // namespace
 
 IkResult SolveIk(const Eigen::Isometry3d& X_BF, double q6_current, const IkOptions& options) {
+  using namespace ur5_lengths;  // NOLINT(google-build-using-namespace): the formulas' own names.
   IkResult result;
   const Eigen::Matrix3d& R = X_BF.linear();
   const Eigen::Vector3d& p = X_BF.translation();

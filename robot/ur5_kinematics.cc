@@ -8,8 +8,6 @@
 
 namespace sortcell::robot {
 
-using namespace ur5_lengths;  // NOLINT(google-build-using-namespace): the formulas' own names.
-
 Eigen::Isometry3d DhLinkTransform(int i, double q_i) {
   const DhRow& row = kUr5Dh.at(static_cast<size_t>(i));
   // T_{i-1,i} = Rz(q_i) Tz(d_i) Tx(a_i) Rx(alpha_i)
@@ -31,6 +29,7 @@ LinkFrames ForwardKinematicsAll(const Joints& q) {
 // with angles q2, q2+q3, q2+q3+q4, and the wrist adds R46 = Rz(q5) Rx(-pi/2) Rz(q6). Six sin/cos
 // pairs instead of twelve keeps FK cheap enough to check every IK solution.
 Eigen::Isometry3d FlangePose(const Joints& q) {
+  using namespace ur5_lengths;  // NOLINT(google-build-using-namespace): the formulas' own names.
   const double q23 = q[1] + q[2], q234 = q23 + q[3];
   const double c1 = std::cos(q[0]), s1 = std::sin(q[0]);
   const double c2 = std::cos(q[1]), s2 = std::sin(q[1]);

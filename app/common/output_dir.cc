@@ -12,7 +12,6 @@
 #include <cstring>
 #include <ctime>
 #include <fstream>
-#include <sstream>
 #include <stdexcept>
 #include <string_view>
 #include <system_error>
@@ -67,7 +66,6 @@ void PrepareOutputDir(const std::filesystem::path& dir) {
     if (!out.good()) throw std::invalid_argument("output folder '" + dir.string() + "': not writable");
   }
   fs::remove(probe, ec);
-  RemoveStalePartialFiles(dir);
 }
 
 void CloseChecked(std::ofstream& out, const std::filesystem::path& path) {
@@ -138,13 +136,15 @@ void WriteTextFile(const std::filesystem::path& path, const std::string& text) {
 std::string ReadTextFile(const std::filesystem::path& path) {
   errno = 0;
   std::ifstream in(path, std::ios::binary);
-  std::stringstream text;
-  if (in) text << in.rdbuf();
-  if (!in || in.bad()) {
+  // read(), not `out << in.rdbuf()`: that one turns a read error (a folder, an I/O error) into a short text.
+  std::string text;
+  char chunk[1 << 16];
+  while (in.read(chunk, sizeof chunk) || in.gcount() > 0) text.append(chunk, static_cast<size_t>(in.gcount()));
+  if (!in.is_open() || in.bad()) {
     throw std::runtime_error("cannot read '" + path.string() + "'" +
                              (errno != 0 ? std::string(": ") + std::strerror(errno) : std::string()));
   }
-  return text.str();
+  return text;
 }
 
 void WriteJson(const std::filesystem::path& path, const nlohmann::json& json) {

@@ -12,8 +12,7 @@
 
 namespace sortcell::app {
 
-/// Creates `dir` (and parents) and checks that a file can be written in it, before any work starts;
-/// removes what a killed WriteTextFile left in it (RemoveStalePartialFiles).
+/// Creates `dir` (and parents) and checks that a file can be written in it, before any work starts.
 /// @throws std::invalid_argument "output folder '<dir>': <reason>" otherwise.
 void PrepareOutputDir(const std::filesystem::path& dir);
 
@@ -26,7 +25,8 @@ void PrepareOutputDir(const std::filesystem::path& dir);
 void WriteTextFile(const std::filesystem::path& path, const std::string& text);
 
 /// Removes the files "<name>.partial<pid>" in `dir` (not below it) whose writing process is gone: what
-/// WriteTextFile leaves when its process is killed mid-write. A live process's file is kept.
+/// WriteTextFile leaves when its process is killed mid-write. A live process's file is kept. Only for a
+/// folder that no other machine writes (a sweep's, under its lock): a writer elsewhere looks gone.
 void RemoveStalePartialFiles(const std::filesystem::path& dir);
 
 /// The whole of `path` as it is on disk (bytes, no conversions).

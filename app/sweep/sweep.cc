@@ -396,6 +396,7 @@ SweepRun RunSweep(const SweepOptions& options, const std::vector<std::string>& c
   LoadScene(spec.scene);  // Fails here, once, rather than in every worker.
   PrepareOutputDir(options.out);
   const SweepLock lock(options.out);  // Before anything in the folder is read or written.
+  RemoveStalePartialFiles(options.out);  // What a killed sweep was writing.
   const std::filesystem::path results_file = options.out / "results.jsonl";
   const std::filesystem::path spec_copy = options.out / "spec.yaml";
   const std::string spec_text = SpecCopyText(options);

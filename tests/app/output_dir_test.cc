@@ -78,7 +78,7 @@ TEST(RemoveStalePartialFiles, RemovesOnlyWhatAnEndedWriterLeft) {
   }
   std::filesystem::create_directories(dir / "episodes");
   std::ofstream(dir / "episodes" / ("metrics.json.partial" + dead)) << "x";
-  PrepareOutputDir(dir.path());
+  RemoveStalePartialFiles(dir.path());
   EXPECT_FALSE(std::filesystem::exists(dir / ("summary.json.partial" + dead)));
   EXPECT_TRUE(std::filesystem::exists(dir / ("spec.yaml.partial" + alive))) << "its writer may still rename it";
   EXPECT_TRUE(std::filesystem::exists(dir / "notes.partial"));
@@ -87,6 +87,18 @@ TEST(RemoveStalePartialFiles, RemovesOnlyWhatAnEndedWriterLeft) {
   EXPECT_TRUE(std::filesystem::exists(dir / "episodes" / ("metrics.json.partial" + dead))) << "only the folder itself";
   RemoveStalePartialFiles(dir / "episodes");
   EXPECT_FALSE(std::filesystem::exists(dir / "episodes" / ("metrics.json.partial" + dead)));
+}
+
+TEST(ReadTextFile, ReadsBytesAndNamesAFileItCannotRead) {
+  const sortcell_test::TempDir dir("output_dir");
+  const std::string bytes = std::string("a\0b\r\n", 5) + std::string(200000, 'x');  // Over one read's chunk.
+  std::ofstream(dir / "f.bin", std::ios::binary) << bytes;
+  EXPECT_EQ(ReadTextFile(dir / "f.bin"), bytes);
+  std::ofstream(dir / "empty.txt").close();
+  EXPECT_EQ(ReadTextFile(dir / "empty.txt"), "");
+  EXPECT_EQ(RuntimeErrorOf([&] { ReadTextFile(dir / "gone.txt"); }),
+            "cannot read '" + (dir / "gone.txt").string() + "': No such file or directory");
+  EXPECT_EQ(RuntimeErrorOf([&] { ReadTextFile(dir.path()); }), "cannot read '" + dir.str() + "': Is a directory");
 }
 
 TEST(CloseChecked, ReportsAStreamThatFailed) {
