@@ -179,7 +179,7 @@ def write_bottle(name, spec):
     sr, sh, sz = spec["shoulder"]
     text = f"""<!-- {name}: {spec["what"]}.
      Written by models/tools/make_paper_objects.py: the printed label is a visual tube mesh with a texture
-     over the primitive colliders (body, shoulder, neck, cap). -->
+     over the primitive colliders (body, shoulder, neck, cap), which roll (condim 6) when it lies. -->
 <mujoco>
   <asset>
     <material name="{name}_pet" rgba="{spec["pet"]}" specular="0.5" shininess="0.6"/>
@@ -194,7 +194,7 @@ def write_bottle(name, spec):
           face="{numbers(faces, "{}")}"/>
   </asset>
   <worldbody>
-    <body name="{name}" pos="{BOTTLE_POSES[name]}" childclass="object">
+    <body name="{name}" pos="{BOTTLE_POSES[name]}" childclass="object_roll">
       <freejoint name="{name}_free"/>
       {spec["inertial"]}
       <geom name="{name}_body" type="cylinder" size="{r} {h:.4f}" pos="0 0 {h:.4f}" material="{name}_pet"/>
