@@ -6,6 +6,7 @@
 #include <utility>
 #include <stdexcept>
 
+#include "perception/seconds_since.h"
 #include "robot/gripper_geometry.h"
 
 namespace sortcell::cell {
@@ -15,10 +16,6 @@ namespace {
 // planner's default (the scripted pick's 4.5 mm) when the object is that close to the stroke.
 constexpr double kPerceivedClearance = 0.008;
 const double kMinClearance = robot::GraspOptions().finger_clearance;
-
-double WallSecondsSince(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
 
 // Open fingers this far from every neighbour are free to come down (m): beyond the Kinect's noise.
 constexpr double kFreeFingers = 0.004;
@@ -106,7 +103,7 @@ Observation SortingPolicy::Observe(const std::optional<HeldObject>& held) {
   for (Detection& d : observation.detections) {
     if (d.category && d.confidence < options_.reject_below) d.category = options_.reject_bin;
   }
-  observer_.Observed(*cloud, observation, WallSecondsSince(start));
+  observer_.Observed(*cloud, observation, perception::SecondsSince(start));
   return observation;
 }
 

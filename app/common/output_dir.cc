@@ -24,6 +24,8 @@
 
 namespace sortcell::app {
 
+std::string SystemReason(int error) { return error != 0 ? std::string(": ") + std::strerror(error) : std::string(); }
+
 namespace {
 
 constexpr std::string_view kPartialMark = ".partial";
@@ -72,7 +74,7 @@ void CloseChecked(std::ofstream& out, const std::filesystem::path& path) {
   if (out.is_open()) out.close();  // Flushes: a full disk shows here, not at the last <<.
   if (!out) {
     throw std::runtime_error("cannot write '" + path.string() + "'" +
-                             (errno != 0 ? std::string(": ") + std::strerror(errno) : std::string()));
+                             SystemReason(errno));
   }
 }
 
@@ -100,7 +102,7 @@ void SyncFile(const std::filesystem::path& path) {
 void SyncFolder(const std::filesystem::path& dir) {
   const int fd = ::open(dir.empty() ? "." : dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
   if (fd < 0) return;
-  if (::fsync(fd) != 0) errno = 0;
+  ::fsync(fd);
   ::close(fd);
 }
 
@@ -113,7 +115,7 @@ void WriteTextFile(const std::filesystem::path& path, const std::string& text) {
   if (std::filesystem::exists(status) && !std::filesystem::is_regular_file(status)) return WriteInPlace(path, text);
   // Written beside it and renamed over it: a process killed mid-write (a sweep's SIGKILL) leaves the
   // old file or the new one, never half of one.
-  const std::filesystem::path partial = path.string() + ".partial" + std::to_string(::getpid());
+  const std::filesystem::path partial = path.string() + std::string(kPartialMark) + std::to_string(::getpid());
   try {
     WriteInPlace(partial, text);
     SyncFile(partial);
@@ -122,7 +124,7 @@ void WriteTextFile(const std::filesystem::path& path, const std::string& text) {
     std::error_code ignored;
     std::filesystem::remove(partial, ignored);
     throw std::runtime_error("cannot write '" + path.string() + "'" +
-                             (reason != 0 ? std::string(": ") + std::strerror(reason) : std::string()));
+                             SystemReason(reason));
   }
   std::filesystem::rename(partial, path, ec);
   if (ec) {
@@ -142,7 +144,7 @@ std::string ReadTextFile(const std::filesystem::path& path) {
   while (in.read(chunk, sizeof chunk) || in.gcount() > 0) text.append(chunk, static_cast<size_t>(in.gcount()));
   if (!in.is_open() || in.bad()) {
     throw std::runtime_error("cannot read '" + path.string() + "'" +
-                             (errno != 0 ? std::string(": ") + std::strerror(errno) : std::string()));
+                             SystemReason(errno));
   }
   return text;
 }

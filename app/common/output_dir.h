@@ -16,6 +16,9 @@ namespace sortcell::app {
 /// @throws std::invalid_argument "output folder '<dir>': <reason>" otherwise.
 void PrepareOutputDir(const std::filesystem::path& dir);
 
+/// ": <strerror(error)>", or "" when `error` is 0: the system's reason appended to a message.
+std::string SystemReason(int error);
+
 /// Writes `text` to `path` (replacing it) and checks the write after the file is closed, so a full
 /// disk or a lost folder is an error, not a short file. Atomic: the text goes to a file beside `path`
 /// that is renamed over it, so `path` is never seen half written, even if the process is killed (a

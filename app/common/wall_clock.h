@@ -4,13 +4,13 @@
 
 #include <chrono>
 
+#include "perception/seconds_since.h"
+
 namespace sortcell::app {
 
 using WallClock = std::chrono::steady_clock;
 
-/// Seconds of wall time since `start`.
-inline double SecondsSince(WallClock::time_point start) {
-  return std::chrono::duration<double>(WallClock::now() - start).count();
-}
+/// Seconds of wall time since a WallClock time point (one definition, perception's: the lowest layer).
+using perception::SecondsSince;
 
 }  // namespace sortcell::app

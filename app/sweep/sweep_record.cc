@@ -2,7 +2,6 @@
 
 #include <array>
 #include <cerrno>
-#include <cstring>
 #include <sstream>
 #include <stdexcept>
 #include <system_error>
@@ -16,8 +15,6 @@ namespace {
 
 constexpr std::array<std::pair<RunStatus, const char*>, 3> kRunStatusNames{
     {{RunStatus::kOk, "ok"}, {RunStatus::kCrashed, "crashed"}, {RunStatus::kTimeout, "timeout"}}};
-
-std::string SystemReason() { return errno != 0 ? std::string(": ") + std::strerror(errno) : std::string(); }
 
 // `json[key]`, if present, into `out` (which is reset otherwise).
 template <typename T>
@@ -168,7 +165,7 @@ SweepResults ReadSweepResults(const std::filesystem::path& file) {
 SweepResultsWriter::SweepResultsWriter(std::filesystem::path file) : file_(std::move(file)) {
   errno = 0;
   out_.open(file_, std::ios::binary | std::ios::app);
-  if (!out_) throw std::runtime_error("cannot append to '" + file_.string() + "'" + SystemReason());
+  if (!out_) throw std::runtime_error("cannot append to '" + file_.string() + "'" + SystemReason(errno));
 }
 
 void SweepResultsWriter::Append(const SweepRecord& record) {
@@ -177,7 +174,7 @@ void SweepResultsWriter::Append(const SweepRecord& record) {
   errno = 0;
   out_ << line << '\n';
   out_.flush();
-  if (!out_) throw std::runtime_error("cannot write '" + file_.string() + "'" + SystemReason());
+  if (!out_) throw std::runtime_error("cannot write '" + file_.string() + "'" + SystemReason(errno));
 }
 
 void SweepResultsWriter::Close() { CloseChecked(out_, file_); }
