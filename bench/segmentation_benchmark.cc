@@ -7,9 +7,9 @@
 // (perception/segmentation_scoring.h): objects found as one segment (IoU >= 0.5), merged, split,
 // missed, and the overlap precision / recall / F-measure under one-to-one matching; then pooled per
 // folder. Also the segmentation's wall time per frame.
-// Usage: segmentation_benchmark [--scenes N] [--verbose] [FOLDER ...]
+// Usage: segmentation_benchmark [--scenes N] [--verbose] [--overlays DIR] [FOLDER ...]
 //   (default: 50 sim scenes per mode; ../shared/real/mosd-learn and mosd-hard; --verbose: the objects
-//   not found in each sim frame)
+//   not found in each sim frame; --overlays: each such frame's convex segments as DIR/<mode><frame>.png)
 #include <algorithm>
 #include <cstdlib>
 #include <map>
@@ -21,8 +21,11 @@
 #include <string>
 #include <vector>
 
+#include <opencv2/imgcodecs.hpp>
+
 #include "cell/scene_observation.h"
 #include "perception/pcd_io.h"
+#include "perception/segment_overlay.h"
 #include "perception/segmentation.h"
 #include "perception/segmentation_scoring.h"
 #include "sim/clutter_placement.h"
@@ -128,7 +131,7 @@ std::vector<SimFrame> RenderScenes(const sim::Model& model, sim::PlacementMode m
   return frames;
 }
 
-void RunSim(const sim::Model& model, int scenes, bool verbose) {
+void RunSim(const sim::Model& model, int scenes, bool verbose, const fs::path& overlays) {
   for (const sim::PlacementMode mode : {sim::PlacementMode::kDense, sim::PlacementMode::kClustered}) {
     perception::Cloud::Ptr background;
     const std::vector<SimFrame> frames = RenderScenes(model, mode, scenes, background);
@@ -147,6 +150,12 @@ void RunSim(const sim::Model& model, int scenes, bool verbose) {
         for (const auto& segment : result.segments) segments.push_back(segment.indices);
         scores.push_back(perception::ScoreSegmentation(f.truth, segments, 100));
         if (verbose && scores.back().found < scores.back().objects) PrintFailures(&f - frames.data(), f.truth, segments);
+        if (!overlays.empty() && clustering == Clustering::kConvex && scores.back().found < scores.back().objects) {
+          const fs::path file = overlays / (std::string(sim::ToString(mode)) + std::to_string(&f - frames.data()) + ".png");
+          if (!cv::imwrite(file.string(), perception::SegmentOverlay(*f.cloud, result.segments))) {
+            std::fprintf(stderr, "segmentation_benchmark: cannot write '%s'\n", file.c_str());
+          }
+        }
       }
       PrintScore(clustering == Clustering::kConvex ? "convex" : "Euclidean", perception::PoolScores(scores),
                  frames.empty() ? 0 : total_ms / frames.size());
@@ -160,8 +169,17 @@ int main(int argc, char** argv) {
   std::vector<fs::path> folders;
   int scenes = 50;
   bool verbose = false;
+  fs::path overlays;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
+    if (arg == "--overlays" && i + 1 < argc) {
+      overlays = argv[++i];
+      if (!fs::is_directory(overlays)) {
+        std::fprintf(stderr, "segmentation_benchmark: --overlays: '%s' is not a folder\n", argv[i]);
+        return 2;
+      }
+      continue;
+    }
     if (arg == "--verbose") {
       verbose = true;
       continue;
@@ -176,7 +194,7 @@ int main(int argc, char** argv) {
     }
     folders.emplace_back(arg);
   }
-  if (scenes > 0) RunSim(sim::Model::FromFile((fs::path(SORTCELL_SOURCE_DIR) / "scenes" / "cell.xml").string()), scenes, verbose);
+  if (scenes > 0) RunSim(sim::Model::FromFile((fs::path(SORTCELL_SOURCE_DIR) / "scenes" / "cell.xml").string()), scenes, verbose, overlays);
   if (folders.empty()) {
     const fs::path real = fs::path(SORTCELL_SOURCE_DIR) / ".." / "shared" / "real";
     folders = {real / "mosd-learn", real / "mosd-hard"};

@@ -23,6 +23,11 @@ namespace {
 struct Volume {
   std::vector<cv::Point2f> hull;
   float top = 0, bottom = 0;
+  /// The circle the footprint lies on if the cluster is a round wall (a cup's, a bowl's seen from
+  /// outside): the least-squares circle through its voxels' footprint, and their median distance
+  /// from it (small for a round wall, large for a box's or a lying bottle's footprint).
+  cv::Point2f circle_centre;
+  float circle_radius = 0, circle_residual = 0;
 };
 
 struct PlaneFrame {
@@ -44,6 +49,31 @@ PlaneFrame MakePlaneFrame(const Eigen::Vector4d& plane_C) {
   return f;
 }
 
+// The least-squares circle through `points` (Kasa's algebraic fit: x^2 + y^2 + D x + E y + F = 0 is
+// linear in D, E, F; OpenCV fits ellipses, not circles) and the points' median distance from it.
+void FitFootprintCircle(const std::vector<cv::Point2f>& points, Volume& volume) {
+  if (points.size() < 3) return;
+  Eigen::MatrixX3d a(points.size(), 3);
+  Eigen::VectorXd b(points.size());
+  cv::Point2f mean(0, 0);
+  for (const auto& p : points) mean += p;
+  mean /= static_cast<float>(points.size());  // Centred: better conditioned.
+  for (size_t i = 0; i < points.size(); ++i) {
+    const double x = points[i].x - mean.x, y = points[i].y - mean.y;
+    a.row(i) << x, y, 1;
+    b[i] = -(x * x + y * y);
+  }
+  const Eigen::Vector3d def = a.colPivHouseholderQr().solve(b);
+  const double r2 = def.head<2>().squaredNorm() / 4 - def[2];
+  if (!def.allFinite() || r2 <= 0) return;
+  volume.circle_centre = mean + cv::Point2f(static_cast<float>(-def[0] / 2), static_cast<float>(-def[1] / 2));
+  volume.circle_radius = static_cast<float>(std::sqrt(r2));
+  std::vector<float> residuals;
+  for (const auto& p : points) residuals.push_back(std::abs(static_cast<float>(cv::norm(p - volume.circle_centre)) - volume.circle_radius));
+  std::nth_element(residuals.begin(), residuals.begin() + residuals.size() / 2, residuals.end());
+  volume.circle_residual = residuals[residuals.size() / 2];
+}
+
 Volume VolumeOf(const Cloud& voxels, const pcl::PointIndices& cluster, const PlaneFrame& frame) {
   std::vector<cv::Point2f> footprint;
   Volume volume;
@@ -55,24 +85,17 @@ Volume VolumeOf(const Cloud& voxels, const pcl::PointIndices& cluster, const Pla
     volume.bottom = std::min(volume.bottom, frame.Height(voxels[i]));
   }
   cv::convexHull(footprint, volume.hull);
+  FitFootprintCircle(footprint, volume);
   return volume;
 }
 
-// The largest distance between two points of a convex footprint.
-float Diameter(const std::vector<cv::Point2f>& hull) {
-  float diameter = 0;
-  for (size_t i = 0; i < hull.size(); ++i) {
-    for (size_t j = i + 1; j < hull.size(); ++j) diameter = std::max(diameter, static_cast<float>(cv::norm(hull[i] - hull[j])));
-  }
-  return diameter;
-}
-
 // Whether `inner` is the inside of the hollow object whose outer wall is `wall`, seen over the rim: the
-// wall stands on the plane, the inside floats above it (its lower part hidden by the wall), reaches up
-// to the rim (the far side of it) but not above, and widens the wall's footprint no further than the object's own width (a neighbour would).
+// wall stands on the plane and is round (its footprint close to the circle fitted through it: a cup's,
+// a bowl's, a pot's); the inside lies beyond it from the camera, reaches up to the rim (the far side of
+// it) but not above, and lies within the rim's circle. A neighbour seen beyond the rim stands outside
+// that circle; a box's or a lying bottle's footprint is not round.
 bool IsInsideOfHollow(const Volume& inner, const Volume& wall, const ConvexClusteringParams& params) {
-  if (wall.hull.size() < 3 || inner.hull.empty()) return false;
-  if (wall.bottom > params.hollow_lift_m || inner.bottom <= params.hollow_lift_m) return false;
+  if (wall.hull.size() < 3 || inner.hull.empty() || wall.bottom > params.hollow_lift_m) return false;
   if (inner.top > wall.top + params.top_tolerance_m || inner.top < wall.top - params.rim_tolerance_m) return false;
   // Seen over the near rim, the inside lies beyond the wall from the camera (at the plane frame's origin).
   const auto range = [](const std::vector<cv::Point2f>& hull) {
@@ -81,10 +104,10 @@ bool IsInsideOfHollow(const Volume& inner, const Volume& wall, const ConvexClust
     return cv::norm(c / static_cast<float>(hull.size()));
   };
   if (range(inner.hull) <= range(wall.hull)) return false;
-  std::vector<cv::Point2f> both = wall.hull, hull;
-  both.insert(both.end(), inner.hull.begin(), inner.hull.end());
-  cv::convexHull(both, hull);
-  return Diameter(hull) <= (1 + params.hollow_widening) * Diameter(wall.hull);
+  if (wall.circle_radius <= 0 || wall.circle_residual > params.round_wall_residual * wall.circle_radius) return false;
+  return std::all_of(inner.hull.begin(), inner.hull.end(), [&](const cv::Point2f& p) {
+    return cv::norm(p - wall.circle_centre) <= wall.circle_radius + params.rim_tolerance_m;
+  });
 }
 
 // Whether `piece` (of `piece_voxels`) is the top of the object `base` (of `base_voxels`) stands for, cut

@@ -45,7 +45,7 @@ std::string SegmentationDigest() {
   return fmt::format("convex {:g} {:g} {:g} {:g} {:g} {:g} {:g} {:g} {:g} {:g} {:g} {:g} {:g} {:g} {:g}", c.voxel_m, c.seed_m,
                      c.concavity_deg, c.colour_edge_delta_e, c.colour_edge_concavity_deg, c.colour_importance,
                      c.normal_importance, c.inside_fraction, c.top_tolerance_m, c.hollow_lift_m, c.rim_tolerance_m,
-                     c.hollow_widening, c.cap_fraction, c.cap_overlap_m, c.neck_length_m) +
+                     c.round_wall_residual, c.cap_fraction, c.cap_overlap_m, c.neck_length_m) +
          fmt::format(" {:g}", c.lying_elongation);
 }
 

@@ -46,5 +46,18 @@ TEST(SegmentationReal, ConvexClustersKeepStackedBoxesApartAndSingleBoxesWhole) {
   }
 }
 
+TEST(SegmentationReal, ConvexClustersKeepHollowObjectsWholeInsideAndOut) {
+  // A bowl and a pot whose floors are seen over the rim (learn36), a pot and a bowl upside down (learn37):
+  // LCCP cuts each inside from its outside at the rim; the inside lies within the wall's circle and joins it.
+  for (const char* name : {"learn36.pcd", "learn37.pcd"}) {
+    const fs::path file = kReal / "mosd-learn" / name;
+    if (!fs::exists(file)) GTEST_SKIP() << "no " << file << " beside this checkout";
+    const SegmentationScore convex = Score(file, SegmentationParams::Clustering::kConvex);
+    EXPECT_EQ(convex.objects, 3) << name;
+    EXPECT_EQ(convex.found, 3) << name;
+    EXPECT_EQ(convex.split, 0) << name;
+  }
+}
+
 }  // namespace
 }  // namespace sortcell::perception
