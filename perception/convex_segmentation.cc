@@ -49,27 +49,49 @@ PlaneFrame MakePlaneFrame(const Eigen::Vector4d& plane_C) {
   return f;
 }
 
-// The least-squares circle through `points` (Kasa's algebraic fit: x^2 + y^2 + D x + E y + F = 0 is
-// linear in D, E, F; OpenCV fits ellipses, not circles) and the points' median distance from it.
+// The circle through `points` that minimises the squared distances from it (geometric least squares),
+// and the points' median distance from it. Kasa's algebraic fit (x^2 + y^2 + D x + E y + F = 0, linear
+// in D, E, F) starts it; a few Gauss-Newton steps then remove Kasa's bias towards small circles on a
+// short arc (the near side of a cup: 32 mm instead of its 38). OpenCV fits ellipses, not circles.
 void FitFootprintCircle(const std::vector<cv::Point2f>& points, Volume& volume) {
   if (points.size() < 3) return;
-  Eigen::MatrixX3d a(points.size(), 3);
-  Eigen::VectorXd b(points.size());
-  cv::Point2f mean(0, 0);
-  for (const auto& p : points) mean += p;
-  mean /= static_cast<float>(points.size());  // Centred: better conditioned.
-  for (size_t i = 0; i < points.size(); ++i) {
-    const double x = points[i].x - mean.x, y = points[i].y - mean.y;
-    a.row(i) << x, y, 1;
-    b[i] = -(x * x + y * y);
+  Eigen::Vector2d mean = Eigen::Vector2d::Zero();
+  for (const auto& p : points) mean += Eigen::Vector2d(p.x, p.y);
+  mean /= static_cast<double>(points.size());  // Centred: better conditioned.
+  std::vector<Eigen::Vector2d> q;
+  for (const auto& p : points) q.push_back(Eigen::Vector2d(p.x, p.y) - mean);
+  Eigen::MatrixX3d a(q.size(), 3);
+  Eigen::VectorXd b(q.size());
+  for (size_t i = 0; i < q.size(); ++i) {
+    a.row(i) << q[i].x(), q[i].y(), 1;
+    b[i] = -q[i].squaredNorm();
   }
   const Eigen::Vector3d def = a.colPivHouseholderQr().solve(b);
-  const double r2 = def.head<2>().squaredNorm() / 4 - def[2];
+  Eigen::Vector2d centre = -def.head<2>() / 2;
+  double r2 = centre.squaredNorm() - def[2];
   if (!def.allFinite() || r2 <= 0) return;
-  volume.circle_centre = mean + cv::Point2f(static_cast<float>(-def[0] / 2), static_cast<float>(-def[1] / 2));
-  volume.circle_radius = static_cast<float>(std::sqrt(r2));
+  double radius = std::sqrt(r2);
+  for (int step = 0; step < 10; ++step) {  // Residual d_i - r; Jacobian rows (-(q_i - c) / d_i, -1).
+    Eigen::Matrix3d jtj = Eigen::Matrix3d::Zero();
+    Eigen::Vector3d jtr = Eigen::Vector3d::Zero();
+    for (const auto& p : q) {
+      const double d = (p - centre).norm();
+      if (d <= 0) continue;
+      const Eigen::Vector3d j(-(p - centre).x() / d, -(p - centre).y() / d, -1);
+      jtj += j * j.transpose();
+      jtr += j * (d - radius);
+    }
+    const Eigen::Vector3d delta = jtj.ldlt().solve(-jtr);
+    if (!delta.allFinite()) break;
+    centre += delta.head<2>();
+    radius += delta[2];
+    if (delta.norm() < 1e-6) break;
+  }
+  if (!(radius > 0) || !centre.allFinite()) return;
+  volume.circle_centre = cv::Point2f(static_cast<float>(centre.x() + mean.x()), static_cast<float>(centre.y() + mean.y()));
+  volume.circle_radius = static_cast<float>(radius);
   std::vector<float> residuals;
-  for (const auto& p : points) residuals.push_back(std::abs(static_cast<float>(cv::norm(p - volume.circle_centre)) - volume.circle_radius));
+  for (const auto& p : q) residuals.push_back(static_cast<float>(std::abs((p - centre).norm() - radius)));
   std::nth_element(residuals.begin(), residuals.begin() + residuals.size() / 2, residuals.end());
   volume.circle_residual = residuals[residuals.size() / 2];
 }
@@ -89,9 +111,19 @@ Volume VolumeOf(const Cloud& voxels, const pcl::PointIndices& cluster, const Pla
   return volume;
 }
 
+// The largest distance between two points of a convex footprint.
+float Diameter(const std::vector<cv::Point2f>& hull) {
+  float diameter = 0;
+  for (size_t i = 0; i < hull.size(); ++i) {
+    for (size_t j = i + 1; j < hull.size(); ++j) diameter = std::max(diameter, static_cast<float>(cv::norm(hull[i] - hull[j])));
+  }
+  return diameter;
+}
+
 // Whether `inner` is the inside of the hollow object whose outer wall is `wall`, seen over the rim: the
 // wall stands on the plane and is round (its footprint close to the circle fitted through it: a cup's,
-// a bowl's, a pot's); the inside lies beyond it from the camera, reaches up to the rim (the far side of
+// a bowl's, a pot's; and that circle no wider than the wall's footprint shows: the near side of a round
+// wall spans most of a half circle, while a flat face fits a circle of any size); the inside lies beyond it from the camera, reaches up to the rim (the far side of
 // it) but not above, and lies within the rim's circle. A neighbour seen beyond the rim stands outside
 // that circle; a box's or a lying bottle's footprint is not round.
 bool IsInsideOfHollow(const Volume& inner, const Volume& wall, const ConvexClusteringParams& params) {
@@ -105,6 +137,7 @@ bool IsInsideOfHollow(const Volume& inner, const Volume& wall, const ConvexClust
   };
   if (range(inner.hull) <= range(wall.hull)) return false;
   if (wall.circle_radius <= 0 || wall.circle_residual > params.round_wall_residual * wall.circle_radius) return false;
+  if (wall.circle_radius > params.round_wall_radius_factor * Diameter(wall.hull)) return false;
   return std::all_of(inner.hull.begin(), inner.hull.end(), [&](const cv::Point2f& p) {
     return cv::norm(p - wall.circle_centre) <= wall.circle_radius + params.rim_tolerance_m;
   });

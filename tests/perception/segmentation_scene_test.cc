@@ -8,6 +8,7 @@
 
 #include "app/common/object_set.h"
 #include "cell/cell_layout.h"
+#include "cell/scene_observation.h"
 #include "perception/segmentation.h"
 #include "sim/arm_io.h"
 #include "sim/kinect_camera.h"
@@ -113,6 +114,12 @@ TEST(SegmentationScene, CellSceneEveryObjectFoundWithAndWithoutBackground) {
     EXPECT_EQ(c.segments, 6) << c.report;
     std::cout << (subtract ? "with" : "without") << " background: " << c.report << "\n";
   }
+  // The cell's own segmentation (convex clusters): one segment per object too; the cup's inside, seen
+  // over its rim, joins its wall.
+  const auto r = perception::SegmentObjects(*cloud, frame.X_WC, background.get(), cell::CellSegmentation(cell::CellLayout()));
+  const Check c = Evaluate(r, frame, names);
+  EXPECT_EQ(c.objects, 6);
+  EXPECT_EQ(c.segments, 6) << c.report;
 }
 
 TEST(SegmentationScene, RandomArrangementsOfThePaperObjects) {
