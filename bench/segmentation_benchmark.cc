@@ -151,7 +151,8 @@ void RunSim(const sim::Model& model, int scenes, bool verbose, const fs::path& o
         scores.push_back(perception::ScoreSegmentation(f.truth, segments, 100));
         if (verbose && scores.back().found < scores.back().objects) PrintFailures(&f - frames.data(), f.truth, segments);
         if (!overlays.empty() && clustering == Clustering::kConvex && scores.back().found < scores.back().objects) {
-          const fs::path file = overlays / (std::string(sim::ToString(mode)) + std::to_string(&f - frames.data()) + ".png");
+          const std::string name = sim::ToString(mode) + std::to_string(&f - frames.data()) + ".png";
+          const fs::path file = overlays / name;
           if (!cv::imwrite(file.string(), perception::SegmentOverlay(*f.cloud, result.segments))) {
             std::fprintf(stderr, "segmentation_benchmark: cannot write '%s'\n", file.c_str());
           }

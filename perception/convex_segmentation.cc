@@ -24,7 +24,7 @@ struct Volume {
   std::vector<cv::Point2f> hull;
   float top = 0, bottom = 0;
   /// The circle the footprint lies on if the cluster is a round wall (a cup's, a bowl's seen from
-  /// outside): the least-squares circle through its voxels' footprint, and their median distance
+  /// outside): the geometric least-squares circle through its voxels' footprint, and their median distance
   /// from it (small for a round wall, large for a box's or a lying bottle's footprint).
   cv::Point2f circle_centre;
   float circle_radius = 0, circle_residual = 0;
@@ -88,7 +88,8 @@ void FitFootprintCircle(const std::vector<cv::Point2f>& points, Volume& volume) 
     if (delta.norm() < 1e-6) break;
   }
   if (!(radius > 0) || !centre.allFinite()) return;
-  volume.circle_centre = cv::Point2f(static_cast<float>(centre.x() + mean.x()), static_cast<float>(centre.y() + mean.y()));
+  volume.circle_centre = cv::Point2f(static_cast<float>(centre.x() + mean.x()),
+                                     static_cast<float>(centre.y() + mean.y()));
   volume.circle_radius = static_cast<float>(radius);
   std::vector<float> residuals;
   for (const auto& p : q) residuals.push_back(static_cast<float>(std::abs((p - centre).norm() - radius)));
@@ -120,12 +121,12 @@ float Diameter(const std::vector<cv::Point2f>& hull) {
   return diameter;
 }
 
-// Whether `inner` is the inside of the hollow object whose outer wall is `wall`, seen over the rim: the
-// wall stands on the plane and is round (its footprint close to the circle fitted through it: a cup's,
-// a bowl's, a pot's; and that circle no wider than the wall's footprint shows: the near side of a round
-// wall spans most of a half circle, while a flat face fits a circle of any size); the inside lies beyond it from the camera, reaches up to the rim (the far side of
-// it) but not above, and lies within the rim's circle. A neighbour seen beyond the rim stands outside
-// that circle; a box's or a lying bottle's footprint is not round.
+// Whether `inner` is the inside of the hollow object whose outer wall is `wall`, seen over the rim. The
+// wall stands on the plane and is round: its footprint lies close to the circle fitted through it (a
+// cup's, a bowl's, a pot's), and that circle is no wider than the footprint allows (the near side of a
+// round wall spans most of a half circle; a flat face fits a circle of any size). The inside lies beyond
+// the wall from the camera, reaches up to the rim (its far side) but not above, and lies within the
+// rim's circle. A neighbour seen beyond the rim stands outside that circle.
 bool IsInsideOfHollow(const Volume& inner, const Volume& wall, const ConvexClusteringParams& params) {
   if (wall.hull.size() < 3 || inner.hull.empty() || wall.bottom > params.hollow_lift_m) return false;
   if (inner.top > wall.top + params.top_tolerance_m || inner.top < wall.top - params.rim_tolerance_m) return false;

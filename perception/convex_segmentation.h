@@ -37,12 +37,14 @@ struct ConvexClusteringParams {
   int min_cluster_voxels = 25, max_cluster_voxels = 20000;
   double inside_fraction = 0.8;  ///< A piece with this share of its voxels inside another cluster's volume joins it.
   double top_tolerance_m = 0.01; ///< "Below the top": at most this much above the other cluster's highest voxel.
-  /// The inside of a hollow object seen over its rim joins the wall it is seen over: a round wall (the
-  /// median distance of its footprint from the circle fitted through it at most round_wall_residual of
-  /// the radius, and the radius at most round_wall_radius_factor times the footprint's width: the near
-  /// side of a round wall spans most of a half circle, a flat face fits a circle of any size) standing on the plane (its lowest voxel at most hollow_lift_m above it), the piece
-  /// beyond it from the camera, its top within rim_tolerance_m of the wall's (the far rim), and all of
-  /// it within the wall's circle (plus rim_tolerance_m).
+  /// The inside of a hollow object seen over its rim joins the wall it is seen over when:
+  /// - the wall stands on the plane (its lowest voxel at most hollow_lift_m above it);
+  /// - the wall is round: its footprint's median distance from the circle fitted through it is at most
+  ///   round_wall_residual of the radius, and the radius at most round_wall_radius_factor times the
+  ///   footprint's width (the near side of a round wall spans most of a half circle; a flat face fits
+  ///   a circle of any size);
+  /// - the piece lies beyond the wall from the camera, its top within rim_tolerance_m of the wall's (the
+  ///   far rim), and all of it within the wall's circle plus rim_tolerance_m.
   double hollow_lift_m = 0.02;
   double rim_tolerance_m = 0.015;
   double round_wall_residual = 0.2;

@@ -53,7 +53,8 @@ pcl::PointCloud<pcl::Normal> EstimateNormals(const Cloud& points, double radius_
     pcl::Normal& n = normals[i];
     Eigen::Matrix3f covariance;
     Eigen::Vector4f centroid;
-    if (neighbours[i].size() < 3 || pcl::computeMeanAndCovarianceMatrix(points, neighbours[i], covariance, centroid) == 0) {
+    if (neighbours[i].size() < 3 ||
+        pcl::computeMeanAndCovarianceMatrix(points, neighbours[i], covariance, centroid) == 0) {
       n.normal_x = n.normal_y = n.normal_z = n.curvature = kNaN;
       continue;
     }
