@@ -1,5 +1,7 @@
 #include "perception/convex_segmentation.h"
 
+#include <Eigen/Cholesky>
+#include <Eigen/QR>
 #include <pcl/common/angles.h>
 #include <pcl/segmentation/lccp_segmentation.h>
 #include <pcl/segmentation/supervoxel_clustering.h>
@@ -14,6 +16,7 @@
 #include <map>
 #include <set>
 #include <utility>
+#include <vector>
 
 namespace sortcell::perception {
 namespace {
