@@ -10,9 +10,12 @@
 
 #include <opencv2/imgproc.hpp>
 
+#include "perception/normal_estimation.h"
+
 #include <algorithm>
 #include <cmath>
 #include <iterator>
+#include <limits>
 #include <map>
 #include <set>
 #include <utility>
@@ -333,7 +336,7 @@ SegmentOf CanonicalSegments(SegmentOf segment_of, const Adjacency& adjacency) {
 }
 
 // Voxel i's segment (0: none), in the input's order; segments named as CanonicalSegments names them.
-pcl::PointCloud<pcl::PointXYZL>::Ptr LccpLabels(const Cloud::Ptr& voxels, const ConvexClusteringParams& params) {
+std::vector<std::uint32_t> LccpLabels(const Cloud::Ptr& voxels, const ConvexClusteringParams& params) {
   pcl::SupervoxelClustering<PointT> clustering(static_cast<float>(params.voxel_m), static_cast<float>(params.seed_m));
   // The input is unorganized (voxel centres): no single-camera depth transform.
   clustering.setUseSingleCameraTransform(false);
@@ -358,12 +361,114 @@ pcl::PointCloud<pcl::PointXYZL>::Ptr LccpLabels(const Cloud::Ptr& voxels, const 
   SegmentOf lccp_segment_of;
   lccp.getSupervoxelToSegmentMap(lccp_segment_of);
   const SegmentOf segment_of = CanonicalSegments(std::move(lccp_segment_of), adjacency);
-  pcl::PointCloud<pcl::PointXYZL>::Ptr labelled = clustering.getLabeledCloud();
-  for (auto& voxel : *labelled) {
-    const auto segment = segment_of.find(voxel.label);
-    voxel.label = segment == segment_of.end() ? 0 : segment->second;
+  // getLabeledCloud keeps the input's order: point i of it is voxel i (label 0: none).
+  const pcl::PointCloud<pcl::PointXYZL>::Ptr labelled = clustering.getLabeledCloud();
+  std::vector<std::uint32_t> labels(voxels->size(), 0);
+  for (size_t i = 0; i < labelled->size() && i < labels.size(); ++i) {
+    const auto segment = segment_of.find((*labelled)[i].label);
+    if (segment != segment_of.end()) labels[i] = segment->second;
   }
-  return labelled;
+  return labels;
+}
+
+// Which voxels lie in a concave crease, seen at the voxels' own resolution: at least
+// crease_rising_neighbours of their neighbours rise above their tangent plane by more than
+// crease_height_m and crease_deg. A flat or convex surface has none (a box's edge, a print, noise of a
+// millimetre); the inside of a cup rises too gently (3 mm over 10 mm at its 38 mm radius, seen from inside).
+std::vector<bool> CreaseVoxels(const Cloud& voxels, const std::vector<std::vector<int>>& neighbours,
+                               const ConvexClusteringParams& params) {
+  const pcl::PointCloud<pcl::Normal> normals = NormalsFromNeighbours(voxels, neighbours);
+  const float sin_crease = static_cast<float>(std::sin(pcl::deg2rad(params.crease_deg)));
+  const float min_height = static_cast<float>(params.crease_height_m);
+  std::vector<bool> crease(voxels.size(), false);
+  for (size_t i = 0; i < voxels.size(); ++i) {
+    const Eigen::Vector3f n = normals[i].getNormalVector3fMap();
+    if (!n.allFinite()) continue;
+    int rising = 0;
+    for (int j : neighbours[i]) {
+      const Eigen::Vector3f d = voxels[j].getVector3fMap() - voxels[i].getVector3fMap();
+      const float height = n.dot(d);
+      rising += height > min_height && height > sin_crease * d.norm();
+    }
+    crease[i] = rising >= params.crease_rising_neighbours;
+  }
+  return crease;
+}
+
+// The connected parts of each segment's voxels outside creases (neighbours within split_link_m): the
+// part of each voxel (-1: a crease voxel or none), and each part's size.
+struct Parts {
+  std::vector<int> of_voxel;
+  std::vector<int> size;
+};
+
+Parts PartsOutsideCreases(const Cloud& voxels, const std::vector<std::vector<int>>& neighbours,
+                          const std::vector<bool>& crease, const std::vector<std::uint32_t>& labels,
+                          const ConvexClusteringParams& params) {
+  const float link2 = static_cast<float>(params.split_link_m * params.split_link_m);
+  Parts parts;
+  parts.of_voxel.assign(voxels.size(), -1);
+  std::vector<int> stack;
+  for (size_t seed = 0; seed < voxels.size(); ++seed) {
+    if (crease[seed] || labels[seed] == 0 || parts.of_voxel[seed] >= 0) continue;
+    const int id = static_cast<int>(parts.size.size());
+    parts.size.push_back(0);
+    parts.of_voxel[seed] = id;
+    stack.assign(1, static_cast<int>(seed));
+    while (!stack.empty()) {
+      const int i = stack.back();
+      stack.pop_back();
+      ++parts.size[id];
+      for (int j : neighbours[i]) {
+        if (crease[j] || parts.of_voxel[j] >= 0 || labels[j] != labels[i] ||
+            (voxels[j].getVector3fMap() - voxels[i].getVector3fMap()).squaredNorm() > link2) continue;
+        parts.of_voxel[j] = id;
+        stack.push_back(j);
+      }
+    }
+  }
+  return parts;
+}
+
+// Each segment with two or more large parts (split_min_voxels) becomes one segment per large part,
+// named after the existing ones; its other voxels (creases, small parts) join the nearest large part,
+// grown breadth first over the segment.
+void SplitSegmentsWithLargeParts(const std::vector<std::vector<int>>& neighbours, const Parts& parts,
+                                 const ConvexClusteringParams& params, std::vector<std::uint32_t>& labels) {
+  const auto large = [&](size_t i) { return parts.of_voxel[i] >= 0 && parts.size[parts.of_voxel[i]] >= params.split_min_voxels; };
+  std::map<std::uint32_t, std::set<int>> large_parts_of_segment;
+  for (size_t i = 0; i < labels.size(); ++i) {
+    if (large(i)) large_parts_of_segment[labels[i]].insert(parts.of_voxel[i]);
+  }
+  std::vector<int> owner(labels.size(), -1);
+  std::vector<int> frontier, next;
+  for (size_t i = 0; i < labels.size(); ++i) {
+    if (large(i) && large_parts_of_segment[labels[i]].size() >= 2) owner[i] = parts.of_voxel[i], frontier.push_back(static_cast<int>(i));
+  }
+  while (!frontier.empty()) {
+    next.clear();
+    for (int i : frontier) {
+      for (int j : neighbours[i]) {
+        if (owner[j] < 0 && labels[j] == labels[i]) owner[j] = owner[i], next.push_back(j);
+      }
+    }
+    frontier.swap(next);
+  }
+  std::uint32_t next_name = 1 + *std::max_element(labels.begin(), labels.end());
+  std::map<int, std::uint32_t> name_of_part;
+  for (size_t i = 0; i < labels.size(); ++i) {
+    if (owner[i] < 0) continue;
+    const auto [it, added] = name_of_part.try_emplace(owner[i], next_name);
+    next_name += added;
+    labels[i] = it->second;
+  }
+}
+
+// Splits the segments `labels` of `voxels` at the concave creases their supervoxels straddled.
+void SplitAtCreases(const Cloud& voxels, const ConvexClusteringParams& params, std::vector<std::uint32_t>& labels) {
+  const std::vector<std::vector<int>> neighbours = GridRadiusNeighbours(voxels, params.crease_radius_m);
+  const std::vector<bool> crease = CreaseVoxels(voxels, neighbours, params);
+  SplitSegmentsWithLargeParts(neighbours, PartsOutsideCreases(voxels, neighbours, crease, labels, params), params, labels);
 }
 
 }  // namespace
@@ -371,12 +476,11 @@ pcl::PointCloud<pcl::PointXYZL>::Ptr LccpLabels(const Cloud::Ptr& voxels, const 
 std::vector<pcl::PointIndices> ConvexClusters(const Cloud::Ptr& voxels, const Eigen::Vector4d& plane_C,
                                               const ConvexClusteringParams& params) {
   if (voxels->empty()) return {};
-  const pcl::PointCloud<pcl::PointXYZL>::Ptr labelled = LccpLabels(voxels, params);
-  // getLabeledCloud keeps the input's order: point i of `labelled` is voxel i (label 0: none).
+  std::vector<std::uint32_t> labels = LccpLabels(voxels, params);
+  if (params.split_at_creases) SplitAtCreases(*voxels, params, labels);
   std::map<std::uint32_t, pcl::PointIndices> by_label;
-  for (size_t i = 0; i < labelled->size() && i < voxels->size(); ++i) {
-    const std::uint32_t label = (*labelled)[i].label;
-    if (label != 0) by_label[label].indices.push_back(static_cast<int>(i));
+  for (size_t i = 0; i < labels.size(); ++i) {
+    if (labels[i] != 0) by_label[labels[i]].indices.push_back(static_cast<int>(i));
   }
   std::vector<pcl::PointIndices> out;
   for (auto& [label, indices] : by_label) out.push_back(std::move(indices));

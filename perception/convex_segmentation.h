@@ -6,6 +6,9 @@
 /// meet convexly and stay together, whatever is printed on them. Colour only tightens the concavity
 /// test: differently coloured supervoxels are cut at a shallower crease (colour_edge_concavity_deg) than
 /// same-coloured ones (concavity_deg), so a print across a flat or convex face never splits an object.
+/// Where supervoxels straddle two touching objects' contact, LCCP sees no crease between them: each
+/// segment is then split where the voxels themselves show a concave crease that cuts it into two or
+/// more large parts (split_at_creases).
 /// The inside of a hollow object (a bowl, a mug, a pot) is concave, so LCCP cuts it into pieces: a
 /// piece that lies mostly inside another cluster's volume (within its footprint on the supporting plane
 /// and below its top) joins that cluster, and so does the inside seen over a wall's rim
@@ -33,6 +36,19 @@ struct ConvexClusteringParams {
   double colour_edge_concavity_deg = 5;
   double colour_importance = 0;  ///< Supervoxels: weight of colour against space (1) and normals (normal_importance).
   double normal_importance = 4;
+  /// Where two objects touch, supervoxels (several voxels wide) can straddle the contact and hide its
+  /// crease from LCCP. With split_at_creases, the crease is looked for at the voxels' own resolution: a
+  /// voxel lies in a concave crease when at least crease_rising_neighbours of its neighbours within
+  /// crease_radius_m rise above its tangent plane by more than crease_height_m and crease_deg; a segment
+  /// whose other voxels fall into two or more connected parts (voxels within split_link_m) of at least
+  /// split_min_voxels each is split into them (its crease voxels join the nearest part).
+  bool split_at_creases = true;
+  double crease_radius_m = 0.010;
+  double crease_height_m = 0.003;
+  double crease_deg = 20;
+  int crease_rising_neighbours = 2;
+  double split_link_m = 0.0075;
+  int split_min_voxels = 60;
   /// Smaller and larger segments are dropped; SegmentObjects sets both from SegmentationParams.
   int min_cluster_voxels = 25, max_cluster_voxels = 20000;
   double inside_fraction = 0.8;  ///< A piece with this share of its voxels inside another cluster's volume joins it.

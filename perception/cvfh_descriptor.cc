@@ -1,9 +1,6 @@
 #include "perception/cvfh_descriptor.h"
 
-#include <flann/flann.hpp>
-#include <pcl/common/centroid.h>
 #include <pcl/features/cvfh.h>
-#include <pcl/features/normal_3d.h>
 #include <pcl/filters/voxel_grid.h>
 #include <pcl/search/kdtree.h>
 
@@ -14,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "perception/normal_estimation.h"
 #include "perception/seconds_since.h"
 
 namespace sortcell::perception {
@@ -26,42 +24,6 @@ const CvfhResult& Unusable(CvfhResult& result, DescriptorStatus status, std::str
   result.status = status;
   result.detail = std::move(detail);
   return result;
-}
-
-// Normals of `points` (all finite) from their neighbours within `radius_m`, facing the camera at the
-// origin; NaN where fewer than 3 neighbours. The same as pcl::NormalEstimation with an unsorted
-// pcl::search::KdTree, bit for bit (the same FLANN tree and radius search, then PCL's covariance and
-// plane fit), but the neighbours of all points are found in one batched FLANN query: PCL queries one
-// point at a time, each query entering an OpenMP region and allocating its result vectors, which cost
-// a quarter of the normals' time on a frame of six objects (perception_benchmark).
-pcl::PointCloud<pcl::Normal> EstimateNormals(const Cloud& points, double radius_m) {
-  std::vector<float> xyz;
-  xyz.reserve(3 * points.size());
-  for (const PointT& p : points) xyz.insert(xyz.end(), {p.x, p.y, p.z});
-  const flann::Matrix<float> matrix(xyz.data(), points.size(), 3);
-  flann::Index<flann::L2_Simple<float>> index(matrix, flann::KDTreeSingleIndexParams(15));  // PCL's leaf size.
-  index.buildIndex();
-  flann::SearchParams search(-1, 0, false);  // Unlimited checks, exact, unsorted (as the unsorted KdTree).
-  search.max_neighbors = -1;
-  std::vector<std::vector<int>> neighbours;
-  std::vector<std::vector<float>> squared_distances;
-  index.radiusSearch(matrix, neighbours, squared_distances, static_cast<float>(radius_m * radius_m), search);
-  pcl::PointCloud<pcl::Normal> normals;
-  normals.resize(points.size());
-  constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
-  for (size_t i = 0; i < points.size(); ++i) {
-    pcl::Normal& n = normals[i];
-    Eigen::Matrix3f covariance;
-    Eigen::Vector4f centroid;
-    if (neighbours[i].size() < 3 ||
-        pcl::computeMeanAndCovarianceMatrix(points, neighbours[i], covariance, centroid) == 0) {
-      n.normal_x = n.normal_y = n.normal_z = n.curvature = kNaN;
-      continue;
-    }
-    pcl::solvePlaneParameters(covariance, n.normal_x, n.normal_y, n.normal_z, n.curvature);
-    pcl::flipNormalTowardsViewpoint(points[i], 0.0f, 0.0f, 0.0f, n.normal_x, n.normal_y, n.normal_z);
-  }
-  return normals;
 }
 
 }  // namespace

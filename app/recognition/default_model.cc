@@ -46,7 +46,9 @@ std::string SegmentationDigest() {
                      c.concavity_deg, c.colour_edge_delta_e, c.colour_edge_concavity_deg, c.colour_importance,
                      c.normal_importance, c.inside_fraction, c.top_tolerance_m, c.hollow_lift_m, c.rim_tolerance_m,
                      c.round_wall_residual, c.cap_fraction, c.cap_overlap_m, c.neck_length_m) +
-         fmt::format(" {:g} {:g}", c.lying_elongation, c.round_wall_radius_factor);
+         fmt::format(" {:g} {:g}", c.lying_elongation, c.round_wall_radius_factor) +
+         fmt::format(" creases {:d} {:g} {:g} {:g} {:d} {:g} {:d}", c.split_at_creases, c.crease_radius_m, c.crease_height_m,
+                     c.crease_deg, c.crease_rising_neighbours, c.split_link_m, c.split_min_voxels);
 }
 
 // What the default model of `set` depends on: its objects' models, the sensor it sees them through, and
