@@ -28,6 +28,7 @@ namespace {
 // plane, in plane coordinates), its top and bottom (the largest and smallest height above the plane).
 struct Volume {
   std::vector<cv::Point2f> hull;
+  cv::Point2f lowest, highest;  // The footprint's bounding box.
   float top = 0, bottom = 0;
   /// The circle the footprint lies on if the cluster is a round wall (a cup's, a bowl's seen from
   /// outside): the geometric least-squares circle through its voxels' footprint, and their median distance
@@ -114,6 +115,11 @@ Volume VolumeOf(const Cloud& voxels, const pcl::PointIndices& cluster, const Pla
     volume.bottom = std::min(volume.bottom, frame.Height(voxels[i]));
   }
   cv::convexHull(footprint, volume.hull);
+  volume.lowest = volume.highest = footprint.empty() ? cv::Point2f() : footprint.front();
+  for (const auto& p : footprint) {
+    volume.lowest = cv::Point2f(std::min(volume.lowest.x, p.x), std::min(volume.lowest.y, p.y));
+    volume.highest = cv::Point2f(std::max(volume.highest.x, p.x), std::max(volume.highest.y, p.y));
+  }
   FitFootprintCircle(footprint, volume);
   return volume;
 }
@@ -183,6 +189,10 @@ bool IsNeckOf(const Volume& piece, size_t piece_voxels, const Volume& base, size
   return v <= 0.5f * width && u >= 0.5f * length - params.top_tolerance_m && u <= 0.5f * length + params.neck_length_m;
 }
 
+bool BoxesOverlap(const Volume& a, const Volume& b) {
+  return a.lowest.x <= b.highest.x && b.lowest.x <= a.highest.x && a.lowest.y <= b.highest.y && b.lowest.y <= a.highest.y;
+}
+
 // Joins each cluster that lies mostly inside a larger one's volume to it (smallest first).
 void JoinPiecesInsideOthers(const Cloud& voxels, const PlaneFrame& frame, const ConvexClusteringParams& params,
                             std::vector<pcl::PointIndices>& clusters) {
@@ -199,7 +209,8 @@ void JoinPiecesInsideOthers(const Cloud& voxels, const PlaneFrame& frame, const 
         best = b;
         break;
       }
-      if (volumes[b].hull.size() < 3) continue;
+      // No voxel of a lies inside b's hull if their footprints' boxes are apart (most pairs of a frame).
+      if (volumes[b].hull.size() < 3 || !BoxesOverlap(volumes[a], volumes[b])) continue;
       int inside = 0;
       for (int i : clusters[a].indices) {
         inside += frame.Height(voxels[i]) <= volumes[b].top + params.top_tolerance_m &&

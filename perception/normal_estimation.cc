@@ -53,9 +53,13 @@ std::vector<std::vector<int>> GridRadiusNeighbours(const Cloud& points, double r
   sorted.reserve(points.size());
   for (const auto& [k, i] : keyed) keys.push_back(k), sorted.push_back(points[i].getVector3fMap());
   // Keys order cells by x, y, then z: the cells z-1, z, z+1 of one (x, y) column are one run of keys.
-  const auto first_at_or_after = [&](std::uint64_t k) {
-    return static_cast<size_t>(std::lower_bound(keys.begin(), keys.end(), k) - keys.begin());
+  // Visiting the cells in key order, each bound of each column ahead only moves forward: a cursor per
+  // bound walks the keys once (a binary search per bound and cell cost more than the distances).
+  const auto first_at_or_after = [&keys](size_t& cursor, std::uint64_t k) {
+    while (cursor < keys.size() && keys[cursor] < k) ++cursor;
+    return cursor;
   };
+  size_t from_cursor[5] = {}, to_cursor[5] = {};
   const float radius2 = static_cast<float>(radius_m * radius_m);
   for (size_t i = 0; i < points.size(); ++i) neighbours[i].reserve(32), neighbours[i].push_back(static_cast<int>(i));
   // Each pair once: from a cell to the later cells of its own column (z+1) and to the four columns
@@ -64,12 +68,13 @@ std::vector<std::vector<int>> GridRadiusNeighbours(const Cloud& points, double r
   for (size_t first = 0, last = 0; first < keys.size(); first = last) {  // Each occupied cell.
     while (last < keys.size() && keys[last] == keys[first]) ++last;
     const Eigen::Array3i c = cell_of(sorted[first]);
-    for (const auto& [dx, dy] : kAhead) {
+    for (int o = 0; o < 5; ++o) {
+      const auto [dx, dy] = kAhead[o];
       const Eigen::Array3i column(c.x() + dx, c.y() + dy, std::max(c.z() - 1, 0));
       if (column.y() < 0) continue;
       const bool own = dx == 0 && dy == 0;
-      const size_t from = own ? first : first_at_or_after(key(column));
-      const size_t to = first_at_or_after(key(column) + static_cast<std::uint64_t>(c.z() + 2 - column.z()));
+      const size_t from = own ? first : first_at_or_after(from_cursor[o], key(column));
+      const size_t to = first_at_or_after(to_cursor[o], key(column) + static_cast<std::uint64_t>(c.z() + 2 - column.z()));
       for (size_t q = first; q < last; ++q) {
         for (size_t k = own ? q + 1 : from; k < to; ++k) {
           if ((sorted[k] - sorted[q]).squaredNorm() > radius2) continue;
