@@ -11,6 +11,7 @@
 #include <string>
 
 #include "app/recognition/default_model.h"
+#include "bench_args.h"
 #include "bench_temp_dir.h"
 #include "app/episode/episode.h"
 #include "app/common/object_set.h"
@@ -36,12 +37,10 @@ double SweepEpisodesPerHour(const std::string& model, int episodes, int jobs) {
   return episodes * 3600.0 / wall;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+int Run(int argc, char** argv) {
   const app::ObjectSet set = app::LoadObjectSet(std::string(SORTCELL_SOURCE_DIR) + "/scenes/objects/paper.yaml");
   const std::string model = std::filesystem::absolute(argc > 1 ? std::filesystem::path(argv[1]) : app::EnsureDefaultModel(set)).string();
-  const int episodes = argc > 2 ? std::atoi(argv[2]) : 6;
+  const int episodes = argc > 2 ? CountArg("SWEEP_EPISODES", argv[2], 1) : 6;
   const std::filesystem::path out = BenchTempDir("sortcell_bench_episode");
 
   app::EpisodeOptions options;
@@ -90,4 +89,9 @@ int main(int argc, char** argv) {
   const double two = SweepEpisodesPerHour(model, episodes, 2);
   std::printf("  1 worker:  %6.0f episodes/hour\n  2 workers: %6.0f episodes/hour (x%.2f)\n", one, two, one > 0 ? two / one : 0.0);
   return 0;
+  return 0;
 }
+
+}  // namespace
+
+int main(int argc, char** argv) { return RunBenchmark("episode_benchmark", [&] { return Run(argc, argv); }); }

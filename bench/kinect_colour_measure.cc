@@ -21,6 +21,7 @@
 #include <string>
 #include <vector>
 
+#include "bench_args.h"
 #include "app/common/data_dir.h"
 #include "app/recognition/rgbd_objects.h"
 #include "sim/kinect_camera.h"
@@ -194,9 +195,7 @@ void Print(const char* what, const Measured& m) {
               Median(m.sharpness), Median(m.noises));
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+int Run(int argc, char** argv) {
   const fs::path real_dir = argc > 1 ? fs::path(argv[1]) : fs::path(SORTCELL_SOURCE_DIR) / ".." / "shared" / "real" / "rgbd-object";
   if (!fs::is_directory(real_dir)) {
     std::fprintf(stderr, "kinect_colour_measure: '%s' is not a folder of RGB-D Object Dataset views\n", real_dir.c_str());
@@ -226,3 +225,7 @@ int main(int argc, char** argv) {
               exposure, balance[0], balance[1], balance[2], saturation, blur, noise);
   return 0;
 }
+
+}  // namespace
+
+int main(int argc, char** argv) { return RunBenchmark("kinect_colour_measure", [&] { return Run(argc, argv); }); }

@@ -2,7 +2,7 @@
 // objects (noise on), as placed in scenes/cell.xml and heaped touching (dense): crop, plane, voxel,
 // convex clustering, then per segment normals, CVFH, HSV and the SVM (and the clustering once more
 // without its split at creases, to show what the split costs). Prints a Markdown table of
-// medians over the repetitions per frame. Usage: perception_benchmark [MODEL.json] [repetitions]
+// medians over the repetitions per frame. Usage: perception_benchmark [--model MODEL.json] [--repetitions N]
 // (without a model, one is trained on jittered copies of the frame's own segments to time prediction).
 #include <algorithm>
 #include <chrono>
@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "app/episode/sim_layout.h"
+#include "bench_args.h"
 #include "cell/bin_fill.h"
 #include "cell/scene_observation.h"
 #include "perception/recognition_model.h"
@@ -174,19 +175,26 @@ void PrintTable(const Frame& frame, const StageTimes& t, int repetitions, int su
               "%.2f ms (the split: %.2f ms).\n", 1000 * Median(t.cluster_unsplit), 1000 * (Median(t.cluster) - Median(t.cluster_unsplit)));
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-  const int repetitions = argc > 2 ? std::max(1, std::atoi(argv[2])) : 20;
+// Reads [--model MODEL.json] [--repetitions N]; runs every frame.
+int Run(int argc, char** argv) {
+  int repetitions = 20;
+  std::string model_path;
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    if (arg == "--model" && i + 1 < argc) {
+      model_path = argv[++i];
+    } else if (arg == "--repetitions" && i + 1 < argc) {
+      repetitions = CountArg("--repetitions", argv[++i], 1);
+    } else {
+      throw std::invalid_argument("unknown argument '" + arg + "' (usage: perception_benchmark [--model MODEL.json] [--repetitions N])");
+    }
+  }
   const sim::Model model = sim::Model::FromFile(std::string(SORTCELL_SOURCE_DIR) + "/scenes/cell.xml");
   perception::Cloud::Ptr background;
   const std::vector<Frame> frames = Frames(model, background);
   perception::RecognitionModel recogniser;
-  bool have_model = false;
-  if (argc > 1) {
-    recogniser = perception::LoadModel(argv[1], perception::DescriptorKind::kColorCvfhNorm);
-    have_model = true;
-  }
+  bool have_model = !model_path.empty();  // TimeOnce trains one from the first frame otherwise.
+  if (have_model) recogniser = perception::LoadModel(model_path, perception::DescriptorKind::kColorCvfhNorm);
   const cell::CellLayout layout = app::ReadCellLayout(model);
   const perception::SegmentationParams params = cell::CellSegmentation(layout);
   for (const Frame& frame : frames) {
@@ -198,3 +206,7 @@ int main(int argc, char** argv) {
   }
   return 0;
 }
+
+}  // namespace
+
+int main(int argc, char** argv) { return RunBenchmark("perception_benchmark", [&] { return Run(argc, argv); }); }

@@ -23,6 +23,7 @@
 
 #include <opencv2/imgcodecs.hpp>
 
+#include "bench_args.h"
 #include "cell/scene_observation.h"
 #include "perception/pcd_io.h"
 #include "perception/segment_overlay.h"
@@ -164,9 +165,7 @@ void RunSim(const sim::Model& model, int scenes, bool verbose, const fs::path& o
   }
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+int Run(int argc, char** argv) {
   std::vector<fs::path> folders;
   int scenes = 50;
   bool verbose = false;
@@ -186,11 +185,7 @@ int main(int argc, char** argv) {
       continue;
     }
     if (arg == "--scenes" && i + 1 < argc) {
-      scenes = std::atoi(argv[++i]);
-      if (scenes < 0) {
-        std::fprintf(stderr, "segmentation_benchmark: --scenes: expected a count >= 0, got '%s'\n", argv[i]);
-        return 2;
-      }
+      scenes = CountArg("--scenes", argv[++i], 0);
       continue;
     }
     folders.emplace_back(arg);
@@ -239,3 +234,7 @@ int main(int argc, char** argv) {
   }
   return 0;
 }
+
+}  // namespace
+
+int main(int argc, char** argv) { return RunBenchmark("segmentation_benchmark", [&] { return Run(argc, argv); }); }
