@@ -387,8 +387,7 @@ std::vector<std::uint32_t> LccpLabels(const Cloud::Ptr& voxels, const ConvexClus
 // crease_height_m and crease_deg. A flat or convex surface has none (a box's edge, a print, noise of a
 // millimetre); the inside of a cup rises too gently (3 mm over 10 mm at its 38 mm radius, seen from inside).
 std::vector<bool> CreaseVoxels(const Cloud& voxels, const std::vector<std::vector<int>>& neighbours,
-                               const ConvexClusteringParams& params) {
-  const pcl::PointCloud<pcl::Normal> normals = NormalsFromNeighbours(voxels, neighbours);
+                               const pcl::PointCloud<pcl::Normal>& normals, const ConvexClusteringParams& params) {
   const float sin_crease = static_cast<float>(std::sin(pcl::deg2rad(params.crease_deg)));
   const float min_height = static_cast<float>(params.crease_height_m);
   std::vector<bool> crease(voxels.size(), false);
@@ -477,8 +476,9 @@ void SplitSegmentsWithLargeParts(const std::vector<std::vector<int>>& neighbours
 
 // Splits the segments `labels` of `voxels` at the concave creases their supervoxels straddled.
 void SplitAtCreases(const Cloud& voxels, const ConvexClusteringParams& params, std::vector<std::uint32_t>& labels) {
-  const std::vector<std::vector<int>> neighbours = GridRadiusNeighbours(voxels, params.crease_radius_m);
-  const std::vector<bool> crease = CreaseVoxels(voxels, neighbours, params);
+  const Neighbourhoods around = GridNeighbourhoods(voxels, params.crease_radius_m);
+  const std::vector<std::vector<int>>& neighbours = around.neighbours;
+  const std::vector<bool> crease = CreaseVoxels(voxels, neighbours, around.normals, params);
   SplitSegmentsWithLargeParts(neighbours, PartsOutsideCreases(voxels, neighbours, crease, labels, params), params, labels);
 }
 

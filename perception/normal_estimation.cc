@@ -10,6 +10,141 @@
 #include <utility>
 
 namespace sortcell::perception {
+namespace {
+
+// The first and second moments of a point's neighbourhood, in double about a common origin (the
+// cloud's lowest corner), so that the covariance E[pp'] - E[p]E[p]' keeps its digits: the sums of
+// 1, x, y, z, xx, xy, xz, yy, yz, zz over the neighbours (a point's own terms added whole, 10 wide).
+struct Moments {
+  Eigen::Matrix<double, 10, 1> sums = Eigen::Matrix<double, 10, 1>::Zero();
+
+  static Moments Of(const Eigen::Vector3d& p) {
+    Moments m;
+    m.sums << 1, p.x(), p.y(), p.z(), p.x() * p.x(), p.x() * p.y(), p.x() * p.z(), p.y() * p.y(), p.y() * p.z(), p.z() * p.z();
+    return m;
+  }
+  void Add(const Moments& other) { sums += other.sums; }
+  double n() const { return sums[0]; }
+};
+
+// The plane fit of a neighbourhood (PCL's solvePlaneParameters), facing the camera at the origin from
+// `p_C`; NaN where fewer than 3 neighbours.
+pcl::Normal NormalOf(const Moments& m, const Eigen::Vector3f& p_C) {
+  pcl::Normal normal;
+  if (m.n() < 3) {
+    normal.normal_x = normal.normal_y = normal.normal_z = normal.curvature = std::numeric_limits<float>::quiet_NaN();
+    return normal;
+  }
+  const Eigen::Matrix<double, 10, 1> e = m.sums / m.n();
+  const Eigen::Vector3d mean = e.segment<3>(1);
+  Eigen::Matrix3d covariance;
+  covariance << e[4], e[5], e[6], e[5], e[7], e[8], e[6], e[8], e[9];
+  covariance -= mean * mean.transpose();
+  pcl::solvePlaneParameters(Eigen::Matrix3f(covariance.cast<float>()), normal.normal_x, normal.normal_y, normal.normal_z,
+                            normal.curvature);
+  pcl::flipNormalTowardsViewpoint(PointT(p_C.x(), p_C.y(), p_C.z()), 0.0f, 0.0f, 0.0f, normal.normal_x, normal.normal_y,
+                                  normal.normal_z);
+  return normal;
+}
+
+// The points sorted into cells `radius_m` wide, keyed by their cell: a point's neighbours lie in the 27
+// cells around its own. 21 bits a coordinate: cells up to 2^21 radii from the lowest corner (20 km at 1 cm).
+class Grid {
+ public:
+  Grid(const Cloud& points, double radius_m) : cell_(static_cast<float>(radius_m)) {
+    lowest_ = points[0].getVector3fMap();
+    Eigen::Vector3f highest = lowest_;
+    for (const PointT& p : points) lowest_ = lowest_.cwiseMin(p.getVector3fMap()), highest = highest.cwiseMax(p.getVector3fMap());
+    constexpr float kCellsPerAxis = 1 << 21;
+    usable_ = radius_m > 0 && (highest - lowest_).maxCoeff() / cell_ < kCellsPerAxis - 2;
+    if (!usable_) return;
+    std::vector<std::pair<std::uint64_t, int>> keyed;
+    keyed.reserve(points.size());
+    for (size_t i = 0; i < points.size(); ++i) keyed.emplace_back(Key(CellOf(points[i].getVector3fMap())), static_cast<int>(i));
+    std::sort(keyed.begin(), keyed.end());
+    keys_.reserve(points.size());
+    original_.reserve(points.size());
+    sorted_.reserve(points.size());
+    for (const auto& [k, i] : keyed) keys_.push_back(k), original_.push_back(i), sorted_.push_back(points[i].getVector3fMap());
+  }
+
+  bool usable() const { return usable_; }                               // False: spread over too many cells.
+  int size() const { return static_cast<int>(sorted_.size()); }
+  int original(int k) const { return original_[k]; }                     // The input index of sorted point k.
+  const Eigen::Vector3f& point(int k) const { return sorted_[k]; }
+  Eigen::Vector3d FromLowest(int k) const { return (sorted_[k] - lowest_).cast<double>(); }
+
+  // Calls visit(a, b) once for each pair of sorted points a < b within the radius. Keys order cells by
+  // x, y, then z: the cells z-1, z, z+1 of one (x, y) column are one run of keys. From each cell the
+  // pairs go to the later cells of its own column (z+1) and to the four columns ahead of it ((x, y+1),
+  // (x+1, y-1 ... y+1)); the columns behind reach it from theirs. Visiting the cells in key order, each
+  // bound of each column ahead only moves forward: a cursor per bound walks the keys once (a binary
+  // search per bound and cell cost more than the distances).
+  template <class Visit>
+  void ForEachPair(Visit visit) const {
+    constexpr int kAhead[5][2] = {{0, 0}, {0, 1}, {1, -1}, {1, 0}, {1, 1}};
+    size_t from_cursor[5] = {}, to_cursor[5] = {};
+    const auto first_at_or_after = [this](size_t& cursor, std::uint64_t k) {
+      while (cursor < keys_.size() && keys_[cursor] < k) ++cursor;
+      return cursor;
+    };
+    const float radius2 = cell_ * cell_;
+    for (size_t first = 0, last = 0; first < keys_.size(); first = last) {  // Each occupied cell.
+      while (last < keys_.size() && keys_[last] == keys_[first]) ++last;
+      const Eigen::Array3i c = CellOf(sorted_[first]);
+      for (int o = 0; o < 5; ++o) {
+        const auto [dx, dy] = kAhead[o];
+        const Eigen::Array3i column(c.x() + dx, c.y() + dy, std::max(c.z() - 1, 0));
+        if (column.y() < 0) continue;
+        const bool own = dx == 0 && dy == 0;
+        const size_t from = own ? first : first_at_or_after(from_cursor[o], Key(column));
+        const size_t to = first_at_or_after(to_cursor[o], Key(column) + static_cast<std::uint64_t>(c.z() + 2 - column.z()));
+        for (size_t a = first; a < last; ++a) {
+          for (size_t b = own ? a + 1 : from; b < to; ++b) {
+            if ((sorted_[b] - sorted_[a]).squaredNorm() <= radius2) visit(static_cast<int>(a), static_cast<int>(b));
+          }
+        }
+      }
+    }
+  }
+
+ private:
+  Eigen::Array3i CellOf(const Eigen::Vector3f& p) const { return ((p - lowest_) / cell_).array().floor().cast<int>(); }
+  static std::uint64_t Key(const Eigen::Array3i& c) {
+    return (static_cast<std::uint64_t>(c.x()) << 42) | (static_cast<std::uint64_t>(c.y()) << 21) | static_cast<std::uint64_t>(c.z());
+  }
+
+  float cell_;
+  Eigen::Vector3f lowest_;
+  bool usable_ = false;
+  std::vector<std::uint64_t> keys_;
+  std::vector<int> original_;
+  std::vector<Eigen::Vector3f> sorted_;  // The points in key order: each column's candidates lie side by side.
+};
+
+// The moments of each sorted point's neighbourhood (itself included), from the grid's pairs; `also`
+// is called with each pair too.
+template <class AlsoVisit>
+std::vector<Moments> NeighbourhoodMoments(const Grid& grid, AlsoVisit also) {
+  std::vector<Moments> own(grid.size());
+  for (int k = 0; k < grid.size(); ++k) own[k] = Moments::Of(grid.FromLowest(k));
+  std::vector<Moments> moments = own;
+  grid.ForEachPair([&](int a, int b) {
+    moments[a].Add(own[b]);
+    moments[b].Add(own[a]);
+    also(a, b);
+  });
+  return moments;
+}
+
+pcl::PointCloud<pcl::Normal> NormalsInInputOrder(const Grid& grid, const std::vector<Moments>& moments) {
+  pcl::PointCloud<pcl::Normal> normals;
+  normals.resize(moments.size());
+  for (int k = 0; k < grid.size(); ++k) normals[grid.original(k)] = NormalOf(moments[k], grid.point(k));
+  return normals;
+}
+
+}  // namespace
 
 std::vector<std::vector<int>> RadiusNeighbours(const Cloud& points, double radius_m) {
   std::vector<std::vector<int>> neighbours;
@@ -27,87 +162,43 @@ std::vector<std::vector<int>> RadiusNeighbours(const Cloud& points, double radiu
   return neighbours;
 }
 
-std::vector<std::vector<int>> GridRadiusNeighbours(const Cloud& points, double radius_m) {
-  std::vector<std::vector<int>> neighbours(points.size());
-  if (points.empty()) return neighbours;
-  Eigen::Vector3f lowest = points[0].getVector3fMap(), highest = lowest;
-  for (const PointT& p : points) lowest = lowest.cwiseMin(p.getVector3fMap()), highest = highest.cwiseMax(p.getVector3fMap());
-  // Cells a radius wide: a point's neighbours lie in the 3 x 3 x 3 cells around its own. 21 bits a
-  // coordinate: cells up to 2^21 radii from the lowest corner (20 km at 1 cm).
-  const float cell = static_cast<float>(radius_m);
-  constexpr float kCellsPerAxis = 1 << 21;
-  if (!(radius_m > 0) || !((highest - lowest).maxCoeff() / cell < kCellsPerAxis - 2)) return RadiusNeighbours(points, radius_m);
-  const auto cell_of = [&](const Eigen::Vector3f& p) -> Eigen::Array3i {
-    return ((p - lowest) / cell).array().floor().cast<int>();
-  };
-  const auto key = [](const Eigen::Array3i& c) {
-    return (static_cast<std::uint64_t>(c.x()) << 42) | (static_cast<std::uint64_t>(c.y()) << 21) | static_cast<std::uint64_t>(c.z());
-  };
-  std::vector<std::pair<std::uint64_t, int>> keyed;
-  keyed.reserve(points.size());
-  for (size_t i = 0; i < points.size(); ++i) keyed.emplace_back(key(cell_of(points[i].getVector3fMap())), static_cast<int>(i));
-  std::sort(keyed.begin(), keyed.end());
-  std::vector<std::uint64_t> keys;
-  std::vector<Eigen::Vector3f> sorted;  // The points in key order: each column's candidates lie side by side.
-  keys.reserve(points.size());
-  sorted.reserve(points.size());
-  for (const auto& [k, i] : keyed) keys.push_back(k), sorted.push_back(points[i].getVector3fMap());
-  // Keys order cells by x, y, then z: the cells z-1, z, z+1 of one (x, y) column are one run of keys.
-  // Visiting the cells in key order, each bound of each column ahead only moves forward: a cursor per
-  // bound walks the keys once (a binary search per bound and cell cost more than the distances).
-  const auto first_at_or_after = [&keys](size_t& cursor, std::uint64_t k) {
-    while (cursor < keys.size() && keys[cursor] < k) ++cursor;
-    return cursor;
-  };
-  size_t from_cursor[5] = {}, to_cursor[5] = {};
-  const float radius2 = static_cast<float>(radius_m * radius_m);
-  for (size_t i = 0; i < points.size(); ++i) neighbours[i].reserve(32), neighbours[i].push_back(static_cast<int>(i));
-  // Each pair once: from a cell to the later cells of its own column (z+1) and to the four columns
-  // ahead of it ((x, y+1), (x+1, y-1 ... y+1)); the columns behind reach it from theirs.
-  constexpr int kAhead[5][2] = {{0, 0}, {0, 1}, {1, -1}, {1, 0}, {1, 1}};
-  for (size_t first = 0, last = 0; first < keys.size(); first = last) {  // Each occupied cell.
-    while (last < keys.size() && keys[last] == keys[first]) ++last;
-    const Eigen::Array3i c = cell_of(sorted[first]);
-    for (int o = 0; o < 5; ++o) {
-      const auto [dx, dy] = kAhead[o];
-      const Eigen::Array3i column(c.x() + dx, c.y() + dy, std::max(c.z() - 1, 0));
-      if (column.y() < 0) continue;
-      const bool own = dx == 0 && dy == 0;
-      const size_t from = own ? first : first_at_or_after(from_cursor[o], key(column));
-      const size_t to = first_at_or_after(to_cursor[o], key(column) + static_cast<std::uint64_t>(c.z() + 2 - column.z()));
-      for (size_t q = first; q < last; ++q) {
-        for (size_t k = own ? q + 1 : from; k < to; ++k) {
-          if ((sorted[k] - sorted[q]).squaredNorm() > radius2) continue;
-          neighbours[keyed[q].second].push_back(keyed[k].second);
-          neighbours[keyed[k].second].push_back(keyed[q].second);
-        }
-      }
-    }
+Neighbourhoods GridNeighbourhoods(const Cloud& points, double radius_m) {
+  Neighbourhoods out;
+  if (points.empty()) return out;
+  const Grid grid(points, radius_m);
+  if (!grid.usable()) {
+    out.neighbours = RadiusNeighbours(points, radius_m);
+    out.normals = NormalsFromNeighbours(points, out.neighbours);
+    return out;
   }
-  return neighbours;
+  out.neighbours.resize(points.size());
+  for (size_t i = 0; i < points.size(); ++i) out.neighbours[i].reserve(32), out.neighbours[i].push_back(static_cast<int>(i));
+  const std::vector<Moments> moments = NeighbourhoodMoments(grid, [&](int a, int b) {
+    out.neighbours[grid.original(a)].push_back(grid.original(b));
+    out.neighbours[grid.original(b)].push_back(grid.original(a));
+  });
+  out.normals = NormalsInInputOrder(grid, moments);
+  return out;
 }
 
 pcl::PointCloud<pcl::Normal> NormalsFromNeighbours(const Cloud& points, const std::vector<std::vector<int>>& neighbours) {
   pcl::PointCloud<pcl::Normal> normals;
   normals.resize(points.size());
-  constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
+  if (points.empty()) return normals;
+  const Eigen::Vector3f origin = points[0].getVector3fMap();
   for (size_t i = 0; i < points.size(); ++i) {
-    pcl::Normal& n = normals[i];
-    Eigen::Matrix3f covariance;
-    Eigen::Vector4f centroid;
-    if (neighbours[i].size() < 3 ||
-        pcl::computeMeanAndCovarianceMatrix(points, neighbours[i], covariance, centroid) == 0) {
-      n.normal_x = n.normal_y = n.normal_z = n.curvature = kNaN;
-      continue;
-    }
-    pcl::solvePlaneParameters(covariance, n.normal_x, n.normal_y, n.normal_z, n.curvature);
-    pcl::flipNormalTowardsViewpoint(points[i], 0.0f, 0.0f, 0.0f, n.normal_x, n.normal_y, n.normal_z);
+    Moments m;
+    for (int j : neighbours[i]) m.Add(Moments::Of((points[j].getVector3fMap() - origin).cast<double>()));
+    normals[i] = NormalOf(m, points[i].getVector3fMap());
   }
   return normals;
 }
 
 pcl::PointCloud<pcl::Normal> EstimateNormals(const Cloud& points, double radius_m) {
-  return NormalsFromNeighbours(points, GridRadiusNeighbours(points, radius_m));
+  if (points.empty()) return {};
+  const Grid grid(points, radius_m);
+  if (!grid.usable()) return NormalsFromNeighbours(points, RadiusNeighbours(points, radius_m));
+  return NormalsInInputOrder(grid, NeighbourhoodMoments(grid, [](int, int) {}));
 }
 
 }  // namespace sortcell::perception

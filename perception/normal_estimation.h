@@ -18,20 +18,29 @@ namespace sortcell::perception {
 /// and allocating its result vectors).
 std::vector<std::vector<int>> RadiusNeighbours(const Cloud& points, double radius_m);
 
-/// The same neighbour sets as RadiusNeighbours (in another order), found in a uniform grid of cells
-/// `radius_m` wide: a point's neighbours lie in the 27 cells around its own. Written here because for a
-/// radius of a few voxels it takes half FLANN's time (perception_benchmark: the descriptor's normals of
-/// a frame's six objects, 5 mm voxels within 15 mm, 5.5-7 ms against 11.5 when measured at 4385932), most of FLANN's going into
-/// its tree's descent. Memory grows with the points, not their extent; points spread over more than 2^21
-/// radii fall back to RadiusNeighbours.
-std::vector<std::vector<int>> GridRadiusNeighbours(const Cloud& points, double radius_m);
+/// Each point's neighbours within a radius (the same sets as RadiusNeighbours, in another order) and
+/// the normal their plane fit gives (as NormalsFromNeighbours).
+struct Neighbourhoods {
+  std::vector<std::vector<int>> neighbours;
+  pcl::PointCloud<pcl::Normal> normals;
+};
+
+/// The neighbourhoods within `radius_m`, found in a uniform grid of cells `radius_m` wide (a point's
+/// neighbours lie in the 27 cells around its own), each pair once, the normals' moments summed as the
+/// pairs are found. Written here because for a radius of a few voxels the grid takes half FLANN's time
+/// (measured at 4385932, perception_benchmark: the descriptor's normals of a frame's six objects, 5 mm
+/// voxels within 15 mm, 5.5-7 ms against 11.5), most of FLANN's going into its tree's descent. Memory
+/// grows with the points, not their extent; points spread over more than 2^21 radii fall back to
+/// RadiusNeighbours.
+Neighbourhoods GridNeighbourhoods(const Cloud& points, double radius_m);
 
 /// Normals of `points` from `neighbours` (RadiusNeighbours), facing the camera at the origin; NaN where
-/// fewer than 3 neighbours.
+/// fewer than 3 neighbours. PCL's plane fit (solvePlaneParameters) of the neighbours' covariance, summed
+/// in double about a common origin (so the order of the neighbours changes nothing but the last bits).
 pcl::PointCloud<pcl::Normal> NormalsFromNeighbours(const Cloud& points, const std::vector<std::vector<int>>& neighbours);
 
-/// NormalsFromNeighbours(points, GridRadiusNeighbours(points, radius_m)): pcl::NormalEstimation's normals
-/// (PCL's covariance and plane fit of the same neighbours) up to the rounding of the neighbours' order.
+/// GridNeighbourhoods(points, radius_m).normals without keeping the neighbour lists: pcl::NormalEstimation's
+/// normals up to rounding.
 pcl::PointCloud<pcl::Normal> EstimateNormals(const Cloud& points, double radius_m);
 
 }  // namespace sortcell::perception
