@@ -89,7 +89,6 @@ int Run(int argc, char** argv) {
   const double two = SweepEpisodesPerHour(model, episodes, 2);
   std::printf("  1 worker:  %6.0f episodes/hour\n  2 workers: %6.0f episodes/hour (x%.2f)\n", one, two, one > 0 ? two / one : 0.0);
   return 0;
-  return 0;
 }
 
 }  // namespace

@@ -1,7 +1,6 @@
 #include "perception/normal_estimation.h"
 
 #include <flann/flann.hpp>
-#include <pcl/common/centroid.h>
 #include <pcl/features/normal_3d.h>
 
 #include <algorithm>
