@@ -40,12 +40,16 @@ svm_parameter RbfParameter(double C, double gamma, bool probability) {
   return p;
 }
 
-// Sparse libsvm rows (index from 1, zeros skipped, -1 terminated) in one block.
-struct NodeRows {
+}  // namespace
+
+// Sparse libsvm rows (index from 1, zeros skipped, -1 terminated) in one block. Outside the anonymous
+// namespace: SvmClassifier::Storage holds one, and in a unity build a class member of an anonymous
+// namespace's type is flagged (-Wsubobject-linkage) once this file is not the compiler's main file.
+struct SvmNodeRows {
   std::vector<svm_node> nodes;
   std::vector<svm_node*> rows;
 
-  explicit NodeRows(const Eigen::MatrixXd& dense) {
+  explicit SvmNodeRows(const Eigen::MatrixXd& dense) {
     std::vector<size_t> start;
     for (Eigen::Index r = 0; r < dense.rows(); ++r) {
       start.push_back(nodes.size());
@@ -57,6 +61,8 @@ struct NodeRows {
     for (size_t s : start) rows.push_back(nodes.data() + s);
   }
 };
+
+namespace {
 
 std::vector<svm_node> ToNodes(const Eigen::VectorXf& x) {
   std::vector<svm_node> nodes;
@@ -110,7 +116,7 @@ double TrueClassMargin(const svm_model* model, const svm_node* x, double y, std:
 // margin clipped at 1 (minus the hinge loss) to tell apart settings of the same accuracy: with few
 // samples many settings classify every held-out one right, and the first of them (the smallest C)
 // is the least confident.
-CvScore CrossValidate(const NodeRows& x, const std::vector<double>& y, const std::vector<int>& fold, int folds,
+CvScore CrossValidate(const SvmNodeRows& x, const std::vector<double>& y, const std::vector<int>& fold, int folds,
                       double C, double gamma) {
   const svm_parameter param = RbfParameter(C, gamma, false);
   int correct = 0;
@@ -143,7 +149,7 @@ CvScore CrossValidate(const NodeRows& x, const std::vector<double>& y, const std
 // The libsvm model with every array owned by vectors here (svm_model only points into them).
 struct SvmClassifier::Storage {
   SvmClassifier::Arrays arrays;
-  NodeRows sv{Eigen::MatrixXd()};
+  SvmNodeRows sv{Eigen::MatrixXd()};
   std::vector<double*> coef_rows;
   svm_model model{};
 
@@ -199,7 +205,7 @@ SvmClassifier SvmClassifier::Train(const Eigen::MatrixXf& samples, const std::ve
   for (Eigen::Index r = 0; r < samples.rows(); ++r) {
     scaled.row(r) = result.scaling_.Apply(samples.row(r).transpose()).cast<double>().transpose();
   }
-  const NodeRows x(scaled);
+  const SvmNodeRows x(scaled);
   std::vector<double> y(labels.begin(), labels.end());
   const std::vector<int> fold = GroupFolds(groups, grid.folds);
 

@@ -5,19 +5,16 @@
 #   scripts/sanitize.sh            build (-O1 -g1: ASan's advice, and 2.5 times quicker to compile than
 #                                  -O2 -g; no benchmarks, no sim tests) and run the unit tests
 #   SORTCELL_SANITIZE_DIR=dir      build somewhere else
-# A unity build (16 sources per compiler run): a library's sources share one parse of the heavy
-# headers (PCL, Eigen, MuJoCo). It also keeps the names in anonymous namespaces unique within a
-# library: two files' helpers of one name no longer compile.
-# Two warnings are this build's, not the code's: -Wsubobject-linkage (a class of one file holding a type
-# from that file's anonymous namespace is flagged once the file is included into a batch) and
-# -Wmaybe-uninitialized (GCC 12 at -O1 with ASan inside libstdc++'s <regex>). The Release build keeps both.
+# The libraries are unity builds here too, as in every build (SORTCELL_UNITY_BUILD, CMakeLists.txt).
+# One warning is this build's, not the code's: -Wmaybe-uninitialized (GCC 12 at -O1 with ASan inside
+# libstdc++'s <regex>). The Release build keeps it.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build_dir=${SORTCELL_SANITIZE_DIR:-build-sanitize}
 cmake -S . -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSORTCELL_SANITIZE=ON \
-  "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g1 -Wno-subobject-linkage -Wno-maybe-uninitialized" \
+  "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g1 -Wno-maybe-uninitialized" \
   "-DCMAKE_C_FLAGS_RELWITHDEBINFO=-O1 -g1" \
-  -DSORTCELL_BUILD_BENCHMARKS=OFF -DCMAKE_UNITY_BUILD=ON -DCMAKE_UNITY_BUILD_BATCH_SIZE=16 >/dev/null
+  -DSORTCELL_BUILD_BENCHMARKS=OFF >/dev/null
 cmake --build "$build_dir" --target sortcell_unit_tests -j "$(nproc)"
 # Leaks count as findings; UBSan prints the stack of what it finds and stops the test.
 # alloc_dealloc_mismatch=0: Debian's PCL allocates a supervoxel's shared state with malloc (Eigen's aligned
