@@ -386,7 +386,7 @@ std::vector<std::uint32_t> LccpLabels(const Cloud::Ptr& voxels, const ConvexClus
 // crease_rising_neighbours of their neighbours rise above their tangent plane by more than
 // crease_height_m and crease_deg. A flat or convex surface has none (a box's edge, a print, noise of a
 // millimetre); the inside of a cup rises too gently (3 mm over 10 mm at its 38 mm radius, seen from inside).
-std::vector<bool> CreaseVoxels(const Cloud& voxels, const std::vector<std::vector<int>>& neighbours,
+std::vector<bool> CreaseVoxels(const Cloud& voxels, const NeighbourLists& neighbours,
                                const pcl::PointCloud<pcl::Normal>& normals, const ConvexClusteringParams& params) {
   const float sin_crease = static_cast<float>(std::sin(pcl::deg2rad(params.crease_deg)));
   const float min_height = static_cast<float>(params.crease_height_m);
@@ -395,7 +395,7 @@ std::vector<bool> CreaseVoxels(const Cloud& voxels, const std::vector<std::vecto
     const Eigen::Vector3f n = normals[i].getNormalVector3fMap();
     if (!n.allFinite()) continue;
     int rising = 0;
-    for (int j : neighbours[i]) {
+    for (int j : neighbours.Of(i)) {
       const Eigen::Vector3f d = voxels[j].getVector3fMap() - voxels[i].getVector3fMap();
       const float height = n.dot(d);
       rising += height > min_height && height > sin_crease * d.norm();
@@ -412,7 +412,7 @@ struct Parts {
   std::vector<int> size;
 };
 
-Parts PartsOutsideCreases(const Cloud& voxels, const std::vector<std::vector<int>>& neighbours,
+Parts PartsOutsideCreases(const Cloud& voxels, const NeighbourLists& neighbours,
                           const std::vector<bool>& crease, const std::vector<std::uint32_t>& labels,
                           const ConvexClusteringParams& params) {
   const float link2 = static_cast<float>(params.split_link_m * params.split_link_m);
@@ -429,7 +429,7 @@ Parts PartsOutsideCreases(const Cloud& voxels, const std::vector<std::vector<int
       const int i = stack.back();
       stack.pop_back();
       ++parts.size[id];
-      for (int j : neighbours[i]) {
+      for (int j : neighbours.Of(i)) {
         if (crease[j] || parts.of_voxel[j] >= 0 || labels[j] != labels[i] ||
             (voxels[j].getVector3fMap() - voxels[i].getVector3fMap()).squaredNorm() > link2) continue;
         parts.of_voxel[j] = id;
@@ -443,7 +443,7 @@ Parts PartsOutsideCreases(const Cloud& voxels, const std::vector<std::vector<int
 // Each segment with two or more large parts (split_min_voxels) becomes one segment per large part,
 // named after the existing ones; its other voxels (creases, small parts) join the nearest large part,
 // grown breadth first over the segment.
-void SplitSegmentsWithLargeParts(const std::vector<std::vector<int>>& neighbours, const Parts& parts,
+void SplitSegmentsWithLargeParts(const NeighbourLists& neighbours, const Parts& parts,
                                  const ConvexClusteringParams& params, std::vector<std::uint32_t>& labels) {
   const auto large = [&](size_t i) { return parts.of_voxel[i] >= 0 && parts.size[parts.of_voxel[i]] >= params.split_min_voxels; };
   std::map<std::uint32_t, std::set<int>> large_parts_of_segment;
@@ -458,7 +458,7 @@ void SplitSegmentsWithLargeParts(const std::vector<std::vector<int>>& neighbours
   while (!frontier.empty()) {
     next.clear();
     for (int i : frontier) {
-      for (int j : neighbours[i]) {
+      for (int j : neighbours.Of(i)) {
         if (owner[j] < 0 && labels[j] == labels[i]) owner[j] = owner[i], next.push_back(j);
       }
     }
@@ -477,7 +477,7 @@ void SplitSegmentsWithLargeParts(const std::vector<std::vector<int>>& neighbours
 // Splits the segments `labels` of `voxels` at the concave creases their supervoxels straddled.
 void SplitAtCreases(const Cloud& voxels, const ConvexClusteringParams& params, std::vector<std::uint32_t>& labels) {
   const Neighbourhoods around = GridNeighbourhoods(voxels, params.crease_radius_m);
-  const std::vector<std::vector<int>>& neighbours = around.neighbours;
+  const NeighbourLists& neighbours = around.neighbours;
   const std::vector<bool> crease = CreaseVoxels(voxels, neighbours, around.normals, params);
   SplitSegmentsWithLargeParts(neighbours, PartsOutsideCreases(voxels, neighbours, crease, labels, params), params, labels);
 }

@@ -143,6 +143,29 @@ pcl::PointCloud<pcl::Normal> NormalsInInputOrder(const Grid& grid, const std::ve
   return normals;
 }
 
+// Lists of the points 0 .. n-1: each point itself, then the partners of its `pairs` in their order.
+NeighbourLists ListsFromPairs(size_t n, const std::vector<std::pair<int, int>>& pairs) {
+  NeighbourLists lists;
+  lists.offsets.assign(n + 1, 0);
+  for (size_t i = 0; i < n; ++i) lists.offsets[i + 1] = 1;
+  for (const auto& [a, b] : pairs) ++lists.offsets[a + 1], ++lists.offsets[b + 1];
+  for (size_t i = 0; i < n; ++i) lists.offsets[i + 1] += lists.offsets[i];
+  lists.indices.resize(lists.offsets[n]);
+  std::vector<int> next(lists.offsets.begin(), lists.offsets.end() - 1);
+  for (size_t i = 0; i < n; ++i) lists.indices[next[i]++] = static_cast<int>(i);
+  for (const auto& [a, b] : pairs) lists.indices[next[a]++] = b, lists.indices[next[b]++] = a;
+  return lists;
+}
+
+NeighbourLists Flattened(const std::vector<std::vector<int>>& per_point) {
+  NeighbourLists lists;
+  for (const auto& list : per_point) {
+    lists.indices.insert(lists.indices.end(), list.begin(), list.end());
+    lists.offsets.push_back(static_cast<int>(lists.indices.size()));
+  }
+  return lists;
+}
+
 }  // namespace
 
 std::vector<std::vector<int>> RadiusNeighbours(const Cloud& points, double radius_m) {
@@ -166,16 +189,17 @@ Neighbourhoods GridNeighbourhoods(const Cloud& points, double radius_m) {
   if (points.empty()) return out;
   const Grid grid(points, radius_m);
   if (!grid.usable()) {
-    out.neighbours = RadiusNeighbours(points, radius_m);
-    out.normals = NormalsFromNeighbours(points, out.neighbours);
+    const std::vector<std::vector<int>> per_point = RadiusNeighbours(points, radius_m);
+    out.neighbours = Flattened(per_point);
+    out.normals = NormalsFromNeighbours(points, per_point);
     return out;
   }
-  out.neighbours.resize(points.size());
-  for (size_t i = 0; i < points.size(); ++i) out.neighbours[i].reserve(32), out.neighbours[i].push_back(static_cast<int>(i));
+  std::vector<std::pair<int, int>> pairs;  // In input indices, in the order the grid finds them.
+  pairs.reserve(16 * points.size());
   const std::vector<Moments> moments = NeighbourhoodMoments(grid, [&](int a, int b) {
-    out.neighbours[grid.original(a)].push_back(grid.original(b));
-    out.neighbours[grid.original(b)].push_back(grid.original(a));
+    pairs.emplace_back(grid.original(a), grid.original(b));
   });
+  out.neighbours = ListsFromPairs(points.size(), pairs);
   out.normals = NormalsInInputOrder(grid, moments);
   return out;
 }

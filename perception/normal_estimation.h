@@ -18,16 +18,35 @@ namespace sortcell::perception {
 /// and allocating its result vectors).
 std::vector<std::vector<int>> RadiusNeighbours(const Cloud& points, double radius_m);
 
+/// Each point's neighbours in one flat array (one allocation, not one per point): those of point i are
+/// indices[offsets[i]] up to indices[offsets[i + 1]], read as `for (int j : lists.Of(i))`.
+struct NeighbourLists {
+  std::vector<int> offsets{0};  ///< One more than the points; offsets[0] = 0.
+  std::vector<int> indices;
+
+  struct Range {
+    const int* first;
+    const int* last;
+    const int* begin() const { return first; }
+    const int* end() const { return last; }
+    size_t size() const { return static_cast<size_t>(last - first); }
+  };
+  size_t size() const { return offsets.size() - 1; }
+  bool empty() const { return size() == 0; }
+  Range Of(size_t i) const { return {indices.data() + offsets[i], indices.data() + offsets[i + 1]}; }
+};
+
 /// Each point's neighbours within a radius (the same sets as RadiusNeighbours, in another order) and
 /// the normal their plane fit gives (as NormalsFromNeighbours).
 struct Neighbourhoods {
-  std::vector<std::vector<int>> neighbours;
+  NeighbourLists neighbours;
   pcl::PointCloud<pcl::Normal> normals;
 };
 
 /// The neighbourhoods within `radius_m`, found in a uniform grid of cells `radius_m` wide (a point's
 /// neighbours lie in the 27 cells around its own), each pair once, the normals' moments summed as the
-/// pairs are found. Written here because for a radius of a few voxels the grid takes half FLANN's time
+/// pairs are found; each point's list is itself, then the others in the order the grid found their
+/// pairs. Written here because for a radius of a few voxels the grid takes half FLANN's time
 /// (measured at 4385932, perception_benchmark: the descriptor's normals of a frame's six objects, 5 mm
 /// voxels within 15 mm, 5.5-7 ms against 11.5), most of FLANN's going into its tree's descent. Memory
 /// grows with the points, not their extent; points spread over more than 2^21 radii fall back to

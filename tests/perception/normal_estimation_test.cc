@@ -32,12 +32,20 @@ std::vector<std::vector<int>> Sorted(std::vector<std::vector<int>> sets) {
   return sets;
 }
 
+std::vector<std::vector<int>> Sorted(const NeighbourLists& lists) {
+  std::vector<std::vector<int>> sets;
+  for (size_t i = 0; i < lists.size(); ++i) sets.emplace_back(lists.Of(i).begin(), lists.Of(i).end());
+  return Sorted(sets);
+}
+
 TEST(GridNeighbourhoods, TheSameSetsAsFlann) {
   for (const float radius : {0.005f, 0.01f, 0.015f}) {
     const Cloud cloud = RandomCloud(3000, Eigen::Vector3f(-0.2f, -0.1f, 0.6f), 0.06f, 7);
-    const auto grid = Sorted(GridNeighbourhoods(cloud, radius).neighbours);
+    const NeighbourLists lists = GridNeighbourhoods(cloud, radius).neighbours;
+    const auto grid = Sorted(lists);
     const auto flann = Sorted(RadiusNeighbours(cloud, radius));
     ASSERT_EQ(grid.size(), cloud.size());
+    for (size_t i = 0; i < lists.size(); ++i) ASSERT_EQ(*lists.Of(i).begin(), static_cast<int>(i)) << "itself first";
     size_t pairs = 0;
     for (size_t i = 0; i < cloud.size(); ++i) {
       EXPECT_EQ(grid[i], flann[i]) << "point " << i << " radius " << radius;
