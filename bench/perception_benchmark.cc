@@ -1,7 +1,8 @@
 // Per-stage cost of the cell's recognition chain on a 640x480 Kinect frame of the cell with its six
 // objects (noise on), as placed in scenes/cell.xml and heaped touching (dense): crop, plane, voxel,
-// convex clustering, then per segment normals, CVFH, HSV and the SVM (and the clustering once more
-// without its split at creases, to show what the split costs). Prints a Markdown table of
+// convex clustering, then per segment normals, CVFH, HSV and the SVM (and the clustering three times
+// more, in turn: as it is, without its split at creases, to show what the split costs, and with PCL
+// computing the supervoxels' voxel normals, to show what ours save). Prints a Markdown table of
 // medians over the repetitions per frame. Usage: perception_benchmark [--model MODEL.json] [--repetitions N]
 // (without a model, one is trained on jittered copies of the frame's own segments to time prediction).
 #include <algorithm>
@@ -95,7 +96,11 @@ std::vector<Frame> Frames(const sim::Model& model, perception::Cloud::Ptr& backg
 struct StageTimes {
   std::vector<double> crop, plane, voxel, cluster, normals, cvfh, hsv, svm, total;
   std::vector<double> bins;  // The cell's look into its bins (cell::BinFill::See), besides the chain.
-  std::vector<double> cluster_unsplit;  // The clustering without its split at creases, in the same runs.
+  // The clustering again after the chain, as it is, without its split at creases, and with PCL
+  // computing its voxel normals itself: in turn, each first in every third repetition (a second pass
+  // over a frame runs warmer than the chain's first).
+  std::vector<double> cluster_again, cluster_unsplit, cluster_pcl_normals;
+  int round = 0;
   size_t objects = 0, points = 0;
 };
 
@@ -133,9 +138,15 @@ bool TimeOnce(const Frame& frame, const perception::Cloud& background, const per
   const auto bins_start = Clock::now();
   bins.See(*frame.cloud, frame.X_WC, cell::ArmCapsules(layout.q_observe, std::nullopt));
   t.bins.push_back(std::chrono::duration<double>(Clock::now() - bins_start).count());
-  perception::SegmentationParams unsplit = params;
-  unsplit.convex.split_at_creases = false;
-  t.cluster_unsplit.push_back(perception::SegmentObjects(*frame.cloud, frame.X_WC, &background, unsplit).timings.cluster_s);
+  perception::SegmentationParams variants[3] = {params, params, params};
+  variants[1].convex.split_at_creases = false;
+  variants[2].convex.own_voxel_normals = false;
+  std::vector<double>* times[3] = {&t.cluster_again, &t.cluster_unsplit, &t.cluster_pcl_normals};
+  for (int k = 0; k < 3; ++k) {
+    const int v = (t.round + k) % 3;
+    times[v]->push_back(perception::SegmentObjects(*frame.cloud, frame.X_WC, &background, variants[v]).timings.cluster_s);
+  }
+  ++t.round;
   t.crop.push_back(r.timings.crop_s);
   t.plane.push_back(r.timings.plane_s);
   t.voxel.push_back(r.timings.voxel_s);
@@ -171,8 +182,12 @@ void PrintTable(const Frame& frame, const StageTimes& t, int repetitions, int su
               1000 * sum, Median(t.total) < 1.0 / 30 ? "inside one frame period" : "slower than the frame rate");
   std::printf("Besides the chain, the cell's look into its bins from the same frame (height maps, cell::BinFill::See): "
               "%.2f ms.\n", 1000 * Median(t.bins));
-  std::printf("The convex clustering without its split at creases (split_at_creases off), timed in the same runs: "
-              "%.2f ms (the split: %.2f ms).\n", 1000 * Median(t.cluster_unsplit), 1000 * (Median(t.cluster) - Median(t.cluster_unsplit)));
+  std::printf("The convex clustering timed again after the chain, in turn with two variants: as it is %.2f ms; without "
+              "its split at creases (split_at_creases off) %.2f ms (the split: %.2f ms); with PCL computing the "
+              "supervoxels' voxel normals itself (own_voxel_normals off) %.2f ms (ours save %.2f ms).\n",
+              1000 * Median(t.cluster_again), 1000 * Median(t.cluster_unsplit),
+              1000 * (Median(t.cluster_again) - Median(t.cluster_unsplit)), 1000 * Median(t.cluster_pcl_normals),
+              1000 * (Median(t.cluster_pcl_normals) - Median(t.cluster_again)));
 }
 
 // Reads [--model MODEL.json] [--repetitions N]; runs every frame.

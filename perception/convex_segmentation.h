@@ -36,6 +36,9 @@ struct ConvexClusteringParams {
   double colour_edge_concavity_deg = 5;
   double colour_importance = 0;  ///< Supervoxels: weight of colour against space (1) and normals (normal_importance).
   double normal_importance = 4;
+  /// The supervoxels' voxel normals computed here (SupervoxelVoxelNormals: PCL's up to rounding, faster)
+  /// and handed to PCL; false: PCL computes them itself (kept to time the two in one run).
+  bool own_voxel_normals = true;
   /// Where two objects touch, supervoxels (several voxels wide) can straddle the contact and hide its
   /// crease from LCCP. With split_at_creases, the crease is looked for at the voxels' own resolution: a
   /// voxel lies in a concave crease when at least crease_rising_neighbours of its neighbours within
