@@ -1,5 +1,7 @@
 #include "perception/normal_estimation.h"
 
+#include "perception/plane_moments.h"
+
 #include <flann/flann.hpp>
 #include <pcl/features/normal_3d.h>
 
@@ -10,41 +12,6 @@
 
 namespace sortcell::perception {
 namespace {
-
-// The first and second moments of a point's neighbourhood, in double about a common origin (the
-// cloud's lowest corner), so that the covariance E[pp'] - E[p]E[p]' keeps its digits: the sums of
-// 1, x, y, z, xx, xy, xz, yy, yz, zz over the neighbours (a point's own terms added whole, 10 wide).
-struct Moments {
-  Eigen::Matrix<double, 10, 1> sums = Eigen::Matrix<double, 10, 1>::Zero();
-
-  static Moments Of(const Eigen::Vector3d& p) {
-    Moments m;
-    m.sums << 1, p.x(), p.y(), p.z(), p.x() * p.x(), p.x() * p.y(), p.x() * p.z(), p.y() * p.y(), p.y() * p.z(), p.z() * p.z();
-    return m;
-  }
-  void Add(const Moments& other) { sums += other.sums; }
-  double n() const { return sums[0]; }
-};
-
-// The plane fit of a neighbourhood (PCL's solvePlaneParameters), facing the camera at the origin from
-// `p_C`; NaN where fewer than 3 neighbours.
-pcl::Normal NormalOf(const Moments& m, const Eigen::Vector3f& p_C) {
-  pcl::Normal normal;
-  if (m.n() < 3) {
-    normal.normal_x = normal.normal_y = normal.normal_z = normal.curvature = std::numeric_limits<float>::quiet_NaN();
-    return normal;
-  }
-  const Eigen::Matrix<double, 10, 1> e = m.sums / m.n();
-  const Eigen::Vector3d mean = e.segment<3>(1);
-  Eigen::Matrix3d covariance;
-  covariance << e[4], e[5], e[6], e[5], e[7], e[8], e[6], e[8], e[9];
-  covariance -= mean * mean.transpose();
-  pcl::solvePlaneParameters(Eigen::Matrix3f(covariance.cast<float>()), normal.normal_x, normal.normal_y, normal.normal_z,
-                            normal.curvature);
-  pcl::flipNormalTowardsViewpoint(PointT(p_C.x(), p_C.y(), p_C.z()), 0.0f, 0.0f, 0.0f, normal.normal_x, normal.normal_y,
-                                  normal.normal_z);
-  return normal;
-}
 
 // The points sorted into cells `radius_m` wide, keyed by their cell: a point's neighbours lie in the 27
 // cells around its own. 21 bits a coordinate: cells up to 2^21 radii from the lowest corner (20 km at 1 cm).

@@ -1,6 +1,8 @@
 #include "perception/supervoxel_normals.h"
 
-#include <pcl/features/normal_3d.h>
+#include "perception/normal_estimation.h"
+#include "perception/plane_moments.h"
+
 
 #include <algorithm>
 #include <cmath>
@@ -45,7 +47,6 @@ struct Voxels {
   std::vector<std::uint64_t> keys;
   std::vector<int> of_point;
   std::vector<Eigen::Vector3f> centroid;
-  std::vector<Eigen::Vector3i> cell;
 };
 
 bool MakeVoxels(const Cloud& points, double resolution, Voxels& voxels) {
@@ -69,9 +70,6 @@ bool MakeVoxels(const Cloud& points, double resolution, Voxels& voxels) {
       voxels.keys.push_back(key);
       sum.push_back(Eigen::Vector3f::Zero());
       count.push_back(0);
-      const std::uint64_t mask = (1u << kKeyBits) - 1;
-      voxels.cell.emplace_back(static_cast<int>(key >> (2 * kKeyBits)), static_cast<int>((key >> kKeyBits) & mask),
-                               static_cast<int>(key & mask));
     }
     voxels.of_point[i] = static_cast<int>(voxels.keys.size()) - 1;
     sum.back() += points[i].getVector3fMap();
@@ -84,67 +82,55 @@ bool MakeVoxels(const Cloud& points, double resolution, Voxels& voxels) {
 // Each voxel's occupied 26-neighbours and itself (OctreePointCloudAdjacency::computeNeighbors), flat.
 // Keys order voxels by x, y, then z: the cells z-1 .. z+1 of one (x, y) column are one run of keys, found
 // with one search.
-void Neighbours(const Voxels& voxels, std::vector<int>& offsets, std::vector<int>& indices) {
-  offsets.assign(1, 0);
-  for (const Eigen::Vector3i& c : voxels.cell) {
+NeighbourLists Neighbours(const Voxels& voxels) {
+  NeighbourLists lists;
+  const std::uint64_t mask = (1u << kKeyBits) - 1;
+  for (const std::uint64_t key : voxels.keys) {
+    const int x = static_cast<int>(key >> (2 * kKeyBits)), y = static_cast<int>((key >> kKeyBits) & mask);
+    const int z = static_cast<int>(key & mask);
     for (int dx = -1; dx <= 1; ++dx) {
       for (int dy = -1; dy <= 1; ++dy) {
-        if (c.x() + dx < 0 || c.y() + dy < 0) continue;
-        const std::uint64_t column = Pack(c.x() + dx, c.y() + dy, 0);
-        const std::uint64_t first = column + std::max(c.z() - 1, 0), last = column + c.z() + 1;
+        if (x + dx < 0 || y + dy < 0) continue;
+        const std::uint64_t column = Pack(x + dx, y + dy, 0);
+        const std::uint64_t first = column + std::max(z - 1, 0), last = column + z + 1;
         for (auto k = std::lower_bound(voxels.keys.begin(), voxels.keys.end(), first);
              k != voxels.keys.end() && *k <= last; ++k) {
-          indices.push_back(static_cast<int>(k - voxels.keys.begin()));
+          lists.indices.push_back(static_cast<int>(k - voxels.keys.begin()));
         }
       }
     }
-    offsets.push_back(static_cast<int>(indices.size()));
+    lists.offsets.push_back(static_cast<int>(lists.indices.size()));
   }
-}
-
-// The sums of 1, x, y, z, xx, xy, xz, yy, yz, zz over a multiset of centroids, in double about the
-// voxels' first centroid.
-using ListMoments = Eigen::Matrix<double, 10, 1>;
-
-ListMoments ListMomentsOf(const Eigen::Vector3d& p) {
-  ListMoments m;
-  m << 1, p.x(), p.y(), p.z(), p.x() * p.x(), p.x() * p.y(), p.x() * p.z(), p.y() * p.y(), p.y() * p.z(), p.z() * p.z();
-  return m;
+  return lists;
 }
 
 // Each voxel's moments over the index list SupervoxelClustering::computeVoxelData fits a plane to:
 // itself, then for each neighbour n (itself among them) n and each of n's neighbours. That is the voxel
-// once, plus for each neighbour n its own moments and the sum over n's neighbourhood.
-std::vector<ListMoments> IndexListMoments(const Voxels& voxels, const std::vector<int>& offsets, const std::vector<int>& indices) {
+// once, plus for each neighbour n its own moments and the sum over n's neighbourhood. About the first
+// voxel's centroid.
+std::vector<Moments> IndexListMoments(const Voxels& voxels, const NeighbourLists& neighbours) {
   const size_t n = voxels.centroid.size();
-  std::vector<ListMoments> own(n), ring(n, ListMoments::Zero()), list(n);
-  for (size_t v = 0; v < n; ++v) own[v] = ListMomentsOf((voxels.centroid[v] - voxels.centroid[0]).cast<double>());
+  std::vector<Moments> own(n), ring(n), list(n);
+  for (size_t v = 0; v < n; ++v) own[v] = Moments::Of((voxels.centroid[v] - voxels.centroid[0]).cast<double>());
   for (size_t v = 0; v < n; ++v) {
-    for (int k = offsets[v]; k < offsets[v + 1]; ++k) ring[v] += own[indices[k]];
+    for (int u : neighbours.Of(v)) ring[v].Add(own[u]);
   }
   for (size_t v = 0; v < n; ++v) {
-    list[v] = own[v] + ring[v];
-    for (int k = offsets[v]; k < offsets[v + 1]; ++k) list[v] += ring[indices[k]];
+    list[v] = own[v];
+    list[v].Add(ring[v]);
+    for (int u : neighbours.Of(v)) list[v].Add(ring[u]);
   }
   return list;
 }
 
-// PCL's plane fit of the index list, flipped towards the camera at the origin. A voxel with no
-// neighbour but itself fits one place three times: PCL's covariance, shifted by the first point, is
-// exactly zero there, and so is the one given to the fit here.
-pcl::Normal VoxelNormal(const ListMoments& m, bool alone, const Eigen::Vector3f& c) {
-  Eigen::Matrix3f covariance = Eigen::Matrix3f::Zero();
-  if (!alone) {
-    const ListMoments e = m / m[0];
-    const Eigen::Vector3d mean = e.segment<3>(1);
-    Eigen::Matrix3d c2;
-    c2 << e[4], e[5], e[6], e[5], e[7], e[8], e[6], e[8], e[9];
-    covariance = (c2 - mean * mean.transpose()).cast<float>();
-  }
-  pcl::Normal normal;
-  pcl::solvePlaneParameters(covariance, normal.normal_x, normal.normal_y, normal.normal_z, normal.curvature);
-  pcl::flipNormalTowardsViewpoint(PointT(c.x(), c.y(), c.z()), 0.0f, 0.0f, 0.0f, normal.normal_x, normal.normal_y,
-                                  normal.normal_z);
+// PCL's plane fit of a voxel's index list, flipped towards the camera at the origin and normalised as
+// PCL's voxel data is. A voxel with no neighbour but itself fits one place three times: PCL's
+// covariance, shifted by the first point, is exactly zero there, and so is the one of three points at
+// the origin given to the fit here.
+pcl::Normal VoxelNormal(const Moments& m, bool alone, const Eigen::Vector3f& c) {
+  Moments one_place;
+  for (int k = 0; k < 3; ++k) one_place.Add(Moments::Of(Eigen::Vector3d::Zero()));
+  pcl::Normal normal = NormalOf(alone ? one_place : m, c);
   normal.getNormalVector3fMap().normalize();
   return normal;
 }
@@ -156,13 +142,12 @@ pcl::PointCloud<pcl::Normal> SupervoxelVoxelNormals(const Cloud& points, float r
   Voxels voxels;
   // PCL's resolution is the float it was given, widened to double.
   if (points.empty() || !MakeVoxels(points, static_cast<double>(resolution_m), voxels)) return normals;
-  std::vector<int> offsets, indices;
-  Neighbours(voxels, offsets, indices);
-  const std::vector<ListMoments> moments = IndexListMoments(voxels, offsets, indices);
+  const NeighbourLists neighbours = Neighbours(voxels);
+  const std::vector<Moments> moments = IndexListMoments(voxels, neighbours);
   std::vector<pcl::Normal> of_voxel;
   of_voxel.reserve(voxels.keys.size());
   for (size_t v = 0; v < voxels.keys.size(); ++v) {
-    of_voxel.push_back(VoxelNormal(moments[v], offsets[v + 1] - offsets[v] == 1, voxels.centroid[v]));
+    of_voxel.push_back(VoxelNormal(moments[v], neighbours.Of(v).size() == 1, voxels.centroid[v]));
   }
   normals.resize(points.size());
   for (size_t i = 0; i < points.size(); ++i) normals[i] = of_voxel[voxels.of_point[i]];

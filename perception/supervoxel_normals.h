@@ -17,7 +17,7 @@ namespace sortcell::perception {
 /// origin. PCL's voxel grid (its adjacency octree's keys), centroids and repetitions are reproduced
 /// exactly; the fit's sums run in double, so the normals equal PCL's up to rounding. Written here
 /// because PCL gathers each voxel's two rings through its octree one index at a time: about a fifth of
-/// the convex clustering's time (measured at 00ebf47, perception_benchmark under perf). Every point of a
+/// the convex clustering's time (measured at 7360cf6, perception_benchmark under perf). Every point of a
 /// voxel gets the voxel's normal, so that PCL's average over a voxel's points is that normal. Empty
 /// where `points` is, or spreads over more than 2^21 voxels along an axis (then let PCL compute them).
 pcl::PointCloud<pcl::Normal> SupervoxelVoxelNormals(const Cloud& points, float resolution_m);
