@@ -3,6 +3,7 @@
 // processes of one `ctest -j` run) never write into each other's files.
 //  - TestTempDir(): this test process's folder, made with mkdtemp on first use. Use it where a test
 //    used ::testing::TempDir(). ctest runs every test in its own process, so each test has its own.
+//  - TempPath(name): a path in that folder.
 //  - TempDir: a fresh folder inside it, for a test (or fixture) that wants one of its own.
 // The process's folder is removed at exit when every test passed, and kept (named on stderr) for
 // inspection when one failed.
@@ -58,6 +59,9 @@ inline const std::string& TestTempDir() {
   }
   return dir;
 }
+
+/// "<TestTempDir()><name>": a path in this process's folder (not created).
+inline std::string TempPath(const std::string& name) { return TestTempDir() + name; }
 
 /// A fresh, empty folder "<TestTempDir()><prefix>_XXXXXX".
 class TempDir {

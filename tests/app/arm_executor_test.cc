@@ -9,11 +9,12 @@
 #include "cell/motion_sequencer.h"
 #include "robot/joint_trajectory.h"
 #include "sim/arm_io.h"
+#include "source_tree.h"
 
 namespace sortcell::app {
 namespace {
 
-const std::string kCell = std::string(SORTCELL_SOURCE_DIR) + "/scenes/cell.xml";
+using sortcell_test::kCell;
 
 class ArmExecutorTest : public ::testing::Test {
  protected:

@@ -10,13 +10,14 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "tests/app/run_sortcell.h"
+#include "source_tree.h"
 
 namespace fs = std::filesystem;
 using namespace sortcell_test;
 
 namespace {
 
-const std::string kCell = SORTCELL_SOURCE_DIR "/scenes/cell.xml";
+using sortcell_test::kCell;
 
 TEST(CliCapture, WritesEveryFile) {
   const fs::path out = fs::path(TestTempDir()) / "cli_capture";

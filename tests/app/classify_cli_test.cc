@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "run_sortcell.h"
+#include "source_tree.h"
 
 namespace {
 
@@ -17,10 +18,10 @@ namespace fs = std::filesystem;
 using sortcell_test::ExpectOneLineError;
 using sortcell_test::RunSortcell;
 
-const std::string kSource = SORTCELL_SOURCE_DIR;
+using sortcell_test::kSource;
 const std::string kModel = SORTCELL_TEST_MODEL;
 
-std::string Temp(const std::string& name) { return sortcell_test::TestTempDir() + "classify_cli_" + name; }
+using sortcell_test::TempPath;
 
 nlohmann::json ReadJson(const fs::path& file) {
   std::ifstream in(file);
@@ -30,7 +31,7 @@ nlohmann::json ReadJson(const fs::path& file) {
 
 // A capture of the default cell (six paper objects), segmented with the model.
 fs::path SegmentedCapture() {
-  const fs::path capture = Temp("capture"), segmented = Temp("segmented");
+  const fs::path capture = TempPath("capture"), segmented = TempPath("segmented");
   if (fs::exists(segmented / "segments.json")) return segmented;
   EXPECT_EQ(RunSortcell("capture --scene " + kSource + "/scenes/cell.xml --out " + capture.string()).exit_code, 0);
   const auto r = RunSortcell("segment --pcd " + (capture / "cloud.pcd").string() + " --camera " +
@@ -83,7 +84,7 @@ TEST(ClassifyCli, BadInputIsOneLineExitTwo) {
   ExpectOneLineError(RunSortcell("classify --pcd " + segment.string() + " --model " + kModel + " --reject-below 2"),
                      "--reject-below");
   // Three points: nothing to describe.
-  const fs::path tiny = Temp("tiny.pcd");
+  const fs::path tiny = TempPath("tiny.pcd");
   std::ofstream(tiny) << "# .PCD v0.7\nVERSION 0.7\nFIELDS x y z rgb\nSIZE 4 4 4 4\nTYPE F F F F\nCOUNT 1 1 1 1\n"
                          "WIDTH 3\nHEIGHT 1\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS 3\nDATA ascii\n"
                          "0 0 1 0\n0.01 0 1 0\n0 0.01 1 0\n";
@@ -92,7 +93,7 @@ TEST(ClassifyCli, BadInputIsOneLineExitTwo) {
 
 TEST(ClassifyCli, TheEpisodeSortsUnknownObjectsIntoOthers) {
   ASSERT_TRUE(fs::exists(kModel));
-  const std::string out = Temp("episode_reject");
+  const std::string out = TempPath("episode_reject");
   const auto r = RunSortcell("episode --scene " + kSource + "/scenes/cell.xml --object-set " + kSource +
                              "/scenes/objects/paper.yaml --model " + kModel + " --seed 1 --objects 2 --place "
                              "ball=0.60,-0.12 --place cup=0.42,0.14,1.0 --reject-below 1 --out " + out);

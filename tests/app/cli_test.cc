@@ -4,12 +4,13 @@
 #include <fstream>
 
 #include "tests/app/run_sortcell.h"
+#include "source_tree.h"
 
 namespace {
 
 using namespace sortcell_test;
 
-const std::string kCell = SORTCELL_SOURCE_DIR "/scenes/cell.xml";
+using sortcell_test::kCell;
 
 TEST(Cli, HelpExitsZeroAndNamesCapture) {
   EXPECT_EQ(RunSortcell("--help").exit_code, 0);

@@ -8,17 +8,18 @@
 #include <sstream>
 
 #include "run_sortcell.h"
+#include "source_tree.h"
 
 namespace {
 
 using sortcell_test::ExpectOneLineError;
 using sortcell_test::RunSortcell;
 
-const std::string kSource = SORTCELL_SOURCE_DIR;
+using sortcell_test::kSource;
 const std::string kScene = kSource + "/scenes/cell.xml";
 const std::string kSet = kSource + "/scenes/objects/paper.yaml";
 
-std::string Temp(const std::string& name) { return sortcell_test::TestTempDir() + "episode_cli_" + name; }
+using sortcell_test::TempPath;
 
 std::string Read(const std::string& file) {
   std::ifstream in(file);
@@ -28,21 +29,21 @@ std::string Read(const std::string& file) {
 }
 
 TEST(EpisodeCli, UnknownObjectSet) {
-  ExpectOneLineError(RunSortcell("episode --scene " + kScene + " --object-set /nonexistent/set.yaml --out " + Temp("a")),
+  ExpectOneLineError(RunSortcell("episode --scene " + kScene + " --object-set /nonexistent/set.yaml --out " + TempPath("a")),
                      "object set '/nonexistent/set.yaml': file not found");
 }
 
 TEST(EpisodeCli, MissingModel) {
-  ExpectOneLineError(RunSortcell("episode --scene " + kScene + " --model /nonexistent/m.model.json --out " + Temp("b")),
+  ExpectOneLineError(RunSortcell("episode --scene " + kScene + " --model /nonexistent/m.model.json --out " + TempPath("b")),
                      "/nonexistent/m.model.json");
 }
 
 TEST(EpisodeCli, NoCachedModelSaysHowToMakeOne) {
   // An empty model cache: no cached model there.
-  const std::string cache = Temp("models");
+  const std::string cache = TempPath("models");
   std::filesystem::create_directories(cache);
   setenv("SORTCELL_MODEL_CACHE", cache.c_str(), 1);
-  const auto r = RunSortcell("episode --scene " + kScene + " --object-set " + kSet + " --out " + Temp("c"));
+  const auto r = RunSortcell("episode --scene " + kScene + " --object-set " + kSet + " --out " + TempPath("c"));
   unsetenv("SORTCELL_MODEL_CACHE");
   ExpectOneLineError(r, "no trained model at " + cache + "/paper-color-cvfh-norm.model.json");
   EXPECT_NE(r.err.find("--out " + cache + "/paper_scenes"), std::string::npos) << r.err;
@@ -51,58 +52,58 @@ TEST(EpisodeCli, NoCachedModelSaysHowToMakeOne) {
 }
 
 TEST(EpisodeCli, BadSceneCountAndPlacement) {
-  ExpectOneLineError(RunSortcell("episode --scene /nonexistent.xml --model x --out " + Temp("d")),
+  ExpectOneLineError(RunSortcell("episode --scene /nonexistent.xml --model x --out " + TempPath("d")),
                      "scene '/nonexistent.xml': file not found");
-  ExpectOneLineError(RunSortcell("episode --scene " + kScene + " --place bottle1=0.5 --model x --out " + Temp("e")),
+  ExpectOneLineError(RunSortcell("episode --scene " + kScene + " --place bottle1=0.5 --model x --out " + TempPath("e")),
                      "--place: expected NAME=x,y[,yaw[,lying]]");
-  ExpectOneLineError(RunSortcell("episode --scene " + kScene + " --seed -1 --out " + Temp("f")), "--seed");
+  ExpectOneLineError(RunSortcell("episode --scene " + kScene + " --seed -1 --out " + TempPath("f")), "--seed");
 }
 
 TEST(EpisodeCli, BadVideoSize) {
   for (const char* size : {"1281x720", "1280", "0x720", "1280x720x2", "-640x360"}) {
-    ExpectOneLineError(RunSortcell("episode --scene " + kScene + " --video-size " + size + " --out " + Temp("g")),
+    ExpectOneLineError(RunSortcell("episode --scene " + kScene + " --video-size " + size + " --out " + TempPath("g")),
                        "--video-size: expected WIDTHxHEIGHT with even positive numbers");
   }
 }
 
 TEST(EpisodeCli, BadSelfCalibrate) {
-  ExpectOneLineError(RunSortcell("episode --scene " + kScene + " --self-calibrate maybe --out " + Temp("h")),
+  ExpectOneLineError(RunSortcell("episode --scene " + kScene + " --self-calibrate maybe --out " + TempPath("h")),
                      "--self-calibrate");
 }
 
 TEST(CalibrateCli, BadSceneDisplacementAndSet) {
-  ExpectOneLineError(RunSortcell("calibrate --scene /nonexistent.xml --out " + Temp("cal_a")),
+  ExpectOneLineError(RunSortcell("calibrate --scene /nonexistent.xml --out " + TempPath("cal_a")),
                      "scene '/nonexistent.xml': file not found");
-  ExpectOneLineError(RunSortcell("calibrate --scene " + kScene + " --camera-shift -0.01 --out " + Temp("cal_b")),
+  ExpectOneLineError(RunSortcell("calibrate --scene " + kScene + " --camera-shift -0.01 --out " + TempPath("cal_b")),
                      "camera jitter must be >= 0");
-  ExpectOneLineError(RunSortcell("calibrate --scene " + kScene + " --set colour=red --out " + Temp("cal_c")),
+  ExpectOneLineError(RunSortcell("calibrate --scene " + kScene + " --set colour=red --out " + TempPath("cal_c")),
                      "--set: unknown key 'colour'");
-  ExpectOneLineError(RunSortcell("calibrate --scene " + kScene + " --light-intensity 0 --out " + Temp("cal_d")),
+  ExpectOneLineError(RunSortcell("calibrate --scene " + kScene + " --light-intensity 0 --out " + TempPath("cal_d")),
                      "--light-intensity: expected > 0");
 }
 
 class SweepBadInput : public ::testing::Test {
  protected:
   std::string Spec(const std::string& name, const std::string& body) {
-    const std::string file = Temp(name + ".yaml");
+    const std::string file = TempPath(name + ".yaml");
     std::ofstream(file) << "scene: " << kScene << "\nobject_set: " << kSet << "\n" << body;
     return file;
   }
 };
 
 TEST_F(SweepBadInput, MalformedSpecs) {
-  ExpectOneLineError(RunSortcell("sweep " + Spec("unknown", "episodes: 2\nlighting: 3\n") + " --out " + Temp("s1")),
+  ExpectOneLineError(RunSortcell("sweep " + Spec("unknown", "episodes: 2\nlighting: 3\n") + " --out " + TempPath("s1")),
                      "unknown key 'lighting'");
-  ExpectOneLineError(RunSortcell("sweep " + Spec("type", "episodes: [2]\n") + " --out " + Temp("s2")),
+  ExpectOneLineError(RunSortcell("sweep " + Spec("type", "episodes: [2]\n") + " --out " + TempPath("s2")),
                      "key 'episodes': expected a non-negative integer");
-  ExpectOneLineError(RunSortcell("sweep /nonexistent/spec.yaml --out " + Temp("s3")), "file not found");
-  ExpectOneLineError(RunSortcell("sweep " + Spec("ok", "episodes: 2\n") + " --shard 3/2 --out " + Temp("s4")), "--shard");
-  ExpectOneLineError(RunSortcell("sweep " + Spec("ok2", "episodes: 2\n") + " -j 0 --out " + Temp("s5")), "-j");
+  ExpectOneLineError(RunSortcell("sweep /nonexistent/spec.yaml --out " + TempPath("s3")), "file not found");
+  ExpectOneLineError(RunSortcell("sweep " + Spec("ok", "episodes: 2\n") + " --shard 3/2 --out " + TempPath("s4")), "--shard");
+  ExpectOneLineError(RunSortcell("sweep " + Spec("ok2", "episodes: 2\n") + " -j 0 --out " + TempPath("s5")), "-j");
 }
 
 TEST_F(SweepBadInput, FinishedResultsAreNeverLost) {
   // A sweep folder with finished results (and a last line cut short by an interruption).
-  const std::string out = Temp("kept");
+  const std::string out = TempPath("kept");
   std::filesystem::create_directories(out);
   const std::string spec = Spec("kept", "episodes: 2\n");
   std::filesystem::copy_file(spec, out + "/spec.yaml", std::filesystem::copy_options::overwrite_existing);

@@ -17,6 +17,7 @@
 
 #include "run_sortcell.h"
 #include "sweep_test_support.h"
+#include "source_tree.h"
 
 namespace {
 
@@ -24,18 +25,18 @@ using sortcell_test::Lines;
 using sortcell_test::RunSortcell;
 using sortcell_test::WithoutWallClock;
 
-const std::string kSource = SORTCELL_SOURCE_DIR;
+using sortcell_test::kSource;
 const std::string kScene = kSource + "/scenes/cell.xml";
 const std::string kSet = kSource + "/scenes/objects/paper.yaml";
 
-std::string Temp(const std::string& name) { return sortcell_test::TestTempDir() + "episode_scenario_" + name; }
+using sortcell_test::TempPath;
 
 nlohmann::json Episode(const std::string& name, const std::string& args) {
   if (!std::filesystem::exists(SORTCELL_TEST_MODEL)) {
     ADD_FAILURE() << "no test model at " << SORTCELL_TEST_MODEL << ": run through ctest (fixture episode_model)";
     return {};
   }
-  const std::string out = Temp(name);
+  const std::string out = TempPath(name);
   std::filesystem::remove_all(out);
   const auto r = RunSortcell("episode --scene " + kScene + " --object-set " + kSet + " --model " + SORTCELL_TEST_MODEL +
                              " --out " + out + " " + args);
@@ -216,7 +217,7 @@ TEST(EpisodeScenario, SameSeedSameMetricsInEveryProcess) {
 
 // A sweep spec of `episodes` episodes of 1 or 2 objects, sorted with the test model.
 std::string SmallSweepSpec(const std::string& name, int seed, int episodes) {
-  return sortcell_test::SmallSweepSpec(Temp(name + ".yaml"), seed, episodes);
+  return sortcell_test::SmallSweepSpec(TempPath(name + ".yaml"), seed, episodes);
 }
 
 // Starts `sortcell sweep spec -j 2 --out out` in the background (its output into `log`) and waits
@@ -235,10 +236,10 @@ int StartSweepAndWaitForARecord(const std::string& spec, const std::string& out,
 }
 
 TEST(EpisodeScenario, SweepKilledAndResumedRunsEveryEpisodeOnce) {
-  const std::string out = Temp("sweep");
+  const std::string out = TempPath("sweep");
   std::filesystem::remove_all(out);
   const std::string spec = SmallSweepSpec("sweep", 10, 5);
-  const int pid = StartSweepAndWaitForARecord(spec, out, Temp("sweep.log"));
+  const int pid = StartSweepAndWaitForARecord(spec, out, TempPath("sweep.log"));
   ASSERT_GT(pid, 0);
   // Kill it (SIGKILL: no clean-up) once the first episode is in.
   kill(pid, SIGKILL);
@@ -268,14 +269,14 @@ TEST(EpisodeScenario, SweepKilledAndResumedRunsEveryEpisodeOnce) {
 TEST(EpisodeScenario, SweepResultsDoNotDependOnTheExecutionPlan) {
   const std::string spec = SmallSweepSpec("plans", 30, 4);
   const auto by_episode = [](const std::string& dir) { return sortcell_test::RecordsByEpisode(dir + "/results.jsonl"); };
-  const std::string one = Temp("plan_j1"), two = Temp("plan_j2"), merged = Temp("plan_merged");
+  const std::string one = TempPath("plan_j1"), two = TempPath("plan_j2"), merged = TempPath("plan_merged");
   for (const auto& dir : {one, two, merged}) std::filesystem::remove_all(dir);
   ASSERT_EQ(RunSortcell("sweep " + spec + " -j 1 --out " + one).exit_code, 0);
   ASSERT_EQ(RunSortcell("sweep " + spec + " -j 2 --out " + two).exit_code, 0);
   std::filesystem::create_directories(merged);
   std::string all;
   for (int shard = 1; shard <= 3; ++shard) {
-    const std::string dir = Temp("plan_shard" + std::to_string(shard));
+    const std::string dir = TempPath("plan_shard" + std::to_string(shard));
     std::filesystem::remove_all(dir);
     ASSERT_EQ(RunSortcell("sweep " + spec + " -j 1 --shard " + std::to_string(shard) + "/3 --out " + dir).exit_code, 0);
     std::ifstream in(dir + "/results.jsonl");
@@ -295,10 +296,10 @@ TEST(EpisodeScenario, SweepResultsDoNotDependOnTheExecutionPlan) {
 // 128 + 15 saying so, and refuses a second sweep into the folder while it runs; --resume completes it
 // with every episode exactly once.
 TEST(EpisodeScenario, SweepStoppedBySigtermEndsCleanlyAndResumes) {
-  const std::string out = Temp("sweep_term");
+  const std::string out = TempPath("sweep_term");
   std::filesystem::remove_all(out);
   const std::string spec = SmallSweepSpec("sweep_term", 20, 6);
-  const std::string stdout_file = Temp("sweep_term.out");
+  const std::string stdout_file = TempPath("sweep_term.out");
   const int pid = StartSweepAndWaitForARecord(spec, out, stdout_file);
   ASSERT_GT(pid, 0);
   const auto start = std::chrono::steady_clock::now();

@@ -17,7 +17,7 @@ namespace {
 using sortcell_test::ErrorOf;
 
 // A table top (x in [-0.3, 0.9], y in [-0.7, 0.7]), bin_cup at (0.45, 0.48), four small boxes.
-const char* kCell = R"(
+const char* kCellXml = R"(
 <mujoco>
   <worldbody>
     <geom name="table_top" type="plane" pos="0.3 0 0" size="0.6 0.7 0.01"/>
@@ -50,7 +50,7 @@ class ScorerTest : public ::testing::Test {
   // A 2x2 label image: pixel i shows object label i + 1.
   static cv::Mat Labels() { return (cv::Mat_<uint16_t>(2, 2) << 1, 2, 3, 4); }
 
-  const sim::Model model_ = sim::Model::FromVirtualFiles({{"cell.xml", kCell}}, "inline cell");
+  const sim::Model model_ = sim::Model::FromVirtualFiles({{"cell.xml", kCellXml}}, "inline cell");
   sim::Data data_{model_};
 };
 

@@ -11,13 +11,14 @@
 #include "error_of.h"
 #include "perception/recognition_model.h"
 #include "temp_dir.h"
+#include "source_tree.h"
 
 namespace sortcell::app {
 namespace {
 
 using sortcell_test::ErrorOf;
 
-const std::string kSource = SORTCELL_SOURCE_DIR;
+using sortcell_test::kSource;
 
 ObjectSet ThreeObjects() {
   ObjectSet set;

@@ -10,6 +10,7 @@
 
 #include "run_sortcell.h"
 #include "sim/model.h"
+#include "source_tree.h"
 
 namespace sortcell::app {
 namespace {
@@ -18,7 +19,7 @@ namespace fs = std::filesystem;
 using sortcell_test::ExpectOneLineError;
 using sortcell_test::RunSortcell;
 
-const fs::path kRoot = SORTCELL_SOURCE_DIR;
+using sortcell_test::kRoot;
 
 PickResult Pick(const std::string& scene, const std::string& object, const std::string& bin, const fs::path& video = {}) {
   PickOptions options;

@@ -7,11 +7,12 @@
 #include <fstream>
 
 #include "run_sortcell.h"
+#include "source_tree.h"
 
 namespace {
 
 using sortcell_test::RunSortcell;
-const std::filesystem::path kRoot = SORTCELL_SOURCE_DIR;
+using sortcell_test::kRoot;
 
 nlohmann::json ReadJson(const std::filesystem::path& file) {
   std::ifstream in(file);

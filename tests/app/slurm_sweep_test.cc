@@ -18,10 +18,11 @@
 #include "run_sortcell.h"
 #include "sweep_test_support.h"
 #include "temp_dir.h"
+#include "source_tree.h"
 
 namespace {
 
-const std::string kSource = SORTCELL_SOURCE_DIR;
+using sortcell_test::kSource;
 
 using sortcell_test::ReadFile;
 

@@ -20,6 +20,7 @@
 #include "error_of.h"
 #include "run_sortcell.h"
 #include "temp_dir.h"
+#include "source_tree.h"
 
 namespace sortcell::app {
 namespace {
@@ -27,7 +28,7 @@ namespace {
 using sortcell_test::ErrorOf;
 using sortcell_test::TempDir;
 
-const std::string kSource = SORTCELL_SOURCE_DIR;
+using sortcell_test::kSource;
 const std::string kScene = kSource + "/scenes/cell.xml";
 const std::string kSet = kSource + "/scenes/objects/paper.yaml";
 

@@ -37,15 +37,17 @@ CameraCalibration Calibration() {
   return c;
 }
 
-// A two-class model (bottle, cup) trained on the synthetic objects at a few table positions.
+// A two-class model (bottle, cup) trained on the synthetic objects at six table positions (few: every
+// test process trains it again, and under the sanitizers a render and its descriptor take a third of a
+// second).
 perception::RecognitionModel TrainModel() {
     const CameraCalibration calibration = Calibration();
     perception::SegmentationParams params;
     std::vector<Eigen::VectorXf> rows;
     std::vector<int> labels, groups;
     int group = 0;
-    for (double x : {0.40, 0.45, 0.50, 0.55, 0.60}) {
-      for (double y : {-0.15, 0.0, 0.15}) {
+    for (double x : {0.40, 0.50, 0.60}) {
+      for (double y : {-0.15, 0.15}) {
         for (int c = 0; c < 2; ++c) {
           Cylinder object = c == 0 ? kBottle : kCup;
           object.xy = {x, y};

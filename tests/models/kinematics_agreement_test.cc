@@ -15,6 +15,7 @@
 #include "sim/ground_truth.h"
 #include "sim/model.h"
 #include "temp_dir.h"
+#include "source_tree.h"
 
 namespace {
 
@@ -22,7 +23,7 @@ namespace fs = std::filesystem;
 using namespace sortcell;
 using robot::Joints;
 
-const fs::path kRoot = SORTCELL_SOURCE_DIR;
+using sortcell_test::kRoot;
 const std::vector<std::string> kBodies = {"shoulder_link", "upper_arm_link", "forearm_link",
                                           "wrist_1_link",  "wrist_2_link",   "wrist_3_link"};
 

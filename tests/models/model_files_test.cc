@@ -15,13 +15,14 @@
 #include "robot/ur5_dh.h"
 #include "sim/model.h"
 #include "sim/scene_composer.h"
+#include "source_tree.h"
 
 namespace fs = std::filesystem;
 using sortcell::sim::Model;
 
 namespace {
 
-const fs::path kRoot = SORTCELL_SOURCE_DIR;
+using sortcell_test::kRoot;
 const std::vector<std::string> kArmJoints = {"shoulder_pan_joint", "shoulder_lift_joint", "elbow_joint",
                                              "wrist_1_joint",      "wrist_2_joint",       "wrist_3_joint"};
 const std::vector<std::string> kArmBodies = {"shoulder_link", "upper_arm_link", "forearm_link", "wrist_1_link",

@@ -13,13 +13,13 @@ constexpr int kWidth = 40, kHeight = 20;
 
 // A wall at 1.2 m; a far object (columns 5-19, 0.9 m) and a near one (columns 17-29, 0.7 m) in front
 // of its right part, with a 2-pixel shadow of invalid depth at the near one's left edge.
-struct Scene {
+struct OccludedScene {
   Cloud cloud;
   std::vector<Segment> segments{2};
 };
 
-Scene FarBehindNear() {
-  Scene scene;
+OccludedScene FarBehindNear() {
+  OccludedScene scene;
   scene.cloud.width = kWidth;
   scene.cloud.height = kHeight;
   scene.cloud.points.resize(kWidth * kHeight);
@@ -39,7 +39,7 @@ Scene FarBehindNear() {
 }
 
 TEST(Occlusion, TheFarSegmentIsHiddenAtItsEdgeTowardsTheNearOne) {
-  const Scene scene = FarBehindNear();
+  const OccludedScene scene = FarBehindNear();
   const std::vector<int> occluded = OccludedEdgePixels(scene.cloud, scene.segments);
   ASSERT_EQ(occluded.size(), 2u);
   EXPECT_EQ(occluded[0], 10);  // Its right column, rows 5-14, past the shadow.
@@ -47,14 +47,14 @@ TEST(Occlusion, TheFarSegmentIsHiddenAtItsEdgeTowardsTheNearOne) {
 }
 
 TEST(Occlusion, AWideShadowIsNotLookedPast) {
-  const Scene scene = FarBehindNear();
+  const OccludedScene scene = FarBehindNear();
   OcclusionParams params;
   params.max_gap = 1;
   EXPECT_EQ(OccludedEdgePixels(scene.cloud, scene.segments, params)[0], 0);
 }
 
 TEST(Occlusion, MisuseThrows) {
-  Scene scene = FarBehindNear();
+  OccludedScene scene = FarBehindNear();
   scene.segments[0].indices.push_back(kWidth * kHeight);
   EXPECT_THROW(OccludedEdgePixels(scene.cloud, scene.segments), std::invalid_argument);
   Cloud unorganized = sortcell_test::SphereFront(0.03, 0.8, 1, 2, 3);

@@ -21,11 +21,12 @@
 #include "sim/point_cloud.h"
 #include "sim/scene_composer.h"
 #include "temp_dir.h"
+#include "source_tree.h"
 
 namespace sortcell {
 namespace {
 
-const std::filesystem::path kRoot = SORTCELL_SOURCE_DIR;
+using sortcell_test::kRoot;
 
 // A plain box of the paper box's size (0.06 x 0.09 x 0.12 m) in one colour.
 std::filesystem::path WriteBox(const std::filesystem::path& dir, const std::string& name, const std::string& rgba) {

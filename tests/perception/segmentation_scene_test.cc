@@ -16,13 +16,14 @@
 #include "sim/object_placement.h"
 #include "sim/point_cloud.h"
 #include "sim/scene_composer.h"
+#include "source_tree.h"
 
 #include <opencv2/imgproc.hpp>
 
 namespace sortcell {
 namespace {
 
-const std::filesystem::path kRoot = SORTCELL_SOURCE_DIR;
+using sortcell_test::kRoot;
 
 struct Check {
   int segments = 0, objects = 0;

@@ -11,11 +11,12 @@
 #include "robot/ur5_limits.h"
 #include "sim/arm_io.h"
 #include "sim/model.h"
+#include "source_tree.h"
 
 namespace sortcell::sim {
 namespace {
 
-const std::string kCell = std::string(SORTCELL_SOURCE_DIR) + "/scenes/cell.xml";
+using sortcell_test::kCell;
 constexpr double kPayloadKg = 0.5;
 constexpr double kBudget = 0.8;  // Of each torque limit; the rest is the feedback's.
 

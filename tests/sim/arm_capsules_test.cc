@@ -7,11 +7,12 @@
 #include "cell/arm_view.h"
 #include "sim/arm_io.h"
 #include "sim/model.h"
+#include "source_tree.h"
 
 namespace sortcell::sim {
 namespace {
 
-const std::string kCell = std::string(SORTCELL_SOURCE_DIR) + "/scenes/cell.xml";
+using sortcell_test::kCell;
 
 double DistanceToSegment(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
   const double u = std::clamp((p - a).dot(b - a) / std::max((b - a).squaredNorm(), 1e-12), 0.0, 1.0);

@@ -15,11 +15,12 @@
 #include "sim/model.h"
 #include "sim/object_placement.h"
 #include "sim/scene_composer.h"
+#include "source_tree.h"
 
 namespace sortcell::sim {
 namespace {
 
-const std::filesystem::path kRoot = SORTCELL_SOURCE_DIR;
+using sortcell_test::kRoot;
 
 class PaperCell : public ::testing::Test {
  protected:

@@ -8,11 +8,12 @@
 #include "robot/ur5_limits.h"
 #include "sim/arm_io.h"
 #include "sim/model.h"
+#include "source_tree.h"
 
 namespace sortcell::sim {
 namespace {
 
-const std::string kCell = std::string(SORTCELL_SOURCE_DIR) + "/scenes/cell.xml";
+using sortcell_test::kCell;
 // The model takes the fingers half open; the simulated ones are set there too.
 constexpr double kHalfOpen = 0.0275;
 
