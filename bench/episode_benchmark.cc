@@ -38,9 +38,14 @@ double SweepEpisodesPerHour(const std::string& model, int episodes, int jobs) {
 }
 
 int Run(int argc, char** argv) {
+  std::filesystem::path model_path;
+  int episodes = 6;
+  CLI::App cli("Times sorting episodes of the paper objects, one after another and as a sweep.", "episode_benchmark");
+  cli.add_option("model", model_path, "a trained model (default: the cached default model, trained if missing)");
+  cli.add_option("episodes", episodes, "episodes of the sweep")->check(WholeNumberAtLeast(1));
+  if (const auto exit_code = ParseBenchmarkArgs(cli, argc, argv)) return *exit_code;
   const app::ObjectSet set = app::LoadObjectSet(std::string(SORTCELL_SOURCE_DIR) + "/scenes/objects/paper.yaml");
-  const std::string model = std::filesystem::absolute(argc > 1 ? std::filesystem::path(argv[1]) : app::EnsureDefaultModel(set)).string();
-  const int episodes = argc > 2 ? CountArg("SWEEP_EPISODES", argv[2], 1) : 6;
+  const std::string model = std::filesystem::absolute(model_path.empty() ? app::EnsureDefaultModel(set) : model_path).string();
   const std::filesystem::path out = BenchTempDir("sortcell_bench_episode");
 
   app::EpisodeOptions options;

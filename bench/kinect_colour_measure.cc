@@ -196,7 +196,10 @@ void Print(const char* what, const Measured& m) {
 }
 
 int Run(int argc, char** argv) {
-  const fs::path real_dir = argc > 1 ? fs::path(argv[1]) : fs::path(SORTCELL_SOURCE_DIR) / ".." / "shared" / "real" / "rgbd-object";
+  fs::path real_dir = fs::path(SORTCELL_SOURCE_DIR) / ".." / "shared" / "real" / "rgbd-object";
+  CLI::App app("Compares the Kinect colour model's renders with real RGB-D Object Dataset views.", "kinect_colour_measure");
+  app.add_option("folder", real_dir, "a folder of RGB-D Object Dataset views (default: ../shared/real/rgbd-object)");
+  if (const auto exit_code = ParseBenchmarkArgs(app, argc, argv)) return *exit_code;
   if (!fs::is_directory(real_dir)) {
     std::fprintf(stderr, "kinect_colour_measure: '%s' is not a folder of RGB-D Object Dataset views\n", real_dir.c_str());
     return 2;

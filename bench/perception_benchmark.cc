@@ -194,16 +194,11 @@ void PrintTable(const Frame& frame, const StageTimes& t, int repetitions, int su
 int Run(int argc, char** argv) {
   int repetitions = 20;
   std::string model_path;
-  for (int i = 1; i < argc; ++i) {
-    const std::string arg = argv[i];
-    if (arg == "--model" && i + 1 < argc) {
-      model_path = argv[++i];
-    } else if (arg == "--repetitions" && i + 1 < argc) {
-      repetitions = CountArg("--repetitions", argv[++i], 1);
-    } else {
-      throw std::invalid_argument("unknown argument '" + arg + "' (usage: perception_benchmark [--model MODEL.json] [--repetitions N])");
-    }
-  }
+  CLI::App app("Times the cell's perception chain (segment, describe, classify) on two Kinect frames, one core.",
+               "perception_benchmark");
+  app.add_option("--model", model_path, "a trained model (MODEL.json) instead of a stand-in SVM");
+  app.add_option("--repetitions", repetitions, "timed runs per frame; the median is printed")->check(WholeNumberAtLeast(1));
+  if (const auto exit_code = ParseBenchmarkArgs(app, argc, argv)) return *exit_code;
   const sim::Model model = sim::Model::FromFile(std::string(SORTCELL_SOURCE_DIR) + "/scenes/cell.xml");
   perception::Cloud::Ptr background;
   const std::vector<Frame> frames = Frames(model, background);

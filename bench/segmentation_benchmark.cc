@@ -170,26 +170,13 @@ int Run(int argc, char** argv) {
   int scenes = 50;
   bool verbose = false;
   fs::path overlays;
-  for (int i = 1; i < argc; ++i) {
-    const std::string arg = argv[i];
-    if (arg == "--overlays" && i + 1 < argc) {
-      overlays = argv[++i];
-      if (!fs::is_directory(overlays)) {
-        std::fprintf(stderr, "segmentation_benchmark: --overlays: '%s' is not a folder\n", argv[i]);
-        return 2;
-      }
-      continue;
-    }
-    if (arg == "--verbose") {
-      verbose = true;
-      continue;
-    }
-    if (arg == "--scenes" && i + 1 < argc) {
-      scenes = CountArg("--scenes", argv[++i], 0);
-      continue;
-    }
-    folders.emplace_back(arg);
-  }
+  CLI::App app("Scores the segmentation against the ground truth: random sim scenes and labelled real captures.",
+               "segmentation_benchmark");
+  app.add_option("folders", folders, "folders of labelled real captures (default: ../shared/real/mosd-learn, mosd-hard)");
+  app.add_option("--scenes", scenes, "sim scenes of each placement (0: none)")->check(WholeNumberAtLeast(0));
+  app.add_flag("--verbose", verbose, "list the sim objects not found");
+  app.add_option("--overlays", overlays, "write those frames' segments as images into this folder")->check(CLI::ExistingDirectory);
+  if (const auto exit_code = ParseBenchmarkArgs(app, argc, argv)) return *exit_code;
   if (scenes > 0) RunSim(sim::Model::FromFile((fs::path(SORTCELL_SOURCE_DIR) / "scenes" / "cell.xml").string()), scenes, verbose, overlays);
   if (folders.empty()) {
     const fs::path real = fs::path(SORTCELL_SOURCE_DIR) / ".." / "shared" / "real";
