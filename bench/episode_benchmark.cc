@@ -1,7 +1,7 @@
 // Episode and sweep throughput, printed as figures (not a timed test):
 //   real-time factor of a headless episode and of one with video (same seed, so the same motions);
 //   episodes per hour of a sweep with 1 and with 2 worker processes.
-// Usage: episode_benchmark [MODEL] [SWEEP_EPISODES]   (default: the cached default model, 6 episodes)
+// Usage: episode_benchmark [MODEL] [EPISODES]   (default: the cached default model, 6 episodes)
 #include <algorithm>
 #include <chrono>
 #include <cstdio>

@@ -194,11 +194,11 @@ void PrintTable(const Frame& frame, const StageTimes& t, int repetitions, int su
 int Run(int argc, char** argv) {
   int repetitions = 20;
   std::string model_path;
-  CLI::App app("Times the cell's perception chain (segment, describe, classify) on two Kinect frames, one core.",
+  CLI::App cli("Times the cell's perception chain (segment, describe, classify) on two Kinect frames, one core.",
                "perception_benchmark");
-  app.add_option("--model", model_path, "a trained model (MODEL.json) instead of a stand-in SVM");
-  app.add_option("--repetitions", repetitions, "timed runs per frame; the median is printed")->check(WholeNumberAtLeast(1));
-  if (const auto exit_code = ParseBenchmarkArgs(app, argc, argv)) return *exit_code;
+  cli.add_option("--model", model_path, "a trained model (MODEL.json) instead of a stand-in SVM")->check(CLI::ExistingFile);
+  cli.add_option("--repetitions", repetitions, "timed runs per frame; the median is printed")->check(WholeNumberAtLeast(1));
+  if (const auto exit_code = ParseBenchmarkArgs(cli, argc, argv)) return *exit_code;
   const sim::Model model = sim::Model::FromFile(std::string(SORTCELL_SOURCE_DIR) + "/scenes/cell.xml");
   perception::Cloud::Ptr background;
   const std::vector<Frame> frames = Frames(model, background);

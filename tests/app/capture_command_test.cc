@@ -13,11 +13,13 @@
 #include "source_tree.h"
 
 namespace fs = std::filesystem;
-using namespace sortcell_test;
 
 namespace {
 
 using sortcell_test::kCell;
+using sortcell_test::Result;
+using sortcell_test::RunSortcell;
+using sortcell_test::TestTempDir;
 
 TEST(CliCapture, WritesEveryFile) {
   const fs::path out = fs::path(TestTempDir()) / "cli_capture";

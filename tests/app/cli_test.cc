@@ -8,9 +8,10 @@
 
 namespace {
 
-using namespace sortcell_test;
-
+using sortcell_test::ExpectOneLineError;
 using sortcell_test::kCell;
+using sortcell_test::RunSortcell;
+using sortcell_test::TestTempDir;
 
 TEST(Cli, HelpExitsZeroAndNamesCapture) {
   EXPECT_EQ(RunSortcell("--help").exit_code, 0);

@@ -15,8 +15,8 @@ namespace {
 using sortcell_test::ExpectOneLineError;
 using sortcell_test::RunSortcell;
 
+using sortcell_test::kCell;
 using sortcell_test::kSource;
-const std::string kScene = kSource + "/scenes/cell.xml";
 const std::string kSet = kSource + "/scenes/objects/paper.yaml";
 
 using sortcell_test::TempPath;
@@ -29,12 +29,12 @@ std::string Read(const std::string& file) {
 }
 
 TEST(EpisodeCli, UnknownObjectSet) {
-  ExpectOneLineError(RunSortcell("episode --scene " + kScene + " --object-set /nonexistent/set.yaml --out " + TempPath("a")),
+  ExpectOneLineError(RunSortcell("episode --scene " + kCell + " --object-set /nonexistent/set.yaml --out " + TempPath("a")),
                      "object set '/nonexistent/set.yaml': file not found");
 }
 
 TEST(EpisodeCli, MissingModel) {
-  ExpectOneLineError(RunSortcell("episode --scene " + kScene + " --model /nonexistent/m.model.json --out " + TempPath("b")),
+  ExpectOneLineError(RunSortcell("episode --scene " + kCell + " --model /nonexistent/m.model.json --out " + TempPath("b")),
                      "/nonexistent/m.model.json");
 }
 
@@ -43,7 +43,7 @@ TEST(EpisodeCli, NoCachedModelSaysHowToMakeOne) {
   const std::string cache = TempPath("models");
   std::filesystem::create_directories(cache);
   setenv("SORTCELL_MODEL_CACHE", cache.c_str(), 1);
-  const auto r = RunSortcell("episode --scene " + kScene + " --object-set " + kSet + " --out " + TempPath("c"));
+  const auto r = RunSortcell("episode --scene " + kCell + " --object-set " + kSet + " --out " + TempPath("c"));
   unsetenv("SORTCELL_MODEL_CACHE");
   ExpectOneLineError(r, "no trained model at " + cache + "/paper-color-cvfh-norm.model.json");
   EXPECT_NE(r.err.find("--out " + cache + "/paper_scenes"), std::string::npos) << r.err;
@@ -54,31 +54,31 @@ TEST(EpisodeCli, NoCachedModelSaysHowToMakeOne) {
 TEST(EpisodeCli, BadSceneCountAndPlacement) {
   ExpectOneLineError(RunSortcell("episode --scene /nonexistent.xml --model x --out " + TempPath("d")),
                      "scene '/nonexistent.xml': file not found");
-  ExpectOneLineError(RunSortcell("episode --scene " + kScene + " --place bottle1=0.5 --model x --out " + TempPath("e")),
+  ExpectOneLineError(RunSortcell("episode --scene " + kCell + " --place bottle1=0.5 --model x --out " + TempPath("e")),
                      "--place: expected NAME=x,y[,yaw[,lying]]");
-  ExpectOneLineError(RunSortcell("episode --scene " + kScene + " --seed -1 --out " + TempPath("f")), "--seed");
+  ExpectOneLineError(RunSortcell("episode --scene " + kCell + " --seed -1 --out " + TempPath("f")), "--seed");
 }
 
 TEST(EpisodeCli, BadVideoSize) {
   for (const char* size : {"1281x720", "1280", "0x720", "1280x720x2", "-640x360"}) {
-    ExpectOneLineError(RunSortcell("episode --scene " + kScene + " --video-size " + size + " --out " + TempPath("g")),
+    ExpectOneLineError(RunSortcell("episode --scene " + kCell + " --video-size " + size + " --out " + TempPath("g")),
                        "--video-size: expected WIDTHxHEIGHT with even positive numbers");
   }
 }
 
 TEST(EpisodeCli, BadSelfCalibrate) {
-  ExpectOneLineError(RunSortcell("episode --scene " + kScene + " --self-calibrate maybe --out " + TempPath("h")),
+  ExpectOneLineError(RunSortcell("episode --scene " + kCell + " --self-calibrate maybe --out " + TempPath("h")),
                      "--self-calibrate");
 }
 
 TEST(CalibrateCli, BadSceneDisplacementAndSet) {
   ExpectOneLineError(RunSortcell("calibrate --scene /nonexistent.xml --out " + TempPath("cal_a")),
                      "scene '/nonexistent.xml': file not found");
-  ExpectOneLineError(RunSortcell("calibrate --scene " + kScene + " --camera-shift -0.01 --out " + TempPath("cal_b")),
+  ExpectOneLineError(RunSortcell("calibrate --scene " + kCell + " --camera-shift -0.01 --out " + TempPath("cal_b")),
                      "camera jitter must be >= 0");
-  ExpectOneLineError(RunSortcell("calibrate --scene " + kScene + " --set colour=red --out " + TempPath("cal_c")),
+  ExpectOneLineError(RunSortcell("calibrate --scene " + kCell + " --set colour=red --out " + TempPath("cal_c")),
                      "--set: unknown key 'colour'");
-  ExpectOneLineError(RunSortcell("calibrate --scene " + kScene + " --light-intensity 0 --out " + TempPath("cal_d")),
+  ExpectOneLineError(RunSortcell("calibrate --scene " + kCell + " --light-intensity 0 --out " + TempPath("cal_d")),
                      "--light-intensity: expected > 0");
 }
 
@@ -86,7 +86,7 @@ class SweepBadInput : public ::testing::Test {
  protected:
   std::string Spec(const std::string& name, const std::string& body) {
     const std::string file = TempPath(name + ".yaml");
-    std::ofstream(file) << "scene: " << kScene << "\nobject_set: " << kSet << "\n" << body;
+    std::ofstream(file) << "scene: " << kCell << "\nobject_set: " << kSet << "\n" << body;
     return file;
   }
 };

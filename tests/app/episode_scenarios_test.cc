@@ -25,8 +25,8 @@ using sortcell_test::Lines;
 using sortcell_test::RunSortcell;
 using sortcell_test::WithoutWallClock;
 
+using sortcell_test::kCell;
 using sortcell_test::kSource;
-const std::string kScene = kSource + "/scenes/cell.xml";
 const std::string kSet = kSource + "/scenes/objects/paper.yaml";
 
 using sortcell_test::TempPath;
@@ -38,7 +38,7 @@ nlohmann::json Episode(const std::string& name, const std::string& args) {
   }
   const std::string out = TempPath(name);
   std::filesystem::remove_all(out);
-  const auto r = RunSortcell("episode --scene " + kScene + " --object-set " + kSet + " --model " + SORTCELL_TEST_MODEL +
+  const auto r = RunSortcell("episode --scene " + kCell + " --object-set " + kSet + " --model " + SORTCELL_TEST_MODEL +
                              " --out " + out + " " + args);
   EXPECT_EQ(r.exit_code, 0) << r.err;
   std::ifstream in(out + "/metrics.json");

@@ -16,7 +16,8 @@
 #include "tests/app/run_sortcell.h"
 
 namespace fs = std::filesystem;
-using namespace sortcell;
+namespace app = sortcell::app;
+namespace perception = sortcell::perception;
 
 namespace {
 

@@ -105,7 +105,7 @@ TEST(SweepFaults, KilledTwentyTimesAtRandomMomentsThenResumedGivesTheUninterrupt
 // sweep as an uninterrupted run.
 TEST(SweepFaults, AFullDiskStopsTheSweepNamingTheFileAndKeepsWhatFinished) {
   const TempDir dir("full_disk");
-  constexpr size_t kEpisodes = 9;
+  constexpr size_t kEpisodes = 10;
   const std::string spec = SmallSweepSpec(dir / "disk.yaml", 41, kEpisodes);
   const std::string reference = dir / "reference", out = dir / "full";
   ASSERT_EQ(RunSortcell("sweep " + spec + " -j 1 --out " + reference).exit_code, 0);

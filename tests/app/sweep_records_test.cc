@@ -28,8 +28,8 @@ namespace {
 using sortcell_test::ErrorOf;
 using sortcell_test::TempDir;
 
+using sortcell_test::kCell;
 using sortcell_test::kSource;
-const std::string kScene = kSource + "/scenes/cell.xml";
 const std::string kSet = kSource + "/scenes/objects/paper.yaml";
 
 // The first line of a results.jsonl written before the records were typed (two of its items kept).
@@ -451,20 +451,20 @@ TEST(EpisodeSet, AnUnknownKeyIsRejectedWithTheValidOnes) {
 
 TEST(EpisodeSet, TheCommandLineRejectsAnUnknownKey) {
   sortcell_test::ExpectOneLineError(
-      sortcell_test::RunSortcell("episode --scene " + kScene + " --out " + (TempDir("set_cli") / "out").string() +
+      sortcell_test::RunSortcell("episode --scene " + kCell + " --out " + (TempDir("set_cli") / "out").string() +
                                  " --set colour=red"),
       "--set: unknown key 'colour'");
 }
 
 // ---- --set on sweep ----
 
-std::filesystem::path WriteSpec(const TempDir& dir, const std::string& body) {
-  return WriteFile(dir / "spec.yaml", "scene: " + kScene + "\nobject_set: " + kSet + "\n" + body);
+std::filesystem::path WriteSweepSpec(const TempDir& dir, const std::string& body) {
+  return WriteFile(dir / "spec.yaml", "scene: " + kCell + "\nobject_set: " + kSet + "\n" + body);
 }
 
 TEST(SweepSet, OverridesKeysOfTheSpec) {
   const TempDir dir("sweep_set");
-  const auto file = WriteSpec(dir, "seed: 1\nseeds: [3, 7]\naxes:\n  objects: [2, 4]\n  noise_scale: {min: 1, max: 2}\n");
+  const auto file = WriteSweepSpec(dir, "seed: 1\nseeds: [3, 7]\naxes:\n  objects: [2, 4]\n  noise_scale: {min: 1, max: 2}\n");
   const SweepSpec spec = LoadSweepSpec(
       file, {"seed=9", "episodes=5", "axes.objects=3", "axes.light_intensity=[0.5, 1.5]", "episode_timeout_s=60"});
   EXPECT_EQ(spec.seed, 9u);
@@ -484,7 +484,7 @@ TEST(SweepSet, OverridesKeysOfTheSpec) {
 
 TEST(SweepSet, UnknownOrBadOverridesAreRejected) {
   const TempDir dir("sweep_set_bad");
-  const auto file = WriteSpec(dir, "episodes: 2\n");
+  const auto file = WriteSweepSpec(dir, "episodes: 2\n");
   const auto error = [&](const std::string& set) { return ErrorOf([&] { LoadSweepSpec(file, {set}); }); };
   EXPECT_NE(error("episodez=3").find("--set: unknown sweep spec key 'episodez' (expected "), std::string::npos);
   EXPECT_NE(error("axes.lighting=1").find("--set: unknown sweep spec key 'axes.lighting'"), std::string::npos);
@@ -498,7 +498,7 @@ TEST(SweepSet, UnknownOrBadOverridesAreRejected) {
 
 TEST(SweepCli, UnknownSetKeyIsAOneLineError) {
   const TempDir dir("sweep_cli_set");
-  sortcell_test::ExpectOneLineError(sortcell_test::RunSortcell("sweep " + WriteSpec(dir, "episodes: 2\n").string() +
+  sortcell_test::ExpectOneLineError(sortcell_test::RunSortcell("sweep " + WriteSweepSpec(dir, "episodes: 2\n").string() +
                                                                " --set episodez=3 --out " + (dir / "out").string()),
                                     "--set: unknown sweep spec key 'episodez'");
 }
@@ -507,7 +507,7 @@ TEST(SweepCli, UnknownSetKeyIsAOneLineError) {
 // refused (here: its model is missing) leaves the damaged file as it was.
 TEST(SweepCli, ARefusedResumeLeavesADamagedFileAsItWas) {
   const TempDir dir("sweep_cli_damaged");
-  const auto spec = WriteSpec(dir, "episodes: 3\nmodel: /nonexistent/m.model.json\n");
+  const auto spec = WriteSweepSpec(dir, "episodes: 3\nmodel: /nonexistent/m.model.json\n");
   const auto out = dir / "out";
   std::filesystem::create_directories(out);
   std::filesystem::copy_file(spec, out / "spec.yaml");

@@ -20,7 +20,8 @@
 namespace {
 
 namespace fs = std::filesystem;
-using namespace sortcell;
+namespace robot = sortcell::robot;
+namespace sim = sortcell::sim;
 using robot::Joints;
 
 using sortcell_test::kRoot;

@@ -21,7 +21,7 @@ CameraIntrinsics Kinect() {
   return k;
 }
 
-cv::Mat Flat(double z) { return cv::Mat(480, 640, CV_32FC1, cv::Scalar(z)); }
+cv::Mat FlatDepth(double z) { return cv::Mat(480, 640, CV_32FC1, cv::Scalar(z)); }
 
 // A plane through (0, 0, z0) turned by `angle` about the camera's y axis: planar depth per pixel.
 cv::Mat Tilted(double z0, double angle) {
@@ -68,7 +68,7 @@ TEST(KinectNoise, AxialSpreadMatchesTheModelAtOneAndTwoMetres) {
   for (const double z : {1.0, 2.0}) {
     SCOPED_TRACE(z);
     std::mt19937_64 rng(7);
-    const cv::Mat clean = Flat(z);
+    const cv::Mat clean = FlatDepth(z);
     const Stats s = ErrorStats(ApplyKinectNoise(clean, Kinect(), params, rng), clean);
     const double sigma = AxialSigma(params, z, 0.0);
     EXPECT_NEAR(sigma, 0.0012 + 0.0019 * (z - 0.4) * (z - 0.4), 1e-12);
@@ -81,7 +81,7 @@ TEST(KinectNoise, AxialSpreadMatchesTheModelAtOneAndTwoMetres) {
 TEST(KinectNoise, DepthLiesOnTheDisparityGrid) {
   const KinectNoiseParams params;
   std::mt19937_64 rng(3);
-  const cv::Mat noisy = ApplyKinectNoise(Flat(1.0), Kinect(), params, rng);
+  const cv::Mat noisy = ApplyKinectNoise(FlatDepth(1.0), Kinect(), params, rng);
   const double scale = params.ir_focal_px * params.baseline_m * params.subpixel;
   int checked = 0;
   for (int v = 0; v < 480; v += 7) {
@@ -100,7 +100,7 @@ TEST(KinectNoise, DepthLiesOnTheDisparityGrid) {
 
 TEST(KinectNoise, ProjectorShadowFallsLeftOfAForegroundEdge) {
   // Background at 2 m, a foreground slab at 1 m filling columns 320..479.
-  cv::Mat depth = Flat(2.0);
+  cv::Mat depth = FlatDepth(2.0);
   depth(cv::Rect(320, 0, 160, 480)).setTo(1.0);
   const CameraIntrinsics k = Kinect();
   const cv::Mat shadow = ProjectorShadowMask(depth, k, 0.075);
@@ -120,9 +120,9 @@ TEST(KinectNoise, ProjectorShadowFallsLeftOfAForegroundEdge) {
 
 TEST(KinectNoise, RangeLimitsDropDepth) {
   std::mt19937_64 rng(1);
-  EXPECT_EQ(InvalidCount(ApplyKinectNoise(Flat(0.4), Kinect(), {}, rng)), 640 * 480);
-  EXPECT_EQ(InvalidCount(ApplyKinectNoise(Flat(4.5), Kinect(), {}, rng)), 640 * 480);
-  EXPECT_LT(InvalidCount(ApplyKinectNoise(Flat(3.5), Kinect(), {}, rng)), 640 * 480 / 100);
+  EXPECT_EQ(InvalidCount(ApplyKinectNoise(FlatDepth(0.4), Kinect(), {}, rng)), 640 * 480);
+  EXPECT_EQ(InvalidCount(ApplyKinectNoise(FlatDepth(4.5), Kinect(), {}, rng)), 640 * 480);
+  EXPECT_LT(InvalidCount(ApplyKinectNoise(FlatDepth(3.5), Kinect(), {}, rng)), 640 * 480 / 100);
 }
 
 TEST(KinectNoise, GrazingSurfacesLoseDepth) {
