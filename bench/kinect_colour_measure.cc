@@ -18,6 +18,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -197,12 +198,12 @@ void Print(const char* what, const Measured& m) {
 
 int Run(int argc, char** argv) {
   fs::path real_dir = fs::path(SORTCELL_SOURCE_DIR) / ".." / "shared" / "real" / "rgbd-object";
-  CLI::App app("Compares the Kinect colour model's renders with real RGB-D Object Dataset views.", "kinect_colour_measure");
-  app.add_option("folder", real_dir, "a folder of RGB-D Object Dataset views (default: ../shared/real/rgbd-object)");
-  if (const auto exit_code = ParseBenchmarkArgs(app, argc, argv)) return *exit_code;
+  CLI::App cli("Compares the Kinect colour model's renders with real RGB-D Object Dataset views.", "kinect_colour_measure");
+  cli.add_option("folder", real_dir, "a folder of RGB-D Object Dataset views (default: ../shared/real/rgbd-object)");
+  if (const auto exit_code = ParseBenchmarkArgs(cli, argc, argv)) return *exit_code;
+  // Checked here, not by CLI11: the default folder is not a value CLI11 sees.
   if (!fs::is_directory(real_dir)) {
-    std::fprintf(stderr, "kinect_colour_measure: '%s' is not a folder of RGB-D Object Dataset views\n", real_dir.c_str());
-    return 2;
+    throw std::invalid_argument("'" + real_dir.string() + "' is not a folder of RGB-D Object Dataset views");
   }
   const Measured real = MeasureReal(real_dir);
   const Measured render = MeasureRender();

@@ -170,13 +170,13 @@ int Run(int argc, char** argv) {
   int scenes = 50;
   bool verbose = false;
   fs::path overlays;
-  CLI::App app("Scores the segmentation against the ground truth: random sim scenes and labelled real captures.",
+  CLI::App cli("Scores the segmentation against the ground truth: random sim scenes and labelled real captures.",
                "segmentation_benchmark");
-  app.add_option("folders", folders, "folders of labelled real captures (default: ../shared/real/mosd-learn, mosd-hard)");
-  app.add_option("--scenes", scenes, "sim scenes of each placement (0: none)")->check(WholeNumberAtLeast(0));
-  app.add_flag("--verbose", verbose, "list the sim objects not found");
-  app.add_option("--overlays", overlays, "write those frames' segments as images into this folder")->check(CLI::ExistingDirectory);
-  if (const auto exit_code = ParseBenchmarkArgs(app, argc, argv)) return *exit_code;
+  cli.add_option("folders", folders, "folders of labelled real captures (default: ../shared/real/mosd-learn, mosd-hard)");
+  cli.add_option("--scenes", scenes, "sim scenes of each placement (0: none)")->check(WholeNumberAtLeast(0));
+  cli.add_flag("--verbose", verbose, "list the sim objects not found");
+  cli.add_option("--overlays", overlays, "write those frames' segments as images into this folder")->check(CLI::ExistingDirectory);
+  if (const auto exit_code = ParseBenchmarkArgs(cli, argc, argv)) return *exit_code;
   if (scenes > 0) RunSim(sim::Model::FromFile((fs::path(SORTCELL_SOURCE_DIR) / "scenes" / "cell.xml").string()), scenes, verbose, overlays);
   if (folders.empty()) {
     const fs::path real = fs::path(SORTCELL_SOURCE_DIR) / ".." / "shared" / "real";
