@@ -13,7 +13,7 @@ namespace sortcell::sim {
 namespace {
 
 // A geom as points (body frame) each swollen by a radius: box corners, cylinder rims, capsule ends,
-// sphere centres, ellipsoid surface points, meshes as their bounding spheres.
+// sphere centres, ellipsoid surface points, mesh vertices (MuJoCo collides with their hull).
 struct Swollen {
   Eigen::Vector3d p_B;
   double radius = 0;
@@ -59,7 +59,13 @@ void AddGeom(const mjModel* m, int g, std::vector<Swollen>& parts) {
         }
       }
       break;
-    default: parts.push_back({c, m->geom_rbound[g]}); break;  // Meshes and the rest: bounding sphere.
+    case mjGEOM_MESH: {
+      const int mesh = m->geom_dataid[g];
+      const float* v = m->mesh_vert + 3 * m->mesh_vertadr[mesh];
+      for (int k = 0; k < m->mesh_vertnum[mesh]; ++k) parts.push_back({local({v[3 * k], v[3 * k + 1], v[3 * k + 2]}), 0});
+      break;
+    }
+    default: parts.push_back({c, m->geom_rbound[g]}); break;  // The rest: bounding sphere.
   }
 }
 

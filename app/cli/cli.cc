@@ -12,6 +12,7 @@
 
 #include "app/cli/calibrate_command.h"
 #include "app/cli/capture_command.h"
+#include "app/cli/objects_command.h"
 #include "app/cli/classify_command.h"
 #include "app/cli/episode_command.h"
 #include "app/cli/experiment_command.h"
@@ -55,6 +56,7 @@ int RunCli(int argc, char** argv) {
   AddCalibrateCommand(app, run, command_line);
   AddSweepCommand(app, run, command_line);
   AddKinematicsCommands(app, run);
+  AddObjectsCommand(app, run, command_line);
 
   // `sortcell episode|calibrate --set KEY=VALUE` becomes `--KEY=VALUE` before CLI11 parses
   // (episode_command.h).

@@ -1,6 +1,8 @@
 #include "app/common/object_set.h"
 
 #include <algorithm>
+#include <cmath>
+#include <cstdlib>
 #include <fstream>
 #include <functional>
 #include <iomanip>
@@ -10,9 +12,70 @@
 #include <stdexcept>
 #include <vector>
 
+#include <spdlog/spdlog.h>
+
 #include "app/common/yaml_reader.h"
 
 namespace sortcell::app {
+namespace {
+
+const std::set<std::string> kObjectKeys{"name", "category", "instance", "model", "urdf", "mesh",
+                                        "mass", "density", "scale", "friction"};
+const std::set<std::string> kImportKeys{"mass", "density", "scale", "friction"};
+
+std::optional<double> PositiveNumber(const YamlReader& reader, const YAML::Node& node, const std::string& key,
+                                     const std::string& where) {
+  if (!node[key]) return std::nullopt;
+  const double value = reader.Number(node[key], where + "." + key);
+  if (!std::isfinite(value) || value <= 0) {
+    reader.Fail("key '" + where + "." + key + "': expected a positive number, found " + std::to_string(value));
+  }
+  return value;
+}
+
+void LogImport(const ObjectSpec& spec, const assets::ImportReport& r) {
+  spdlog::info("imported '{}' from {}: {} convex collision piece(s), {:.3f} kg, {:.3f} x {:.3f} x {:.3f} m{}",
+               spec.name, r.source, r.collision_pieces, r.mass, r.size.x(), r.size.y(), r.size.z(),
+               r.texture.empty() ? "" : ", texture converted to PNG");
+  for (const auto& w : r.warnings) spdlog::warn("'{}': {}", spec.name, w);
+}
+
+// An object given as `urdf` or `mesh`: imported into the cache; its model is the generated fragment.
+void Import(const YamlReader& reader, const YAML::Node& node, const std::string& where,
+            const std::filesystem::path& base, ObjectSpec& spec) {
+  assets::ObjectSource source;
+  source.name = spec.name;
+  const std::string kind = node["urdf"] ? "urdf" : "mesh";
+  const std::filesystem::path file = (base / reader.String(node, kind, where)).lexically_normal();
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(file, ec)) reader.Fail("key '" + where + "." + kind + "': file '" + file.string() + "' not found");
+  (kind == "urdf" ? source.urdf : source.mesh) = file;
+  source.mass = PositiveNumber(reader, node, "mass", where);
+  source.density = PositiveNumber(reader, node, "density", where);
+  source.scale = PositiveNumber(reader, node, "scale", where).value_or(1.0);
+  source.friction = PositiveNumber(reader, node, "friction", where);
+  if (kind == "mesh" && !source.mass && !source.density) reader.Fail("key '" + where + "': a mesh needs 'mass' or 'density'");
+  assets::ImportedObject imported;
+  try {
+    imported = assets::ImportObject(source, ImportCacheDir());
+  } catch (const std::invalid_argument& e) {
+    reader.Fail("key '" + where + "." + kind + "': " + e.what());
+  }
+  spec.model = imported.fragment;
+  spec.import = imported.report;
+  if (!imported.from_cache) LogImport(spec, imported.report);
+}
+
+}  // namespace
+
+std::filesystem::path ImportCacheDir() {
+  if (const char* env = std::getenv("SORTCELL_IMPORT_CACHE"); env && *env) return env;
+#ifdef SORTCELL_DEFAULT_IMPORT_CACHE
+  return SORTCELL_DEFAULT_IMPORT_CACHE;
+#else
+  return std::filesystem::path("out") / "imports";
+#endif
+}
 
 std::vector<std::string> ObjectSet::Categories() const {
   std::vector<std::string> categories;
@@ -51,15 +114,26 @@ ObjectSet LoadObjectSet(const std::filesystem::path& file) {
     const std::string where = "objects[" + std::to_string(i) + "]";
     const YAML::Node node = objects[i];
     if (!node.IsMap()) reader.Fail("key '" + where + "': expected a map, found " + NodeKind(node));
-    reader.RejectUnknownKeys(node, where, {"name", "category", "instance", "model"});
+    reader.RejectUnknownKeys(node, where, kObjectKeys);
     ObjectSpec spec;
     spec.name = reader.String(node, "name", where);
     spec.category = reader.String(node, "category", where);
     spec.instance = reader.String(node, "instance", where);
-    spec.model = (base / reader.String(node, "model", where)).lexically_normal();
     if (!names.insert(spec.name).second) reader.Fail("duplicate object name '" + spec.name + "' at " + where);
-    if (!std::filesystem::is_regular_file(spec.model, ec)) {
-      reader.Fail("key '" + where + ".model': file '" + spec.model.string() + "' not found");
+    const int sources = (node["model"] ? 1 : 0) + (node["urdf"] ? 1 : 0) + (node["mesh"] ? 1 : 0);
+    if (sources != 1) {
+      reader.Fail("key '" + where + "': expected exactly one of 'model', 'urdf' or 'mesh', found " + std::to_string(sources));
+    }
+    if (node["model"]) {
+      for (const auto& key : kImportKeys) {
+        if (node[key]) reader.Fail("key '" + where + "." + key + "': only for 'urdf' or 'mesh' objects");
+      }
+      spec.model = (base / reader.String(node, "model", where)).lexically_normal();
+      if (!std::filesystem::is_regular_file(spec.model, ec)) {
+        reader.Fail("key '" + where + ".model': file '" + spec.model.string() + "' not found");
+      }
+    } else {
+      Import(reader, node, where, base, spec);
     }
     set.objects.push_back(std::move(spec));
   }

@@ -5,11 +5,19 @@
 ///   name: paper
 ///   objects:
 ///     - {name: bottle1, category: bottle, instance: bottle1, model: ../../models/objects/bottle1.inc.xml}
-/// `model` is relative to the YAML file. Unknown keys are rejected.
+///     - {name: mug, category: cup, instance: mug, urdf: ../../../shared/ycb/ycb/mug.urdf}
+///     - {name: part, category: others, instance: part, mesh: part.stl, density: 1200, scale: 0.001}
+/// Each object names exactly one of `model` (an MJCF fragment of ours), `urdf` (a one-link URDF) or `mesh`
+/// (OBJ or STL, with `mass` or `density`), relative to the YAML file; `urdf` and `mesh` objects are
+/// imported (assets/object_import.h) into the import cache and may say `mass`, `density`, `scale` and
+/// `friction`. Unknown keys are rejected.
 
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
+
+#include "assets/object_import.h"
 
 namespace sortcell::app {
 
@@ -17,7 +25,9 @@ struct ObjectSpec {
   std::string name;      ///< The object's body name in the model (unique in the set).
   std::string category;  ///< Class label for category-level recognition and the bin it goes to.
   std::string instance;  ///< Class label for instance-level recognition.
-  std::filesystem::path model;  ///< Absolute path of the object's MJCF fragment.
+  std::filesystem::path model;  ///< Absolute path of the object's MJCF fragment (imported ones': in the cache).
+  /// What the import did, for objects given as `urdf` or `mesh`.
+  std::optional<assets::ImportReport> import;
 };
 
 struct ObjectSet {
@@ -31,9 +41,16 @@ struct ObjectSet {
   const ObjectSpec& Find(const std::string& name) const;
 };
 
+/// Imported objects are logged (what the import did, its warnings) when they are imported, not when
+/// they come from the cache.
 /// @throws std::invalid_argument "object set '<file>': <what>" for a missing or malformed file, an
-///         unknown or missing key, a value of the wrong type, a duplicate name or a missing model file.
+///         unknown or missing key, a value of the wrong type, a duplicate name or a missing model file;
+///         the importer's message (naming the URDF, mesh or texture) for an object that does not import.
 ObjectSet LoadObjectSet(const std::filesystem::path& file);
+
+/// Where imported objects are kept: $SORTCELL_IMPORT_CACHE when set; else the folder the build names
+/// (compile definition SORTCELL_DEFAULT_IMPORT_CACHE, <build folder>/imports); else out/imports.
+std::filesystem::path ImportCacheDir();
 
 /// A digest of what the set's objects look like: the content of their model files and of every file
 /// in `texture_dir` (none if it does not exist). Captures record it, so data of other models is not

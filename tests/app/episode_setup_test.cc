@@ -24,7 +24,7 @@ ObjectSet ThreeObjects() {
   ObjectSet set;
   set.name = "three";
   set.source = "three.yaml";
-  for (const char* name : {"a", "b", "c"}) set.objects.push_back({name, "cup", name, ""});
+  for (const char* name : {"a", "b", "c"}) set.objects.push_back({name, "cup", name, "", std::nullopt});
   return set;
 }
 
