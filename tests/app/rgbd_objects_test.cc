@@ -144,6 +144,24 @@ fs::path WriteSmallDataset(const std::string& name, int instances = 2) {
   return root;
 }
 
+// A dataset root holding only the shared real banana (the shared folder also holds real apples and
+// balls, categories the models here know), linked into this test's folder; empty where ../shared
+// is not beside this checkout.
+fs::path RealBananaOnly(const std::string& name) {
+  const fs::path banana = fs::path(SORTCELL_SOURCE_DIR) / ".." / "shared" / "real" / "rgbd-object" / "banana";
+  if (!fs::is_directory(banana)) return {};
+  const fs::path root = fs::path(sortcell_test::TestTempDir()) / name;
+  // File by file: the reader walks real folders, not links to them.
+  for (const auto& instance : fs::directory_iterator(banana)) {
+    const fs::path folder = root / "banana" / instance.path().filename();
+    fs::create_directories(folder);
+    for (const auto& file : fs::directory_iterator(instance.path())) {
+      fs::create_symlink(fs::absolute(file.path()), folder / file.path().filename());
+    }
+  }
+  return root;
+}
+
 TEST(RgbdObjects, ImportTrainAndEvalRunOnTheDatasetsFormat) {
   const fs::path root = WriteSmallDataset("rgbd_small");
   const fs::path out = fs::path(sortcell_test::TestTempDir()) / "rgbd_small_out";
@@ -172,8 +190,8 @@ TEST(RgbdObjects, ImportTrainAndEvalRunOnTheDatasetsFormat) {
 
   // The real banana (where ../shared is beside the checkout), a category this model does not know:
   // eval reports what it was called and how confidently, not a score.
-  const fs::path banana = fs::path(SORTCELL_SOURCE_DIR) / ".." / "shared" / "real" / "rgbd-object";
-  if (!fs::is_directory(banana)) GTEST_SKIP() << "no " << banana << " beside this checkout";
+  const fs::path banana = RealBananaOnly("rgbd_banana_unknown");
+  if (banana.empty()) GTEST_SKIP() << "no ../shared/real/rgbd-object/banana beside this checkout";
   ASSERT_EQ(sortcell_test::RunSortcell("dataset --from-rgbd-objects " + banana.string() + " --out " +
                                        (out / "banana").string()).exit_code, 0);
   const auto unknown = sortcell_test::RunSortcell("eval --dataset " + (out / "banana").string() + " --model " +
@@ -242,10 +260,10 @@ TEST(RgbdObjects, ExperimentOneRunsOnAnImportedDataset) {
       "--trials: only the unseen-instance split has trials");
 }
 
-// The shared real sample (one banana, 100 views), where this checkout has it beside it.
+// The shared real sample's banana (100 views), where this checkout has it beside it.
 TEST(RgbdObjects, ReadsTheRealSample) {
-  const fs::path sample = fs::path(SORTCELL_SOURCE_DIR) / ".." / "shared" / "real" / "rgbd-object";
-  if (!fs::is_directory(sample)) GTEST_SKIP() << "no " << sample << " beside this checkout";
+  const fs::path sample = RealBananaOnly("rgbd_banana_root");
+  if (sample.empty()) GTEST_SKIP() << "no ../shared/real/rgbd-object/banana beside this checkout";
   const fs::path out = fs::path(sortcell_test::TestTempDir()) / "rgbd_banana";
   const auto r = sortcell_test::RunSortcell("dataset --from-rgbd-objects " + sample.string() + " --out " + out.string());
   ASSERT_EQ(r.exit_code, 0) << r.err;
