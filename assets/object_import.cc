@@ -25,7 +25,7 @@ namespace sortcell::assets {
 namespace {
 
 // Bump when what the importer writes changes: old cache entries are then not reused.
-constexpr const char* kImporterVersion = "sortcell-import-1";
+constexpr const char* kImporterVersion = "sortcell-import-2";
 // Textures are cut to this many pixels a side: the Kinect sees an object ~100 px wide, and MuJoCo
 // decodes and uploads every texture at each scene load (a 4096 px scan texture takes 48 MB).
 constexpr int kMaxTextureSide = 1024;

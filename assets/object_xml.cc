@@ -2,6 +2,7 @@
 
 #include <cstdint>
 #include <fstream>
+#include <functional>
 #include <sstream>
 #include <stdexcept>
 
@@ -98,6 +99,19 @@ std::string Geoms(const ObjectSource& source, const ObjectGeometry& g) {
   return xml.str();
 }
 
+// Where the body stands until the cell places it: on the table's plane (unbounded in MuJoCo 2.2) far
+// behind the robot, at a spot drawn from its name, so a set's objects do not all start in one place
+// (a dozen overlapping scans overflowed MuJoCo's contact buffer at the first step).
+std::string ParkingSpot(const std::string& name) {
+  constexpr int kRows = 30;
+  constexpr double kSpacing = 0.6;
+  const size_t slot = std::hash<std::string>{}(name) % (kRows * kRows);
+  std::ostringstream pos;
+  pos << -20.0 - kSpacing * static_cast<double>(slot % kRows) << ' ' << -20.0 - kSpacing * static_cast<double>(slot / kRows)
+      << " 0";
+  return pos.str();
+}
+
 }  // namespace
 
 std::string ObjectXml(const ObjectSource& source, const ObjectGeometry& geometry, const ImportReport& report,
@@ -107,7 +121,7 @@ std::string ObjectXml(const ObjectSource& source, const ObjectGeometry& geometry
       << " convex collision pieces, " << report.mass << " kg, inertia from the collision volume). Generated: edit the "
       << "source, not this file. -->\n<mujoco>\n"
       << Assets(source.name, geometry, files) << "  <worldbody>\n    <body name=\"" << source.name
-      << "\" pos=\"0 0 -1\" childclass=\"object\">\n      <freejoint name=\"" << source.name << "_free\"/>\n"
+      << "\" pos=\"" << ParkingSpot(source.name) << "\" childclass=\"object\">\n      <freejoint name=\"" << source.name << "_free\"/>\n"
       << Inertial(report, geometry) << Geoms(source, geometry) << "    </body>\n  </worldbody>\n</mujoco>\n";
   return xml.str();
 }

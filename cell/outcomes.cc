@@ -15,13 +15,14 @@ constexpr Spellings<AttemptResult, 6> kAttemptResults{{{AttemptResult::kReleased
                                                        {AttemptResult::kPutBack, "put_back"},
                                                        {AttemptResult::kMotionFailed, "motion_failed"},
                                                        {AttemptResult::kSimDiverged, "sim_diverged"}}};
-constexpr Spellings<ItemOutcome, 7> kOutcomeNames{{{ItemOutcome::kSorted, "sorted"},
+constexpr Spellings<ItemOutcome, 8> kOutcomeNames{{{ItemOutcome::kSorted, "sorted"},
                                                    {ItemOutcome::kWrongBin, "wrong_bin"},
                                                    {ItemOutcome::kDropped, "dropped"},
                                                    {ItemOutcome::kGraspFailed, "grasp_failed"},
                                                    {ItemOutcome::kUnreachable, "unreachable"},
                                                    {ItemOutcome::kNotDetected, "not_detected"},
-                                                   {ItemOutcome::kLeftOnTable, "left_on_table"}}};
+                                                   {ItemOutcome::kLeftOnTable, "left_on_table"},
+                                                   {ItemOutcome::kUngraspable, "ungraspable"}}};
 constexpr Spellings<EpisodeStatus, 4> kStatusNames{{{EpisodeStatus::kCompleted, "completed"},
                                                     {EpisodeStatus::kTimeLimit, "time_limit"},
                                                     {EpisodeStatus::kAttemptLimit, "attempt_limit"},

@@ -21,10 +21,14 @@ enum class AttemptResult {
 };
 
 /// What became of an item at the end of an episode (scored from the simulator's ground truth).
-enum class ItemOutcome { kSorted, kWrongBin, kDropped, kGraspFailed, kUnreachable, kNotDetected, kLeftOnTable };
-inline constexpr std::array<ItemOutcome, 7> kItemOutcomes{
-    ItemOutcome::kSorted,      ItemOutcome::kWrongBin,    ItemOutcome::kDropped,    ItemOutcome::kGraspFailed,
-    ItemOutcome::kUnreachable, ItemOutcome::kNotDetected, ItemOutcome::kLeftOnTable};
+/// kUngraspable: wider than the gripper's stroke in every direction, as the cloud shows it (e.g. a
+/// cereal box lying on its face): left on the table, never attempted.
+enum class ItemOutcome {
+  kSorted, kWrongBin, kDropped, kGraspFailed, kUnreachable, kNotDetected, kLeftOnTable, kUngraspable
+};
+inline constexpr std::array<ItemOutcome, 8> kItemOutcomes{
+    ItemOutcome::kSorted,      ItemOutcome::kWrongBin,    ItemOutcome::kDropped,     ItemOutcome::kGraspFailed,
+    ItemOutcome::kUnreachable, ItemOutcome::kNotDetected, ItemOutcome::kLeftOnTable, ItemOutcome::kUngraspable};
 
 /// Why an episode ended.
 enum class EpisodeStatus {
@@ -36,7 +40,8 @@ enum class EpisodeStatus {
 
 /// "released", "missed", "dropped", "put_back", "motion_failed", "sim_diverged".
 const char* ToString(AttemptResult result);
-/// "sorted", "wrong_bin", "dropped", "grasp_failed", "unreachable", "not_detected", "left_on_table".
+/// "sorted", "wrong_bin", "dropped", "grasp_failed", "unreachable", "not_detected", "left_on_table",
+/// "ungraspable".
 const char* ToString(ItemOutcome outcome);
 /// "completed", "time_limit", "attempt_limit", "sim_diverged".
 const char* ToString(EpisodeStatus status);

@@ -8,6 +8,7 @@
 #include "app/common/object_set.h"
 #include "app/common/output_dir.h"
 #include "app/objects/object_check.h"
+#include "robot/gripper_geometry.h"
 
 namespace sortcell::app {
 namespace {
@@ -21,15 +22,20 @@ struct ObjectsCli {
 std::string Row(const ObjectCheckResult& r) {
   const std::string pieces = r.import ? std::to_string(r.import->collision_pieces) : "-";
   const std::string mass = r.import ? fmt::format("{:.3f}", r.import->mass) : "-";
-  return fmt::format("{:<18} {:<9} {:>6} {:>7} {:>6.1f} {:>7.1f} {:>7.1f} {:<6} {:<10} {}", r.name, r.category, pieces, mass,
-                     1000 * r.grip_width, 1000 * r.bounce, r.tilt_deg, r.rests ? "yes" : "NO",
-                     r.graspable ? "yes" : "NO (wide)", r.why_not);
+  const std::string lying = r.grip_width_lying ? fmt::format("{:.1f}", 1000 * *r.grip_width_lying) : "-";
+  std::string notes = r.why_not;
+  if (r.grip_width_lying && *r.grip_width_lying >= robot::kMaxGap) {
+    notes += std::string(notes.empty() ? "" : "; ") + "ungraspable when lying";
+  }
+  return fmt::format("{:<18} {:<9} {:>6} {:>7} {:>6.1f} {:>6} {:>7.1f} {:>7.1f} {:<6} {:<10} {}", r.name, r.category, pieces,
+                     mass, 1000 * r.grip_width, lying, 1000 * r.bounce, r.tilt_deg, r.rests ? "yes" : "NO",
+                     r.graspable ? "yes" : "NO (wide)", notes);
 }
 
 std::string Summary(const ObjectCheck& check, const std::filesystem::path& out) {
-  std::string text = fmt::format("{:<18} {:<9} {:>6} {:>7} {:>6} {:>7} {:>7} {:<6} {:<10} {}\n", "object", "category",
-                                 "pieces", "kg", "grip", "bounce", "tilt", "rests", "graspable", "why not");
-  text += fmt::format("{:<18} {:<9} {:>6} {:>7} {:>6} {:>7} {:>7}\n", "", "", "", "", "mm", "mm", "deg");
+  std::string text = fmt::format("{:<18} {:<9} {:>6} {:>7} {:>6} {:>6} {:>7} {:>7} {:<6} {:<10} {}\n", "object", "category",
+                                 "pieces", "kg", "grip", "lying", "bounce", "tilt", "rests", "graspable", "notes");
+  text += fmt::format("{:<18} {:<9} {:>6} {:>7} {:>6} {:>6} {:>7} {:>7}\n", "", "", "", "", "mm", "mm", "mm", "deg");
   int resting = 0, graspable = 0;
   for (const auto& r : check.objects) {
     text += Row(r) + "\n";

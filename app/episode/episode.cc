@@ -37,7 +37,7 @@ class EpisodeRun {
  public:
   EpisodeRun(const EpisodeOptions& options, const ObjectSet& set, const perception::RecognitionModel& recognizer)
       : options_(options), set_(set), recognizer_(recognizer), rng_(EpisodeRng(options.seed, 0)),
-        model_(LoadScene(options.scene)) {}
+        model_(LoadEpisodeScene(options.scene, set)) {}
 
   EpisodeMetrics Run(const std::vector<std::string>& command_line);
 

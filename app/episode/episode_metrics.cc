@@ -141,7 +141,15 @@ void from_json(const nlohmann::json& j, EpisodeSummary& v) {
   nlohmann::json outcomes;
   ReadField(j, path, "outcomes", outcomes);
   v.outcomes.clear();
-  for (const auto outcome : cell::kItemOutcomes) ReadField(outcomes, path + ".outcomes", cell::ToString(outcome), v.outcomes[outcome]);
+  for (const auto outcome : cell::kItemOutcomes) {
+    // `ungraspable` came later: records written before it have none (0).
+    v.outcomes[outcome] = 0;
+    if (outcome == cell::ItemOutcome::kUngraspable) {
+      ReadAddedField(outcomes, path + ".outcomes", cell::ToString(outcome), v.outcomes[outcome]);
+    } else {
+      ReadField(outcomes, path + ".outcomes", cell::ToString(outcome), v.outcomes[outcome]);
+    }
+  }
   ReadNullable(j, path, "correct_sort_rate", v.correct_sort_rate);
   ReadNullable(j, path, "recognition_accuracy", v.recognition_accuracy);
   ReadField(j, path, "items_classified", v.items_classified);

@@ -58,7 +58,11 @@ void EpisodeRecorder::ShowObservation(const perception::Cloud& cloud, const std:
 }
 
 void EpisodeRecorder::Skipped(int detection, const cell::Detection& seen, robot::GraspStatus why) {
-  scorer_.Unreachable(detection);
+  if (why == robot::GraspStatus::kTooWide) {
+    scorer_.Ungraspable(detection);
+  } else {
+    scorer_.Unreachable(detection);
+  }
   ++skipped_;
   AttemptLogEntry entry;
   entry.time_s = cell_.Now();

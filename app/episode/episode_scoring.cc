@@ -42,6 +42,11 @@ void EpisodeScorer::Unreachable(int detection) {
   if (o >= 0) tracks_[o].unreachable = true;
 }
 
+void EpisodeScorer::Ungraspable(int detection) {
+  const int o = ObjectOf(detection);
+  if (o >= 0) tracks_[o].ungraspable = true;
+}
+
 void EpisodeScorer::Attempt(const AttemptRecord& attempt) {
   ++attempts_;
   if (attempt.grasped) ++grasps_;
@@ -77,6 +82,7 @@ cell::ItemOutcome EpisodeScorer::OutcomeOf(size_t o, const sim::Data& data, cons
                         (p.head<2>().array() <= table_.max_xy.array()).all() && p.z() > -0.05;
   if (!on_table || t.lifted) return cell::ItemOutcome::kDropped;
   if (t.unreachable) return cell::ItemOutcome::kUnreachable;
+  if (t.ungraspable) return cell::ItemOutcome::kUngraspable;
   if (t.attempts > 0) return cell::ItemOutcome::kGraspFailed;
   if (!t.seen) return cell::ItemOutcome::kNotDetected;
   return cell::ItemOutcome::kLeftOnTable;

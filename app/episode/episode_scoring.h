@@ -61,12 +61,14 @@ class EpisodeScorer {
   void Observe(const cv::Mat& labels, const std::vector<DetectionRecord>& detections);
   /// The policy gave detection `detection` of the last observation up as unreachable.
   void Unreachable(int detection);
+  /// The policy gave detection `detection` of the last observation up as wider than the gripper.
+  void Ungraspable(int detection);
   void Attempt(const AttemptRecord& attempt);
 
   /// Per placed object, its outcome from where it is now: in its category's bin (sorted), in another
   /// bin (wrong_bin), off the table or lifted and lost (dropped), given up without a plan or put back
-  /// because its bin was out of reach (unreachable), attempted but never lifted (grasp_failed), never
-  /// seen (not_detected), else left_on_table.
+  /// because its bin was out of reach (unreachable), given up as wider than the gripper (ungraspable),
+  /// attempted but never lifted (grasp_failed), never seen (not_detected), else left_on_table.
   std::vector<ItemResult> Items(const sim::Data& data, const std::vector<sim::BinRef>& bins) const;
 
   /// How far the policy's grasp centre `xy` for a detection of the last observation is from the true
@@ -82,7 +84,7 @@ class EpisodeScorer {
 
  private:
   struct Track {
-    bool seen = false, unreachable = false, lifted = false;
+    bool seen = false, unreachable = false, ungraspable = false, lifted = false;
     int attempts = 0;
     double cycle_time_s = 0;
     std::optional<std::string> predicted;

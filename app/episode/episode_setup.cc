@@ -4,12 +4,33 @@
 #include <set>
 #include <stdexcept>
 
+#include "app/common/data_dir.h"
+#include "sim/scene_composer.h"
+
 namespace sortcell::app {
 namespace {
 
 constexpr int kDefaultMaxObjects = 6;
 
 }  // namespace
+
+sim::Model LoadEpisodeScene(const std::filesystem::path& scene, const ObjectSet& set) {
+  sim::Model model = LoadScene(scene);
+  std::string missing;
+  for (const auto& o : set.objects) {
+    if (mj_name2id(model.get(), mjOBJ_BODY, o.name.c_str()) < 0) missing += (missing.empty() ? "'" : ", '") + o.name + "'";
+  }
+  if (missing.empty()) return model;
+  const std::filesystem::path data = DataDir();
+  std::error_code ec;
+  if (!std::filesystem::equivalent(scene, data / "scenes" / "cell.xml", ec)) {
+    throw std::invalid_argument("scene '" + scene.string() + "': no object " + missing + " of object set '" +
+                                set.source.string() + "' (the default cell, scenes/cell.xml, takes any set)");
+  }
+  std::vector<std::filesystem::path> fragments;
+  for (const auto& o : set.objects) fragments.push_back(o.model);
+  return sim::LoadComposedCell(data / "models", fragments, scene.string() + " with " + set.source.string());
+}
 
 int ObjectCount(const ObjectSet& set, const EpisodeOptions& options) {
   const int n = static_cast<int>(set.objects.size());

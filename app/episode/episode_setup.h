@@ -2,14 +2,23 @@
 /// @file
 /// Setting an episode's scene up: which objects of the set take part and where they stand.
 
+#include <filesystem>
 #include <random>
 #include <vector>
 
 #include "app/common/object_set.h"
 #include "app/episode/episode.h"
 #include "sim/clutter_placement.h"
+#include "sim/model.h"
 
 namespace sortcell::app {
+
+/// The episode's scene: `scene` as it is when it holds every object of `set` as a body; else the cell
+/// `scene` names (its table, bins, camera and arm: the cell's models under DataDir()) composed with the
+/// set's objects instead of the scene's own (sim::ComposeCell), so any set, imported ones included,
+/// sorts in the default cell. Composed only for the default cell (scenes/cell.xml).
+/// @throws std::invalid_argument naming the scene and the objects it lacks for any other scene.
+sim::Model LoadEpisodeScene(const std::filesystem::path& scene, const ObjectSet& set);
 
 /// How many objects the episode asks for: `options.objects`, or (0) all of the set, at most 6.
 /// @throws std::invalid_argument for a count outside 1..set size.

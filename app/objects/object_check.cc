@@ -160,6 +160,7 @@ ObjectCheckResult Judge(const Rig& rig, const Watch& w, const ObjectSpec& spec, 
   r.rests = r.why_not.empty();
   r.grip_width = assets::MinimumWidth(shape.upright.outline);
   r.graspable = r.grip_width < robot::kMaxGap;
+  if (shape.lying) r.grip_width_lying = assets::MinimumWidth(shape.lying->outline);
   return r;
 }
 
@@ -218,6 +219,10 @@ nlohmann::json ResultJson(const ObjectCheckResult& r) {
                       {"end_spin_radps", r.end_spin}, {"creep_m", r.creep}, {"turn_deg", r.turn_deg}, {"jitter_m", r.jitter}, {"jitter_deg", r.jitter_deg}, {"bounce_m", r.bounce},
                       {"on_table", r.on_table}, {"rests", r.rests}, {"why_not", r.why_not},
                       {"grip_width_m", r.grip_width}, {"graspable", r.graspable}};
+  if (r.grip_width_lying) {
+    j["grip_width_lying_m"] = *r.grip_width_lying;
+    j["graspable_lying"] = *r.grip_width_lying < robot::kMaxGap;
+  }
   if (r.import) {
     j["import"] = {{"source", r.import->source}, {"collision_pieces", r.import->collision_pieces},
                    {"mass_kg", r.import->mass}, {"volume_m3", r.import->volume},

@@ -47,6 +47,8 @@ struct ObjectCheckResult {
   std::string why_not;       ///< For one that does not rest: which limit it broke.
   double grip_width = 0;     ///< Narrowest width of its upright footprint (m).
   bool graspable = false;    ///< grip_width fits the gripper's stroke.
+  /// Of its footprint laid on its side, for an object that can lie (sim::ObjectShape::lying).
+  std::optional<double> grip_width_lying;
   std::optional<assets::ImportReport> import;
 };
 

@@ -7,6 +7,7 @@
 #include <map>
 #include <memory>
 #include <numeric>
+#include <optional>
 #include <random>
 #include <stdexcept>
 
@@ -289,14 +290,21 @@ Dataset CaptureScenes(const ObjectSet& set, const SceneOptions& options, const s
     std::vector<int> order(set.objects.size());
     std::iota(order.begin(), order.end(), 0);
     std::shuffle(order.begin(), order.end(), rng);
-    const int count = std::uniform_int_distribution<int>(options.min_objects, options.max_objects)(rng);
-    order.resize(count);
-    std::vector<sim::ObjectShape> chosen_shapes;
-    for (int o : order) chosen_shapes.push_back(shapes[o]);
+    int count = std::uniform_int_distribution<int>(options.min_objects, options.max_objects)(rng);
     sim::PlacementOptions placement = options.placement;
     placement.mode = options.modes[scene % options.modes.size()];
-    const auto poses = sim::SampleClutter(chosen_shapes, {}, options.area, placement, rng);
-    if (!poses) throw std::invalid_argument("scene " + std::to_string(scene) + ": the objects do not fit the area");
+    // Large objects (a user's cereal boxes and bleach bottles) may not all fit: the scene then holds
+    // as many of those drawn as do, the last drawn left out first.
+    std::vector<sim::ObjectShape> chosen_shapes;
+    std::optional<std::vector<sim::TablePose>> poses;
+    for (; count >= 1 && !poses; --count) {
+      order.resize(count);
+      chosen_shapes.clear();
+      for (int o : order) chosen_shapes.push_back(shapes[o]);
+      poses = sim::SampleClutter(chosen_shapes, {}, options.area, placement, rng);
+      if (poses) break;
+    }
+    if (!poses) throw std::invalid_argument("scene " + std::to_string(scene) + ": not even one object fits the area");
     rig.ParkAll();
     for (int k = 0; k < count; ++k) {
       sim::PlaceObject(rig.model(), rig.data(), rig.Body(set.objects[order[k]].name), (*poses)[k], chosen_shapes[k]);

@@ -1,7 +1,8 @@
 #pragma once
 // A user's object written from scratch for import tests: a textured cube as the visual OBJ (with its
 // MTL and a JPEG texture), a collision STL holding two disconnected boxes (a body and a "handle"),
-// and a one-link URDF naming both with an origin and a mass.
+// and a one-link URDF naming both with an origin and a mass (the cube stands inside the body box, as
+// a scan's visual and collision meshes share their frame).
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 
@@ -65,7 +66,7 @@ inline UserObject WriteUserObject(const std::filesystem::path& dir, const std::s
   std::ofstream(o.collision) << "solid pieces\n" << StlBox({-0.03, -0.02, 0}, {0.03, 0.02, 0.10})
                              << StlBox({0.04, -0.01, 0.03}, {0.06, 0.01, 0.07}) << "endsolid pieces\n";
   std::ofstream(o.urdf) << "<robot name=\"thing\"><link name=\"base_link\">\n"
-                           "<visual><origin xyz=\"0 0 0.05\" rpy=\"0 0 0\"/><geometry><mesh filename=\"meshes/cube.obj\"/>"
+                           "<visual><origin xyz=\"0.1 0.2 0.35\" rpy=\"0 0 0\"/><geometry><mesh filename=\"meshes/cube.obj\"/>"
                            "</geometry></visual>\n"
                            "<collision><origin xyz=\"0.1 0.2 0.3\" rpy=\"0 0 0\"/><geometry><mesh filename=\"meshes/pieces.stl\" "
                            "scale=\"1 1 1\"/></geometry></collision>\n"
