@@ -235,7 +235,8 @@ void ObjectGeometry::Recentre() {
 ObjectGeometry ReadObjectGeometry(const ObjectSource& source, const ImportLimits& limits) {
   ObjectGeometry g = source.urdf.empty() ? FromMesh(source, limits) : FromUrdf(source, limits);
   if (g.hulls.empty() && g.primitives.empty()) {
-    throw std::invalid_argument("object '" + source.name + "': its collision geometry spans no volume");
+    const std::string file = (source.urdf.empty() ? source.mesh : source.urdf).string();
+    throw std::invalid_argument("object '" + source.name + "' from '" + file + "': its collision geometry spans no volume");
   }
   return g;
 }

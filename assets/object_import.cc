@@ -214,9 +214,13 @@ ImportedObject ImportObject(const ObjectSource& source, const std::filesystem::p
   imported.fragment = std::filesystem::absolute(dir / "object.inc.xml");
   std::error_code ec;
   if (std::filesystem::is_regular_file(dir / "report.json", ec)) {
-    imported.report = ReportFromJson(nlohmann::json::parse(FileBytes(dir / "report.json")));
-    imported.from_cache = true;
-    return imported;
+    try {
+      imported.report = ReportFromJson(nlohmann::json::parse(FileBytes(dir / "report.json")));
+      imported.from_cache = true;
+      return imported;
+    } catch (const nlohmann::json::exception&) {
+      std::filesystem::remove_all(dir, ec);  // damaged by hand or by a full disk: imported again
+    }
   }
   std::filesystem::create_directories(cache_root);
   const std::filesystem::path tmp = cache_root / (".tmp-" + dir.filename().string() + "-" + std::to_string(getpid()));

@@ -30,6 +30,7 @@ cmake --build "$build" --target sortcell_fuzz_targets -j "$(nproc)"
 
 # Leaks count; see scripts/sanitize.sh for alloc_dealloc_mismatch=0 (Debian PCL's allocator pairing).
 export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:alloc_dealloc_mismatch=0}
+export LSAN_OPTIONS=${LSAN_OPTIONS:-suppressions=$PWD/scripts/lsan_suppressions.txt}
 export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
 
 run_reader() {

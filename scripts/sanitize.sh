@@ -23,4 +23,6 @@ cmake --build "$build_dir" --target sortcell_unit_tests -j "$(nproc)"
 # library and this build, not a bug of ours; every other check stays on.
 export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:abort_on_error=0:strict_string_checks=1:alloc_dealloc_mismatch=0}
 export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
+# Leaks inside prebuilt libraries that are theirs (scripts/lsan_suppressions.txt says which and why).
+export LSAN_OPTIONS=${LSAN_OPTIONS:-suppressions=$PWD/scripts/lsan_suppressions.txt}
 ctest --test-dir "$build_dir" -L unit --output-on-failure -j "$(nproc)"
