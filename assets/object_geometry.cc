@@ -113,31 +113,35 @@ void AddVisual(const TriangleMesh& mesh, const std::string& texture, const std::
   }
 }
 
+// A URDF origin in a link scaled by `scale` about its origin.
+Eigen::Isometry3d ScaledPose(Eigen::Isometry3d X, double scale) {
+  X.translation() *= scale;
+  return X;
+}
+
 Primitive ScaledPrimitive(UrdfShape shape, double scale) {
   shape.size *= scale;
-  shape.X_LS.translation() *= scale;
+  shape.X_LS = ScaledPose(shape.X_LS, scale);
   return {shape};
 }
 
 ObjectGeometry FromUrdf(const ObjectSource& source, const ImportLimits& limits) {
   const UrdfObject urdf = ReadUrdfObject(source.urdf);
   ObjectGeometry g;
+  g.urdf_mass = urdf.mass;
   for (const auto& v : urdf.visuals) {
     if (v.kind != UrdfShape::Kind::kMesh) continue;  // primitives are seen through their collision geoms
     std::string texture;
     const TriangleMesh mesh = ReadMesh(v.mesh, &texture);
-    Eigen::Isometry3d X = v.X_LS;
-    X.translation() *= source.scale;
-    AddVisual(mesh.Scaled(ScaleOf(v, source.scale)).Transformed(X), texture, v.mesh, g);
+    AddVisual(mesh.Scaled(ScaleOf(v, source.scale)).Transformed(ScaledPose(v.X_LS, source.scale)), texture, v.mesh, g);
   }
   for (const auto& c : urdf.collisions) {
     if (c.kind != UrdfShape::Kind::kMesh) {
       g.primitives.push_back(ScaledPrimitive(c, source.scale));
       continue;
     }
-    Eigen::Isometry3d X = c.X_LS;
-    X.translation() *= source.scale;
-    AddHulls(ReadMesh(c.mesh).Scaled(ScaleOf(c, source.scale)).Transformed(X), c.mesh.string(), limits, g);
+    AddHulls(ReadMesh(c.mesh).Scaled(ScaleOf(c, source.scale)).Transformed(ScaledPose(c.X_LS, source.scale)),
+             c.mesh.string(), limits, g);
   }
   return g;
 }
@@ -194,10 +198,12 @@ std::vector<Eigen::Vector3d> Primitive::ExtentPoints() const {
         for (const double z : {-s.y() / 2, s.y() / 2}) local.emplace_back(r * std::cos(a), r * std::sin(a), z);
       }
       break;
-    case UrdfShape::Kind::kSphere:
-      for (int axis = 0; axis < 3; ++axis) {
-        for (const double sign : {-1.0, 1.0}) local.push_back(sign * s.x() * Eigen::Vector3d::Unit(axis));
+    case UrdfShape::Kind::kSphere:  // its equator (the footprint a gripper closes across) and its poles
+      for (int k = 0; k < kRimPoints; ++k) {
+        const double a = 2 * M_PI * k / kRimPoints;
+        local.emplace_back(s.x() * std::cos(a), s.x() * std::sin(a), 0);
       }
+      for (const double sign : {-1.0, 1.0}) local.push_back(sign * s.x() * Eigen::Vector3d::UnitZ());
       break;
     case UrdfShape::Kind::kMesh: break;
   }
@@ -235,8 +241,8 @@ void ObjectGeometry::Recentre() {
 ObjectGeometry ReadObjectGeometry(const ObjectSource& source, const ImportLimits& limits) {
   ObjectGeometry g = source.urdf.empty() ? FromMesh(source, limits) : FromUrdf(source, limits);
   if (g.hulls.empty() && g.primitives.empty()) {
-    const std::string file = (source.urdf.empty() ? source.mesh : source.urdf).string();
-    throw std::invalid_argument("object '" + source.name + "' from '" + file + "': its collision geometry spans no volume");
+    throw std::invalid_argument("object '" + source.name + "' from '" + source.file().string() +
+                                "': its collision geometry spans no volume");
   }
   return g;
 }

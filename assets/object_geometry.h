@@ -6,6 +6,7 @@
 #include <Eigen/Geometry>
 
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -20,7 +21,7 @@ namespace sortcell::assets {
 struct Primitive {
   UrdfShape shape;  ///< kind, size; X_LS is its pose in the body frame.
   MassProperties Mass() const;
-  /// Points whose hull bounds it closely (box corners, cylinder rims, sphere's axis points).
+  /// Points whose hull bounds it closely (box corners, cylinder rims, a sphere's equator and poles).
   std::vector<Eigen::Vector3d> ExtentPoints() const;
 };
 
@@ -30,6 +31,7 @@ struct ObjectGeometry {
   std::vector<TriangleMesh> hulls;     ///< Convex collision pieces.
   std::vector<Primitive> primitives;   ///< Collision primitives.
   std::vector<std::string> warnings;
+  std::optional<double> urdf_mass;     ///< The URDF's <inertial> mass, if it gives one.
 
   /// Every collision hull vertex and primitive extent point.
   std::vector<Eigen::Vector3d> CollisionPoints() const;

@@ -25,7 +25,7 @@ namespace sortcell::assets {
 namespace {
 
 // Bump when what the importer writes changes: old cache entries are then not reused.
-constexpr const char* kImporterVersion = "sortcell-import-2";
+constexpr const char* kImporterVersion = "sortcell-import-3";
 // Textures are cut to this many pixels a side: the Kinect sees an object ~100 px wide, and MuJoCo
 // decodes and uploads every texture at each scene load (a 4096 px scan texture takes 48 MB).
 constexpr int kMaxTextureSide = 1024;
@@ -63,15 +63,9 @@ std::set<std::filesystem::path> InputFiles(const ObjectSource& source) {
   return files;
 }
 
-std::string Hex(size_t value) {
-  std::ostringstream hex;
-  hex << std::hex << std::setw(16) << std::setfill('0') << value;
-  return hex.str();
-}
-
 void CheckSize(const ObjectSource& source, const Eigen::Vector3d& size, const ImportLimits& limits) {
   const double largest = size.maxCoeff();
-  const std::string file = (source.urdf.empty() ? source.mesh : source.urdf).string();
+  const std::string file = source.file().string();
   std::ostringstream m;
   m.precision(3);
   if (largest > limits.max_size) {
@@ -86,11 +80,12 @@ void CheckSize(const ObjectSource& source, const Eigen::Vector3d& size, const Im
   }
 }
 
-double MassOf(const ObjectSource& source, double volume, std::vector<std::string>& warnings) {
+double MassOf(const ObjectSource& source, const std::optional<double>& urdf_mass, double volume,
+              std::vector<std::string>& warnings) {
   std::optional<double> mass = source.mass;
-  if (!mass && !source.urdf.empty()) mass = ReadUrdfObject(source.urdf).mass;
+  if (!mass) mass = urdf_mass;
   if (!mass && source.density) mass = *source.density * volume;
-  const std::string file = (source.urdf.empty() ? source.mesh : source.urdf).string();
+  const std::string file = source.file().string();
   if (!mass) throw std::invalid_argument("object '" + source.name + "' from '" + file + "': no mass (give mass: or density:)");
   if (!std::isfinite(*mass) || *mass <= 0) {
     throw std::invalid_argument("object '" + source.name + "' from '" + file + "': mass must be positive, got " +
@@ -120,15 +115,15 @@ void ConvertTexture(const std::filesystem::path& from, const std::filesystem::pa
   if (!cv::imwrite(to.string(), image)) throw std::runtime_error("cannot write '" + to.string() + "'");
 }
 
-ImportReport MakeReport(const ObjectSource& source, const ObjectGeometry& g, const ImportLimits& limits) {
+ImportReport MakeReport(const ObjectSource& source, const ObjectGeometry& g, const MassProperties& m,
+                        const ImportLimits& limits) {
   ImportReport r;
   r.name = source.name;
-  r.source = (source.urdf.empty() ? source.mesh : source.urdf).string();
+  r.source = source.file().string();
   r.collision_pieces = static_cast<int>(g.hulls.size() + g.primitives.size());
-  const MassProperties m = g.Mass();
   r.volume = m.volume;
   r.warnings = g.warnings;
-  r.mass = MassOf(source, m.volume, r.warnings);
+  r.mass = MassOf(source, g.urdf_mass, m.volume, r.warnings);
   Eigen::AlignedBox3d box;
   std::vector<Eigen::Vector2d> footprint;
   for (const auto& p : g.CollisionPoints()) {
@@ -178,20 +173,30 @@ ImportReport ReportFromJson(const nlohmann::json& j) {
   return r;
 }
 
+// `text` into `file`, checked after closing (a full disk is an error, not a short fragment). Written
+// here: app/common's WriteTextFile lies above this library.
+void WriteChecked(const std::filesystem::path& file, const std::string& text) {
+  std::ofstream out(file, std::ios::binary);
+  out << text;
+  out.close();
+  if (!out) throw std::runtime_error("cannot write '" + file.string() + "'");
+}
+
 // Writes the import into `dir` (a fresh folder).
 ImportReport WriteImport(const ObjectSource& source, const ImportLimits& limits, const std::filesystem::path& dir,
                          const std::filesystem::path& final_dir) {
   ObjectGeometry g = ReadObjectGeometry(source, limits);
   g.Recentre();
-  ImportReport report = MakeReport(source, g, limits);
+  const MassProperties unit_density = g.Mass();
+  ImportReport report = MakeReport(source, g, unit_density, limits);
   ObjectXmlFiles files{final_dir / "visual.msh", g.texture.empty() ? "" : final_dir / "texture.png"};
   if (!g.texture.empty()) {
     ConvertTexture(g.texture, dir / "texture.png");
     report.texture = g.texture.string();
   }
   if (!g.visual.triangles.empty()) WriteMsh(g.visual, dir / "visual.msh");
-  std::ofstream(dir / "object.inc.xml") << ObjectXml(source, g, report, files);
-  std::ofstream(dir / "report.json") << ReportJson(report).dump(2) << "\n";
+  WriteChecked(dir / "object.inc.xml", ObjectXml(source, g, report, unit_density, files));
+  WriteChecked(dir / "report.json", ReportJson(report).dump(2) + "\n");
   return report;
 }
 
@@ -204,7 +209,13 @@ std::string SourceDigest(const ObjectSource& source) {
       << '\n' << source.mass.value_or(-1) << '\n' << source.density.value_or(-1) << '\n' << source.friction.value_or(-1);
   std::string content = key.str();
   for (const auto& file : InputFiles(source)) content += '\n' + file.string() + '\n' + FileBytes(file);
-  return Hex(std::hash<std::string>{}(content));
+  return ContentDigest(content);
+}
+
+std::string ContentDigest(const std::string& content) {
+  std::ostringstream hex;
+  hex << std::hex << std::setw(16) << std::setfill('0') << std::hash<std::string>{}(content);
+  return hex.str();
 }
 
 ImportedObject ImportObject(const ObjectSource& source, const std::filesystem::path& cache_root,

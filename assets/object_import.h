@@ -26,6 +26,9 @@ struct ObjectSource {
   std::optional<double> density; ///< kg/m^3, with the collision volume, when no mass is given.
   double scale = 1;              ///< Applied to every mesh (e.g. 0.001 for a file in millimetres).
   std::optional<double> friction;  ///< Sliding friction coefficient (default: the cell's objects').
+
+  /// The file it comes from (the URDF or the mesh), for messages.
+  const std::filesystem::path& file() const { return urdf.empty() ? mesh : urdf; }
 };
 
 /// What the import did, for the user (sortcell objects check) and the log.
@@ -69,5 +72,8 @@ ImportedObject ImportObject(const ObjectSource& source, const std::filesystem::p
 /// A digest of the inputs of `source` (its files' bytes, the mesh folders' materials and images, its
 /// options): the cache key.
 std::string SourceDigest(const ObjectSource& source);
+
+/// 16 hex digits telling versions of `content` apart (std::hash: not cryptographic, stable for a build).
+std::string ContentDigest(const std::string& content);
 
 }  // namespace sortcell::assets

@@ -50,8 +50,7 @@ std::string Assets(const std::string& name, const ObjectGeometry& g, const Objec
   return xml.str();
 }
 
-std::string Inertial(const ImportReport& r, const ObjectGeometry& g) {
-  const MassProperties m = g.Mass();
+std::string Inertial(const ImportReport& r, const MassProperties& m) {
   const Eigen::Matrix3d I = m.inertia * (r.mass / m.volume);
   std::ostringstream xml;
   xml.precision(9);
@@ -115,14 +114,14 @@ std::string ParkingSpot(const std::string& name) {
 }  // namespace
 
 std::string ObjectXml(const ObjectSource& source, const ObjectGeometry& geometry, const ImportReport& report,
-                      const ObjectXmlFiles& files) {
+                      const MassProperties& unit_density, const ObjectXmlFiles& files) {
   std::ostringstream xml;
   xml << "<!-- " << source.name << ": imported by sortcell from " << report.source << " (" << report.collision_pieces
       << " convex collision pieces, " << report.mass << " kg, inertia from the collision volume). Generated: edit the "
       << "source, not this file. -->\n<mujoco>\n"
       << Assets(source.name, geometry, files) << "  <worldbody>\n    <body name=\"" << source.name
       << "\" pos=\"" << ParkingSpot(source.name) << "\" childclass=\"object\">\n      <freejoint name=\"" << source.name << "_free\"/>\n"
-      << Inertial(report, geometry) << Geoms(source, geometry) << "    </body>\n  </worldbody>\n</mujoco>\n";
+      << Inertial(report, unit_density) << Geoms(source, geometry) << "    </body>\n  </worldbody>\n</mujoco>\n";
   return xml.str();
 }
 
@@ -144,6 +143,7 @@ void WriteMsh(const TriangleMesh& mesh, const std::filesystem::path& file) {
   if (normals) for (const auto& v : mesh.normals) for (int k = 0; k < 3; ++k) put_float(v[k]);
   if (uvs) for (const auto& v : mesh.uvs) for (int k = 0; k < 2; ++k) put_float(v[k]);
   for (const auto& t : mesh.triangles) for (int k = 0; k < 3; ++k) put_int(t[k]);
+  out.close();
   if (!out) throw std::runtime_error("cannot write '" + file.string() + "'");
 }
 

@@ -19,8 +19,9 @@ struct ObjectXmlFiles {
 
 /// The fragment: assets (texture, material, visual mesh, one mesh per convex piece with its vertices
 /// inline) and one free body `source.name` with the report's mass and the geometry's inertia.
+/// `unit_density` is geometry.Mass(), the inertia scaled to the report's mass.
 std::string ObjectXml(const ObjectSource& source, const ObjectGeometry& geometry, const ImportReport& report,
-                      const ObjectXmlFiles& files);
+                      const MassProperties& unit_density, const ObjectXmlFiles& files);
 
 /// MuJoCo's MSH: int32 counts (vertices, normals, texcoords, faces), then float32 vertices, normals,
 /// texcoords and int32 faces. Normals and texcoords are written when the mesh has them.

@@ -2,12 +2,6 @@
 
 namespace sortcell::assets {
 
-Eigen::AlignedBox3d TriangleMesh::Bounds() const {
-  Eigen::AlignedBox3d box;
-  for (const auto& v : vertices) box.extend(v);
-  return box;
-}
-
 TriangleMesh TriangleMesh::Transformed(const Eigen::Isometry3d& X) const {
   TriangleMesh out = *this;
   for (auto& v : out.vertices) v = X * v;

@@ -18,7 +18,6 @@ struct TriangleMesh {
   /// Per vertex, or empty: (u, v) with (0, 0) at the texture image's top-left corner.
   std::vector<Eigen::Vector2d> uvs;
 
-  Eigen::AlignedBox3d Bounds() const;
   /// The mesh moved by `X` (normals turned with it).
   TriangleMesh Transformed(const Eigen::Isometry3d& X) const;
   /// The mesh scaled by `s` about the origin (normals kept).

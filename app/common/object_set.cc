@@ -4,11 +4,8 @@
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
-#include <functional>
-#include <iomanip>
 #include <iterator>
 #include <set>
-#include <sstream>
 #include <stdexcept>
 #include <vector>
 
@@ -154,9 +151,7 @@ std::string ObjectModelsDigest(const ObjectSet& set, const std::filesystem::path
     std::sort(files.begin(), files.end());
     for (const auto& file : files) append(file);
   }
-  std::ostringstream hex;
-  hex << std::hex << std::setw(16) << std::setfill('0') << std::hash<std::string>{}(content);
-  return hex.str();
+  return assets::ContentDigest(content);
 }
 
 }  // namespace sortcell::app

@@ -1,10 +1,12 @@
 #include "app/episode/episode_setup.h"
 
 #include <algorithm>
+#include <regex>
 #include <set>
 #include <stdexcept>
 
 #include "app/common/data_dir.h"
+#include "app/common/output_dir.h"
 #include "sim/scene_composer.h"
 
 namespace sortcell::app {
@@ -12,24 +14,42 @@ namespace {
 
 constexpr int kDefaultMaxObjects = 6;
 
+// Whether `scene` includes every one of `fragments` (its <include file="..."> elements, relative to
+// its folder): a scene file's own objects, without compiling it.
+bool IncludesAll(const std::filesystem::path& scene, const std::vector<std::filesystem::path>& fragments) {
+  const std::string text = ReadTextFile(scene);
+  static const std::regex kInclude(R"re(<include\s+file\s*=\s*"([^"]+)")re");
+  std::set<std::filesystem::path> included;
+  for (auto it = std::sregex_iterator(text.begin(), text.end(), kInclude); it != std::sregex_iterator(); ++it) {
+    included.insert(std::filesystem::weakly_canonical(scene.parent_path() / (*it)[1].str()));
+  }
+  return std::all_of(fragments.begin(), fragments.end(), [&](const std::filesystem::path& f) {
+    return included.count(std::filesystem::weakly_canonical(f)) > 0;
+  });
+}
+
 }  // namespace
 
 sim::Model LoadEpisodeScene(const std::filesystem::path& scene, const ObjectSet& set) {
+  const std::filesystem::path data = DataDir();
+  std::error_code ec;
+  const bool default_cell = std::filesystem::equivalent(scene, data / "scenes" / "cell.xml", ec);
+  std::vector<std::filesystem::path> fragments;
+  for (const auto& o : set.objects) fragments.push_back(o.model);
+  // The default cell holding another set is composed straight away, not loaded first to find that out.
+  if (default_cell && !IncludesAll(scene, fragments)) {
+    return sim::LoadComposedCell(data / "models", fragments, scene.string() + " with " + set.source.string());
+  }
   sim::Model model = LoadScene(scene);
   std::string missing;
   for (const auto& o : set.objects) {
     if (mj_name2id(model.get(), mjOBJ_BODY, o.name.c_str()) < 0) missing += (missing.empty() ? "'" : ", '") + o.name + "'";
   }
-  if (missing.empty()) return model;
-  const std::filesystem::path data = DataDir();
-  std::error_code ec;
-  if (!std::filesystem::equivalent(scene, data / "scenes" / "cell.xml", ec)) {
+  if (!missing.empty()) {
     throw std::invalid_argument("scene '" + scene.string() + "': no object " + missing + " of object set '" +
                                 set.source.string() + "' (the default cell, scenes/cell.xml, takes any set)");
   }
-  std::vector<std::filesystem::path> fragments;
-  for (const auto& o : set.objects) fragments.push_back(o.model);
-  return sim::LoadComposedCell(data / "models", fragments, scene.string() + " with " + set.source.string());
+  return model;
 }
 
 int ObjectCount(const ObjectSet& set, const EpisodeOptions& options) {

@@ -28,7 +28,7 @@ namespace {
 const Eigen::Vector2d kSpotsMin{0.25, -0.33};
 const Eigen::Vector2d kSpotsMax{0.88, 0.33};
 constexpr double kSpotGap = 0.03;        // free table between neighbours' footprints (m)
-constexpr double kLastSpeedWindow = 0.5;  // s
+constexpr double kEndWindow = 0.5;        // s: where jitter and the last speeds are watched
 constexpr double kCreepWindow = 1.0;      // s
 // The soft contact's first impact (it sinks in a few mm and springs back to rest) lasts about this
 // long; a bounce is a rise above the resting height after it (s).
@@ -52,8 +52,9 @@ struct Rig {
   sim::Data data;
   sim::ArmIo arm;
   int table_geom;
+  sim::OffscreenRenderer renderer;  // one for every still: it uploads the set's textures once
   explicit Rig(sim::Model m)
-      : model(std::move(m)), data(model), arm(model), table_geom(model.Id(mjOBJ_GEOM, "table_top")) {}
+      : model(std::move(m)), data(model), arm(model), table_geom(model.Id(mjOBJ_GEOM, "table_top")), renderer(model) {}
 
   void HoldArm() {
     arm.SetArmPosition(data, cell::CellLayout().q_observe);
@@ -106,7 +107,7 @@ void Observe(const Rig& rig, double t, const ObjectCheckOptions& options, Watch&
     w.p_creep_start = position;
     w.q_creep_start = orientation;
   }
-  if (t >= options.settle_s - kLastSpeedWindow) {
+  if (t >= options.settle_s - kEndWindow) {
     if (!w.jitter_started) {
       w.jitter_started = true;
       w.p_jitter_start = position;
@@ -201,13 +202,12 @@ std::vector<ObjectCheckResult> DropBatch(Rig& rig, const ObjectSet& set, const s
 }
 
 void WriteStill(Rig& rig, const std::filesystem::path& file) {
-  sim::OffscreenRenderer renderer(rig.model);
   sim::RenderView view;
   view.camera_id = rig.model.Id(mjOBJ_CAMERA, "review");
   view.width = 1280;
   view.height = 720;
   cv::Mat rgb, bgr;
-  renderer.RenderRgb(rig.data, view, rgb);
+  rig.renderer.RenderRgb(rig.data, view, rgb);
   cv::cvtColor(rgb, bgr, cv::COLOR_RGB2BGR);
   if (!cv::imwrite(file.string(), bgr)) throw std::runtime_error("cannot write '" + file.string() + "'");
 }

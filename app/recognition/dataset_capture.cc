@@ -297,7 +297,7 @@ Dataset CaptureScenes(const ObjectSet& set, const SceneOptions& options, const s
     // as many of those drawn as do, the last drawn left out first.
     std::vector<sim::ObjectShape> chosen_shapes;
     std::optional<std::vector<sim::TablePose>> poses;
-    for (; count >= 1 && !poses; --count) {
+    for (; count >= 1; --count) {
       order.resize(count);
       chosen_shapes.clear();
       for (int o : order) chosen_shapes.push_back(shapes[o]);
