@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "app/common/cell_file.h"
 #include "app/episode/sim_layout.h"
 #include "bench_args.h"
 #include "cell/bin_fill.h"
@@ -205,7 +206,7 @@ int Run(int argc, char** argv) {
   perception::RecognitionModel recogniser;
   bool have_model = !model_path.empty();  // TimeOnce trains one from the first frame otherwise.
   if (have_model) recogniser = perception::LoadModel(model_path, perception::DescriptorKind::kColorCvfhNorm);
-  const cell::CellLayout layout = app::ReadCellLayout(model);
+  const cell::CellLayout layout = app::ReadCellLayout(model, app::ReadCellFile(app::DefaultCellFile()));
   const perception::SegmentationParams params = cell::CellSegmentation(layout);
   for (const Frame& frame : frames) {
     StageTimes t;

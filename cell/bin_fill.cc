@@ -33,36 +33,41 @@ bool OnArm(const Eigen::Vector3d& p_W, const std::vector<Capsule>& arm) {
 
 }  // namespace
 
-BinFill::BinFill(const CellLayout& layout)
-    : layout_(layout), n_(static_cast<int>(std::lround(2 * layout.bin_inner_half_width / kCell))) {
-  for (const auto& [category, p] : layout.p_W_bin) maps_[category].height.assign(n_ * n_, 0.0);
+BinFill::BinFill(const CellLayout& layout) : layout_(layout) {
+  for (const auto& [name, bin] : layout.bins) {
+    Map& map = maps_[name];
+    map.half = bin.inner_half;
+    map.nx = std::max(1, static_cast<int>(std::lround(2 * bin.inner_half.x() / kCell)));
+    map.ny = std::max(1, static_cast<int>(std::lround(2 * bin.inner_half.y() / kCell)));
+    map.height.assign(map.nx * map.ny, 0.0);
+  }
 }
 
-Eigen::Vector2d BinFill::CellCentre(int i, int j) const {
-  const double h = layout_.bin_inner_half_width;
-  return {-h + (i + 0.5) * kCell, -h + (j + 0.5) * kCell};
+Eigen::Vector2d BinFill::Map::CellCentre(int i, int j) const {
+  return {-half.x() + (i + 0.5) * 2 * half.x() / nx, -half.y() + (j + 0.5) * 2 * half.y() / ny};
 }
 
 void BinFill::See(const perception::Cloud& cloud, const Eigen::Isometry3d& X_WC, const std::vector<Capsule>& arm) {
-  const double h = layout_.bin_inner_half_width, inside = h - kWallMargin;
   std::map<std::string, std::vector<std::vector<double>>> seen;  // Per bin, per cell: point heights.
-  for (const auto& [category, p] : layout_.p_W_bin) seen[category].resize(n_ * n_);
+  for (const auto& [name, map] : maps_) seen[name].resize(map.height.size());
   for (const perception::PointT& point : cloud.points) {
     if (!std::isfinite(point.z)) continue;
     const Eigen::Vector3d p_W = X_WC * Eigen::Vector3d(point.x, point.y, point.z);
-    for (const auto& [category, p_W_bin] : layout_.p_W_bin) {
-      const Eigen::Vector3d d = p_W - p_W_bin;
-      if (std::abs(d.x()) > inside || std::abs(d.y()) > inside || d.z() < kBelowFloor || d.z() > kTallest) continue;
+    for (const auto& [name, bin] : layout_.bins) {
+      const Eigen::Vector3d d = p_W - bin.p_W_floor;
+      const Eigen::Vector2d inside = bin.inner_half.array() - kWallMargin;
+      if (std::abs(d.x()) > inside.x() || std::abs(d.y()) > inside.y() || d.z() < kBelowFloor || d.z() > kTallest) continue;
       if (!OnArm(p_W, arm)) {
-        const int i = std::clamp(static_cast<int>((d.x() + h) / kCell), 0, n_ - 1);
-        const int j = std::clamp(static_cast<int>((d.y() + h) / kCell), 0, n_ - 1);
-        seen[category][i * n_ + j].push_back(d.z() < kAboveFloor ? 0.0 : d.z());  // The floor: nothing on it.
+        const Map& map = maps_.at(name);
+        const int i = std::clamp(static_cast<int>((d.x() + map.half.x()) / (2 * map.half.x()) * map.nx), 0, map.nx - 1);
+        const int j = std::clamp(static_cast<int>((d.y() + map.half.y()) / (2 * map.half.y()) * map.ny), 0, map.ny - 1);
+        seen[name][i * map.ny + j].push_back(d.z() < kAboveFloor ? 0.0 : d.z());  // The floor: nothing on it.
       }
       break;  // Bins do not overlap.
     }
   }
-  for (auto& [category, cells] : seen) {
-    std::vector<double>& height = maps_[category].height;
+  for (auto& [name, cells] : seen) {
+    std::vector<double>& height = maps_.at(name).height;
     for (size_t c = 0; c < cells.size(); ++c) {
       std::vector<double>& z = cells[c];
       if (static_cast<int>(z.size()) < kTopRank) continue;
@@ -76,52 +81,53 @@ bool BinFill::Under(const BinRelease& release, const Eigen::Vector2d& p) const {
   return DistanceToSegment(p, release.from, release.to) <= release.half_width;
 }
 
-void BinFill::Released(const std::string& category, const BinRelease& release, double height) {
-  std::vector<double>& cells = maps_.at(category).height;
+void BinFill::Released(const std::string& bin, const BinRelease& release, double height) {
   // Let go, it comes to rest on what is under it.
-  const double top = HighestUnder(category, release) + height;
-  for (int i = 0; i < n_; ++i) {
-    for (int j = 0; j < n_; ++j) {
-      if (Under(release, CellCentre(i, j))) cells[i * n_ + j] = std::max(cells[i * n_ + j], top);
+  const double top = HighestUnder(bin, release) + height;
+  Map& map = maps_.at(bin);
+  for (int i = 0; i < map.nx; ++i) {
+    for (int j = 0; j < map.ny; ++j) {
+      double& cell = map.height[i * map.ny + j];
+      if (Under(release, map.CellCentre(i, j))) cell = std::max(cell, top);
     }
   }
 }
 
-const BinFill::Map& BinFill::MapOf(const std::string& category) const {
-  const auto bin = maps_.find(category);
-  if (bin == maps_.end()) throw std::invalid_argument("cell layout: no bin for category '" + category + "'");
-  return bin->second;
+const BinFill::Map& BinFill::MapOf(const std::string& bin) const {
+  const auto found = maps_.find(bin);
+  if (found == maps_.end()) throw std::invalid_argument("cell layout: no bin '" + bin + "'");
+  return found->second;
 }
 
-double BinFill::HighestUnder(const std::string& category, const BinRelease& release) const {
-  const std::vector<double>& cells = MapOf(category).height;
+double BinFill::HighestUnder(const std::string& bin, const BinRelease& release) const {
+  const Map& map = MapOf(bin);
   double highest = 0;
-  for (int i = 0; i < n_; ++i) {
-    for (int j = 0; j < n_; ++j) {
-      if (Under(release, CellCentre(i, j))) highest = std::max(highest, cells[i * n_ + j]);
+  for (int i = 0; i < map.nx; ++i) {
+    for (int j = 0; j < map.ny; ++j) {
+      if (Under(release, map.CellCentre(i, j))) highest = std::max(highest, map.height[i * map.ny + j]);
     }
   }
   return highest;
 }
 
-BinRelease BinFill::Upright(const std::string& category, int filled, double radius, double min_clearance) const {
-  MapOf(category);  // Names an unknown category first.
+BinRelease BinFill::Upright(const std::string& bin, int filled, double radius, double min_clearance) const {
+  MapOf(bin);  // Names an unknown bin first.
   if (layout_.bin_slots.empty()) throw std::invalid_argument("cell layout: no bin slots");
   const int n = static_cast<int>(layout_.bin_slots.size());
   auto at_slot = [&](int k) {
     BinRelease release;
-    release.p_W_floor = BinSlot(layout_, category, k);
-    release.from = release.to = layout_.bin_slots[k].head<2>();
+    release.p_W_floor = BinSlot(layout_, bin, k);
+    release.from = release.to = (release.p_W_floor - layout_.bins.at(bin).p_W_floor).head<2>();
     release.half_width = radius;
     release.yaw_step = layout_.place_yaw_step;
     return release;
   };
   // Heights within a centimetre count as the same: the layout's order decides between them.
   BinRelease best = at_slot(filled % n);
-  double best_height = HighestUnder(category, best);
+  double best_height = HighestUnder(bin, best);
   for (int i = 1; i < n; ++i) {
     const BinRelease candidate = at_slot((filled + i) % n);
-    const double height = HighestUnder(category, candidate);
+    const double height = HighestUnder(bin, candidate);
     if (height < best_height - 0.01) {
       best = candidate;
       best_height = height;
@@ -131,27 +137,28 @@ BinRelease BinFill::Upright(const std::string& category, int filled, double radi
   return best;
 }
 
-BinRelease BinFill::Lying(const std::string& category) const {
-  MapOf(category);  // Names an unknown category first.
-  const double reach = layout_.bin_inner_half_width - kLyingHalfWidth;
+BinRelease BinFill::Lying(const std::string& bin) const {
+  const Eigen::Vector2d half = MapOf(bin).half;  // Names an unknown bin first.
+  const Eigen::Vector2d reach = half.array() - kLyingHalfWidth;
   // The object hangs along the TCP's x axis, (-sin yaw, cos yaw) for a top-down pinch at yaw: yaws
   // pi/4 + k pi/2 lay it along either diagonal, whichever the arm turns to more easily. (Choosing the
   // emptier one made the arm turn the wrist the long way, and a bottle grasped off its middle swung
   // out over a wall.) Let go above what is on either diagonal's axis.
   auto axis = [&](double sign) {
     BinRelease band;
-    band.from = Eigen::Vector2d(-reach, -sign * reach);
-    band.to = Eigen::Vector2d(reach, sign * reach);
+    band.from = Eigen::Vector2d(-reach.x(), -sign * reach.y());
+    band.to = Eigen::Vector2d(reach.x(), sign * reach.y());
     band.half_width = kAxisHalfWidth;
-    return HighestUnder(category, band);
+    return HighestUnder(bin, band);
   };
   BinRelease release;
-  release.p_W_floor = layout_.p_W_bin.at(category);
-  release.yaw_offset = M_PI / 4;
-  release.yaw_step = M_PI / 2;
+  release.p_W_floor = layout_.bins.at(bin).p_W_floor;
+  // Along the diagonal (-sin yaw, cos yaw) = reach, or its mirror: both diagonals of a square bin.
+  release.yaw_offset = std::atan2(reach.x(), reach.y());
+  release.yaw_step = std::abs(reach.x() - reach.y()) < 1e-9 ? M_PI / 2 : M_PI;
   release.clearance = std::max(layout_.bin_wall_height + 0.01, std::max(axis(1), axis(-1)) + kAboveContents);
   // Where it ends is not known until a capture sees it: anywhere in the bin.
-  release.half_width = 2 * layout_.bin_inner_half_width;
+  release.half_width = 2 * half.maxCoeff();
   return release;
 }
 

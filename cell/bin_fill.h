@@ -42,32 +42,33 @@ class BinFill {
   void See(const perception::Cloud& cloud, const Eigen::Isometry3d& X_WC, const std::vector<Capsule>& arm);
   /// An object of `height` (m) was let go at `release`: it rests on what is under its disc or band,
   /// and that is at least that much higher now.
-  void Released(const std::string& category, const BinRelease& release, double height);
+  void Released(const std::string& bin, const BinRelease& release, double height);
 
   /// An upright object standing on a disc of `radius` (m): the layout's bin slot with the least
   /// under that disc (the layout's order from `filled` where they tie), let go `min_clearance` above
   /// the floor or that far above what is already there.
-  /// @throws std::invalid_argument naming the category if the layout has no bin for it, or if the
+  /// @throws std::invalid_argument naming the bin if the layout has none of that name, or if the
   ///         layout has no bin slots.
-  BinRelease Upright(const std::string& category, int filled, double radius, double min_clearance) const;
+  BinRelease Upright(const std::string& bin, int filled, double radius, double min_clearance) const;
   /// A lying object, longer than the bin is wide: along a diagonal, in the middle, let go above the
   /// walls (lowered in, its ends would catch on them) and above what is on the diagonals. Until a
   /// capture sees it, it may be anywhere in the bin.
-  BinRelease Lying(const std::string& category) const;
+  BinRelease Lying(const std::string& bin) const;
 
   /// The height (m) of the highest cell under `release`'s disc or band.
-  double HighestUnder(const std::string& category, const BinRelease& release) const;
+  double HighestUnder(const std::string& bin, const BinRelease& release) const;
 
  private:
   struct Map {
-    std::vector<double> height;  // Row-major, n x n cells from the bin's (-x, -y) corner.
+    Eigen::Vector2d half = Eigen::Vector2d::Zero();  // The bin's inner half extents (m).
+    int nx = 0, ny = 0;          // Cells along x and y.
+    std::vector<double> height;  // Row-major, nx x ny cells from the bin's (-x, -y) corner.
+    Eigen::Vector2d CellCentre(int i, int j) const;
   };
-  const Map& MapOf(const std::string& category) const;
-  Eigen::Vector2d CellCentre(int i, int j) const;
+  const Map& MapOf(const std::string& bin) const;
   bool Under(const BinRelease& release, const Eigen::Vector2d& p) const;
 
   const CellLayout& layout_;
-  int n_ = 0;  // Cells per side.
   std::map<std::string, Map> maps_;
 };
 

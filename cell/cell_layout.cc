@@ -7,14 +7,17 @@ namespace sortcell::cell {
 
 std::vector<Eigen::Vector2d> BinWallOutlines(const CellLayout& layout, double spacing) {
   std::vector<Eigen::Vector2d> points;
-  for (const auto& [category, p_W_bin] : layout.p_W_bin) {
-    for (const double half : {layout.bin_inner_half_width, layout.bin_outer_half_width}) {
-      const int n = static_cast<int>(std::ceil(2 * half / spacing));
-      for (int i = 0; i <= n; ++i) {
-        const double t = -half + 2 * half * i / n;
-        for (const Eigen::Vector2d& p : {Eigen::Vector2d(t, -half), Eigen::Vector2d(t, half), Eigen::Vector2d(-half, t),
-                                         Eigen::Vector2d(half, t)}) {
-          points.push_back(p_W_bin.head<2>() + p);
+  for (const auto& [name, bin] : layout.bins) {
+    for (const Eigen::Vector2d& half : {bin.inner_half, Eigen::Vector2d(bin.inner_half.array() + layout.bin_wall_thickness)}) {
+      for (int axis = 0; axis < 2; ++axis) {
+        const int n = static_cast<int>(std::ceil(2 * half[axis] / spacing));
+        for (int i = 0; i <= n; ++i) {
+          for (const double side : {-1.0, 1.0}) {
+            Eigen::Vector2d p;
+            p[axis] = -half[axis] + 2 * half[axis] * i / n;
+            p[1 - axis] = side * half[1 - axis];
+            points.push_back(bin.p_W_floor.head<2>() + p);
+          }
         }
       }
     }
@@ -22,11 +25,17 @@ std::vector<Eigen::Vector2d> BinWallOutlines(const CellLayout& layout, double sp
   return points;
 }
 
-Eigen::Vector3d BinSlot(const CellLayout& layout, const std::string& category, int filled) {
-  const auto bin = layout.p_W_bin.find(category);
-  if (bin == layout.p_W_bin.end()) throw std::invalid_argument("cell layout: no bin for category '" + category + "'");
-  if (layout.bin_slots.empty()) return bin->second;
-  return bin->second + layout.bin_slots[filled % layout.bin_slots.size()];
+const Bin& BinNamed(const CellLayout& layout, const std::string& bin) {
+  const auto found = layout.bins.find(bin);
+  if (found == layout.bins.end()) throw std::invalid_argument("cell layout: no bin '" + bin + "'");
+  return found->second;
+}
+
+Eigen::Vector3d BinSlot(const CellLayout& layout, const std::string& bin, int filled) {
+  const Bin& b = BinNamed(layout, bin);
+  if (layout.bin_slots.empty()) return b.p_W_floor;
+  const Eigen::Vector2d slot = layout.bin_slots[filled % layout.bin_slots.size()].cwiseProduct(b.inner_half);
+  return b.p_W_floor + Eigen::Vector3d(slot.x(), slot.y(), 0);
 }
 
 }  // namespace sortcell::cell

@@ -2,7 +2,8 @@
 /// @file
 /// What the sorting cell knows of itself, in one place: the arm's observe pose, where the bins are and
 /// how they are filled, the workspace the camera watches, the table, the speeds of the careful
-/// motions and the control period. The simulated cell reads the bins and the table from its scene
+/// motions and the control period. The bins and the rules that fill them are the user's (a cell file,
+/// scenes/cells/*.yaml, read by app/common/cell_file.h); the table comes from the scene
 /// (app/episode/sim_layout.h); everything else is fixed here.
 
 #include <map>
@@ -11,6 +12,7 @@
 
 #include <Eigen/Core>
 
+#include "cell/sorting_rules.h"
 #include "robot/gripper_geometry.h"
 #include "robot/joint_trajectory.h"
 #include "robot/ur5_kinematics.h"
@@ -39,6 +41,12 @@ struct ArmSpeeds {
   double slow_acceleration = 2.0;
 };
 
+/// A bin as the cell knows it (the world's x and y are its sides).
+struct Bin {
+  Eigen::Vector3d p_W_floor = Eigen::Vector3d::Zero();  ///< The centre of its floor (m).
+  Eigen::Vector2d inner_half = Eigen::Vector2d::Constant(0.10);  ///< Half its inside along x and y (m).
+};
+
 struct CellLayout {
   /// The arm's home (= observe) pose: tool down, upper arm leaning back, TCP at (0.281, 0.109, 0.446),
   /// above and behind the workspace's near edge, where no ray from the Kinect to the table or an
@@ -49,18 +57,20 @@ struct CellLayout {
   /// Half of the finger gap at the observe pose (m): fully open.
   double observe_half_gap = robot::kMaxGap / 2;
 
-  /// Each category's bin: the centre of its floor in the world (m).
-  std::map<std::string, Eigen::Vector3d> p_W_bin;
-  /// Where released objects go in a bin, in order (offsets from the floor centre, m): its quadrants,
-  /// then the middle, so a bin takes four objects without dropping one onto another.
-  std::vector<Eigen::Vector3d> bin_slots{{-0.05, -0.05, 0}, {0.05, 0.05, 0}, {-0.05, 0.05, 0}, {0.05, -0.05, 0}, {0, 0, 0}};
+  /// The bins, by name: open boxes standing on the table, walls bin_wall_height high and
+  /// bin_wall_thickness thick around their inside.
+  std::map<std::string, Bin> bins;
+  /// Which bin each recognised object goes into.
+  SortingRules rules;
+  /// Where released objects go in a bin, in order, as fractions of its inner half extents: its
+  /// quadrants, then the middle, so a bin takes four objects without dropping one onto another.
+  std::vector<Eigen::Vector2d> bin_slots{{-0.5, -0.5}, {0.5, 0.5}, {-0.5, 0.5}, {0.5, -0.5}, {0, 0}};
   /// Held objects are released square to the bin: placement yaws in steps of this (rad).
   double place_yaw_step = M_PI / 2;
-  /// The bins' walls (models/cell/cell.inc.xml): 0.2 m square inside, this high (m). An object longer
-  /// than that (a bottle lying, 0.224 m) goes in along the diagonal, in the middle, let go above the walls.
+  /// Every bin's walls (m). An object longer than a bin is wide goes in along the diagonal, in the
+  /// middle, let go above the walls.
   double bin_wall_height = 0.10;
-  double bin_inner_half_width = 0.10;
-  double bin_outer_half_width = 0.108;
+  double bin_wall_thickness = 0.008;
 
   /// The pick area the camera watches (world box, m): the table in front of the robot up to its far
   /// edge (objects out of reach there are seen and reported unreachable), between the bins, up to
@@ -78,9 +88,12 @@ struct CellLayout {
   double control_period = 0.002;
 };
 
-/// The bin slot for the `filled`-th object released into a bin (cycling through the slots).
-/// @throws std::invalid_argument naming the category if the layout has no bin for it.
-Eigen::Vector3d BinSlot(const CellLayout& layout, const std::string& category, int filled);
+/// The bin named `bin`.
+/// @throws std::invalid_argument naming it if the layout has none.
+const Bin& BinNamed(const CellLayout& layout, const std::string& bin);
+/// The bin slot for the `filled`-th object released into `bin` (cycling through the slots).
+/// @throws std::invalid_argument naming the bin if the layout has none of that name.
+Eigen::Vector3d BinSlot(const CellLayout& layout, const std::string& bin, int filled);
 
 /// The bins' walls seen from above (world xy, m): their inner and outer outlines every `spacing`.
 /// What open fingers must keep clear of besides the objects: one landing on a wall is stopped there.

@@ -43,6 +43,8 @@ struct Detection {
   std::vector<Eigen::Vector2d> p_W_xy;
   std::optional<std::string> category;  ///< Empty when it could not be described (a fragment).
   double confidence = 0;
+  /// The bin the cell's rules send it to (SortingPolicy; empty until then or when undescribed).
+  std::string bin;
 };
 
 struct Observation {

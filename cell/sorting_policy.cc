@@ -6,6 +6,7 @@
 #include <utility>
 #include <stdexcept>
 
+#include "cell/layout_check.h"
 #include "perception/seconds_since.h"
 #include "robot/gripper_geometry.h"
 
@@ -81,16 +82,7 @@ SortingPolicy::SortingPolicy(CellIo& io, const CellLayout& layout, const CameraC
     throw std::invalid_argument("policy options: attempt limits must be at least 1");
   }
   if (!(options.time_limit_s > 0)) throw std::invalid_argument("policy options: time limit must be > 0 s");
-  if (!(options.reject_below >= 0 && options.reject_below <= 1)) {
-    throw std::invalid_argument("policy options: reject_below must be in [0, 1]");
-  }
-  if (options.reject_below > 0 && !layout.p_W_bin.count(options.reject_bin)) {
-    throw std::invalid_argument("policy options: rejecting unknown objects needs a bin named '" + options.reject_bin +
-                                "'");
-  }
-  for (const auto& c : model.classes) {
-    if (!layout.p_W_bin.count(c)) throw std::invalid_argument("cell layout: no bin for the model's class '" + c + "'");
-  }
+  CheckRules(layout, model.classes);
 }
 
 Observation SortingPolicy::Observe(const std::optional<HeldObject>& held) {
@@ -101,7 +93,7 @@ Observation SortingPolicy::Observe(const std::optional<HeldObject>& held) {
   bins_.See(*cloud, calibration_.X_WC, ArmCapsules(io_.ReadJoints(), held));
   unseen_release_.reset();
   for (Detection& d : observation.detections) {
-    if (d.category && d.confidence < options_.reject_below) d.category = options_.reject_bin;
+    if (d.category) d.bin = *layout_.rules.BinFor(*d.category, d.confidence);  // Every class has one (CheckRules).
   }
   observer_.Observed(*cloud, observation, perception::SecondsSince(start));
   return observation;
@@ -113,11 +105,11 @@ void SortingPolicy::LookIntoBins(const HeldObject& held) {
 }
 
 BinRelease SortingPolicy::ChooseRelease(const Detection& seen, int filled, double min_clearance) const {
-  if (seen.lying) return bins_.Lying(*seen.category);
+  if (seen.lying) return bins_.Lying(seen.bin);
   // Upright it stands on its footprint: across the pinch and, for a prism, its other pair of sides.
   const double across = seen.turned ? seen.turned->width : seen.footprint.width;
   const double radius = 0.5 * std::hypot(seen.footprint.width, seen.round ? 0.0 : across);
-  return bins_.Upright(*seen.category, filled, radius, min_clearance);
+  return bins_.Upright(seen.bin, filled, radius, min_clearance);
 }
 
 int SortingPolicy::Choose(const std::vector<Detection>& detections, robot::PickMemory& memory,
@@ -178,7 +170,7 @@ AttemptReport SortingPolicy::Attempt(const Detection& seen, int index, int attem
   report.attempt = attempt;
   report.start_s = io_.Now();
   observer_.AttemptStarting(report);
-  int& filled = released_into_[*seen.category];
+  int& filled = released_into_[seen.bin];
   PickRequest request;
   request.grasp = plan;
   request.q_home = layout_.q_observe;
@@ -194,7 +186,7 @@ AttemptReport SortingPolicy::Attempt(const Detection& seen, int index, int attem
   hooks.lowered = [&] { observer_.Lowered(); };
   hooks.choose_release = [&](PickRequest& placing) {
     // The last release into this bin has not been seen yet: look, while the fingers squeeze.
-    if (unseen_release_ == *seen.category) LookIntoBins(held);
+    if (unseen_release_ == seen.bin) LookIntoBins(held);
     report.release = ChooseRelease(seen, filled, placing.release_clearance);
     placing.p_W_release = report.release.p_W_floor;
     placing.place_yaw_step = report.release.yaw_step;
@@ -206,8 +198,8 @@ AttemptReport SortingPolicy::Attempt(const Detection& seen, int index, int attem
   report.phases.assign(motions_.phases().begin() + first_phase, motions_.phases().end());
   if (report.pick.reached_bin) {
     ++filled;
-    bins_.Released(*seen.category, report.release, seen.footprint.top_z - seen.footprint.base_z);
-    unseen_release_ = *seen.category;
+    bins_.Released(seen.bin, report.release, seen.footprint.top_z - seen.footprint.base_z);
+    unseen_release_ = seen.bin;
   }
   report.end_s = io_.Now();
   observer_.AttemptEnded(report);

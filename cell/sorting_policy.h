@@ -36,9 +36,6 @@ struct PolicyOptions {
   int max_attempts = 24;              ///< Grasp attempts in all before the episode ends.
   double time_limit_s = 330;          ///< Seconds on the cell's clock from the start before it ends.
   double same_object_radius = 0.04;   ///< Clusters this close in two captures are one object (m).
-  /// Objects recognised with a lower confidence than this are unknown and go to reject_bin (0: none).
-  double reject_below = 0;
-  std::string reject_bin = "others";
 };
 
 /// One attempt, as the policy saw it go.
@@ -81,8 +78,9 @@ struct PolicyResult {
 
 class SortingPolicy {
  public:
-  /// @throws std::invalid_argument if a class of `model` has no bin in `layout`, or an option is out
-  ///         of range (attempt limits < 1, time limit <= 0).
+  /// Objects go where the layout's rules send them (CellLayout::rules).
+  /// @throws std::invalid_argument if the rules send a class of `model` to no bin or to a bin the
+  ///         layout lacks, or an option is out of range (attempt limits < 1, time limit <= 0).
   SortingPolicy(CellIo& io, const CellLayout& layout, const CameraCalibration& calibration,
                 const perception::RecognitionModel& model, const PolicyOptions& options,
                 PolicyObserver* observer = nullptr);
@@ -113,7 +111,7 @@ class SortingPolicy {
   MotionSequencer motions_;
   perception::SegmentationParams segmentation_;
   WorkspaceView view_;  // Whether the arm hides the workspace from the camera.
-  std::map<std::string, int> released_into_;  // Objects released into each category's bin so far.
+  std::map<std::string, int> released_into_;  // Objects released into each bin so far.
   // Captures only to see into the bins (no perception of the table).
   void LookIntoBins(const HeldObject& held);
   // Where in its bin to let go of `seen`, from what is there.

@@ -8,7 +8,6 @@
 namespace sortcell::sim {
 namespace {
 
-constexpr double kBinInnerHalf = 0.10;
 // An object standing upright in a bin has its centre of mass up to half its height above the floor
 // (0.11 m for the 0.224 m bottles), above the 0.10 m walls: "in the bin" allows up to this height.
 constexpr double kBinMaxComHeight = 0.15;
@@ -103,21 +102,23 @@ std::vector<BinRef> Bins(const Model& model) {
     const char* name = mj_id2name(model.get(), mjOBJ_BODY, b);
     if (!name || std::string_view(name).substr(0, kBinPrefix.size()) != kBinPrefix) continue;
     BinRef bin;
-    bin.category = std::string(name).substr(kBinPrefix.size());
+    bin.name = std::string(name).substr(kBinPrefix.size());
     bin.body = b;
     bin.site = mj_name2id(model.get(), mjOBJ_SITE, name);
-    if (bin.site < 0) {
-      throw std::invalid_argument("scene '" + model.source() + "': bin '" + name + "' has no floor site '" + name + "'");
+    if (bin.site < 0 || model.get()->site_type[bin.site] != mjGEOM_BOX) {
+      throw std::invalid_argument("scene '" + model.source() + "': bin '" + name + "' has no box site '" + name +
+                                  "' (its floor centre, sized to its inside)");
     }
+    bin.inner_half = Eigen::Map<const Eigen::Vector2d>(model.get()->site_size + 3 * bin.site);
     bins.push_back(bin);
   }
   return bins;
 }
 
-bool InBin(const Data& data, int object_body, int bin_body) {
+bool InBin(const Data& data, int object_body, const BinRef& bin) {
   const Eigen::Vector3d p_WO = Eigen::Map<const Eigen::Vector3d>(data->xipos + 3 * object_body);
-  const Eigen::Vector3d p_BO = BodyPose(data, bin_body).inverse() * p_WO;
-  return std::abs(p_BO.x()) < kBinInnerHalf && std::abs(p_BO.y()) < kBinInnerHalf && p_BO.z() > 0 &&
+  const Eigen::Vector3d p_BO = BodyPose(data, bin.body).inverse() * p_WO;
+  return std::abs(p_BO.x()) < bin.inner_half.x() && std::abs(p_BO.y()) < bin.inner_half.y() && p_BO.z() > 0 &&
          p_BO.z() < kBinMaxComHeight;
 }
 

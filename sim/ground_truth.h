@@ -31,22 +31,24 @@ Eigen::Isometry3d BodyPose(const Data& data, int body);
 /// Pose of a site in the world frame.
 Eigen::Isometry3d SitePose(const Data& data, int site);
 
-/// A category's bin: a body named "bin_<category>" with a site of the same name at its floor centre.
+/// A bin: a body named "bin_<name>" with a box site of the same name at its floor centre, whose
+/// half sizes are the bin's inside (scenes/cells/*.yaml, written by app/common/cell_file.h).
 struct BinRef {
-  std::string category;
+  std::string name;
   int body = -1;
   int site = -1;
+  Eigen::Vector2d inner_half = Eigen::Vector2d::Zero();  ///< Half the inside along the bin's x and y (m).
 };
-/// "bin_<category>": the one place that spells a bin's name.
-std::string BinName(const std::string& category);
+/// "bin_<name>": the one place that spells a bin's body and site name.
+std::string BinName(const std::string& name);
 /// The scene's bins, in body order.
-/// @throws std::invalid_argument naming the scene and bin if a bin body has no floor site.
+/// @throws std::invalid_argument naming the scene and bin if a bin body has no box floor site.
 std::vector<BinRef> Bins(const Model& model);
 
-/// True when the body's centre of mass lies inside the bin: within the inner 0.20 x 0.20 m square
-/// (models/cell/cell.inc.xml) and less than 0.15 m above its floor, which an object standing upright
-/// in the bin satisfies (the tallest, 0.224 m bottles, have it at 0.11 m) and one resting on the
-/// rim or held above the bin does not.
-bool InBin(const Data& data, int object_body, int bin_body);
+/// True when the body's centre of mass lies inside the bin: within its inside seen from above and
+/// less than 0.15 m above its floor, which an object standing upright in the bin satisfies (the
+/// tallest, 0.224 m bottles, have it at 0.11 m) and one resting on the rim or held above the bin
+/// does not.
+bool InBin(const Data& data, int object_body, const BinRef& bin);
 
 }  // namespace sortcell::sim

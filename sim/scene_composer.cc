@@ -28,9 +28,10 @@ std::string CameraElement(const CameraSpec& camera) {
 
 std::vector<Model::VirtualFile> ComposeCell(const std::filesystem::path& models_dir,
                                             const std::vector<std::filesystem::path>& object_models,
-                                            const std::vector<CameraSpec>& cameras) {
+                                            const std::vector<CameraSpec>& cameras, const std::string& bins_xml) {
   std::string main = "<mujoco model=\"sortcell_composed\">\n  <compiler angle=\"radian\" autolimits=\"true\"/>\n";
   main += Include(models_dir / "cell" / "cell.inc.xml");
+  main += bins_xml.empty() ? Include(models_dir / "cell" / "bins.inc.xml") : "  <include file=\"bins.inc.xml\"/>\n";
   main += Include(models_dir / "gripper" / "gripper.inc.xml");
   main += Include(models_dir / "ur5" / "ur5.inc.xml");
   main += Include(models_dir / "objects" / "objects.inc.xml");
@@ -49,7 +50,9 @@ std::vector<Model::VirtualFile> ComposeCell(const std::filesystem::path& models_
   main += "</mujoco>\n";
   // The arm's flange includes "flange_tool.inc.xml" from the main file's folder: here, a virtual file.
   std::string tool = "<mujoco>\n" + Include(models_dir / "gripper" / "gripper_body.inc.xml") + "</mujoco>\n";
-  return {{"sortcell_composed.xml", main}, {"flange_tool.inc.xml", tool}};
+  std::vector<Model::VirtualFile> files{{"sortcell_composed.xml", main}, {"flange_tool.inc.xml", tool}};
+  if (!bins_xml.empty()) files.push_back({"bins.inc.xml", bins_xml});
+  return files;
 }
 
 std::vector<Model::VirtualFile> ModelTextures(const std::filesystem::path& models_dir) {
@@ -60,14 +63,14 @@ std::vector<Model::VirtualFile> ModelTextures(const std::filesystem::path& model
 
 Model LoadComposedCell(const std::filesystem::path& models_dir,
                        const std::vector<std::filesystem::path>& object_models, const std::string& name,
-                       const std::vector<CameraSpec>& cameras) {
+                       const std::vector<CameraSpec>& cameras, const std::string& bins_xml) {
   for (const auto& object : object_models) {
     std::error_code ec;
     if (!std::filesystem::is_regular_file(object, ec)) {
       throw std::invalid_argument(name + ": object model '" + object.string() + "' not found");
     }
   }
-  std::vector<Model::VirtualFile> files = ComposeCell(models_dir, object_models, cameras);
+  std::vector<Model::VirtualFile> files = ComposeCell(models_dir, object_models, cameras, bins_xml);
   for (auto& asset : ModelTextures(models_dir)) files.push_back(std::move(asset));
   return Model::FromVirtualFiles(files, name);
 }

@@ -22,10 +22,12 @@ struct CameraSpec {
 
 /// The main MJCF text of a cell with the given object models (object fragments, see
 /// models/objects/objects.inc.xml) and extra cameras, plus the gripper tool slot, as MuJoCo virtual
-/// files. `models_dir` is the repository's models/ folder. Paths are made absolute.
+/// files. `models_dir` is the repository's models/ folder. Paths are made absolute. `bins_xml`: the
+/// bins' fragment (app::BinsXml); empty: the default cell's (models/cell/bins.inc.xml).
 std::vector<Model::VirtualFile> ComposeCell(const std::filesystem::path& models_dir,
                                             const std::vector<std::filesystem::path>& object_models,
-                                            const std::vector<CameraSpec>& cameras = {});
+                                            const std::vector<CameraSpec>& cameras = {},
+                                            const std::string& bins_xml = {});
 
 /// The textures the models use, as virtual files found by their names: the objects' prints
 /// (models_dir/objects/textures) and the gripper's calibration plate (models_dir/gripper/textures).
@@ -36,6 +38,6 @@ std::vector<Model::VirtualFile> ModelTextures(const std::filesystem::path& model
 /// @throws std::invalid_argument naming a missing model file, or the scene with MuJoCo's message.
 Model LoadComposedCell(const std::filesystem::path& models_dir,
                        const std::vector<std::filesystem::path>& object_models, const std::string& name,
-                       const std::vector<CameraSpec>& cameras = {});
+                       const std::vector<CameraSpec>& cameras = {}, const std::string& bins_xml = {});
 
 }  // namespace sortcell::sim

@@ -38,6 +38,7 @@ void AddCalibrateCommand(CLI::App& app, std::function<int()>& run, const std::ve
       "workspace; the camera's pose is fitted to where the encoders put the marker and where the Kinect sees it. "
       "The simulator's true camera pose only scores the result. Writes calibration.json and run.json.");
   cmd->add_option("--scene", o.scene, "MJCF cell, e.g. scenes/cell.xml")->required();
+  cmd->add_option("--cell", o.cell, "Cell layout: bins and rules (default: scenes/cells/default.yaml)");
   cmd->add_option("--seed", o.seed, "Seed (uint64): the camera's displacement, noise")->check(kUnsignedInteger)->capture_default_str();
   cmd->add_option("--video", o.video, "Also write an H.264 MP4 from the review camera");
   cmd->add_option("--video-size", cli->video_size, "The video's WIDTHxHEIGHT (at most 1280x960)")

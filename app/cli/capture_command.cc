@@ -8,8 +8,9 @@
 #include <iostream>
 #include <stdexcept>
 
-#include "app/common/data_dir.h"
 #include "app/common/camera_file.h"
+#include "app/common/data_dir.h"
+#include "app/episode/sim_layout.h"
 #include "app/cli/cli_validators.h"
 #include "app/common/output_dir.h"
 #include "app/common/seeding.h"
@@ -45,7 +46,7 @@ cv::Mat DepthMillimetres(const cv::Mat& depth) {
 CaptureSummary RunCapture(const CaptureOptions& options, const std::vector<std::string>& command_line) {
   const auto start = Clock::now();
   PrepareOutputDir(options.out);
-  const sim::Model model = LoadScene(options.scene);
+  const sim::Model model = options.cell.empty() ? LoadScene(options.scene) : LoadCellScene(options.scene, ReadCellFile(options.cell));
   sim::Data data(model);
   sim::ResetToObserve(model, data);
   mj_forward(model.get(), data.get());
@@ -102,6 +103,7 @@ void AddCaptureCommand(CLI::App& app, std::function<int()>& run, const std::vect
       "depth.png (16-bit mm, 0 = invalid), cloud.pcd (organized, camera optical frame), labels.png "
       "(ground-truth object ids, see labels.json), camera.json (intrinsics and X_WC) and run.json.");
   cmd->add_option("--scene", options->scene, "MJCF scene file, e.g. scenes/cell.xml")->required();
+  cmd->add_option("--cell", options->cell, "Cell layout whose bins replace the scene's (scenes/cells/*.yaml)");
   cmd->add_option("--seed", options->seed, "Seed of the depth noise (uint64)")
       ->check(kUnsignedInteger)
       ->capture_default_str();

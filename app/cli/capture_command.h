@@ -13,6 +13,7 @@ namespace sortcell::app {
 
 struct CaptureOptions {
   std::filesystem::path scene;
+  std::filesystem::path cell;  ///< Bins for the scene's bins.inc.xml; empty: the scene as written.
   uint64_t seed = 0;
   bool no_noise = false;
   std::filesystem::path out;

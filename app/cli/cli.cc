@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "app/cli/calibrate_command.h"
+#include "app/cli/cell_command.h"
 #include "app/cli/capture_command.h"
 #include "app/cli/objects_command.h"
 #include "app/cli/classify_command.h"
@@ -57,6 +58,7 @@ int RunCli(int argc, char** argv) {
   AddSweepCommand(app, run, command_line);
   AddKinematicsCommands(app, run);
   AddObjectsCommand(app, run, command_line);
+  AddCellCommand(app, run, command_line);
 
   // `sortcell episode|calibrate --set KEY=VALUE` becomes `--KEY=VALUE` before CLI11 parses
   // (episode_command.h).

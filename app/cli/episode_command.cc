@@ -56,6 +56,8 @@ struct EpisodeCli {
   std::string video_size = "1280x720";
   bool train_if_missing = false;
   std::string self_calibrate = "auto";
+  double reject_below = 0;
+  bool reject_below_given = false;
   std::vector<std::string> sets;  ///< Empty: ExpandEpisodeSets turned them into options before parsing.
 };
 
@@ -188,14 +190,22 @@ void AddEpisodeCommand(CLI::App& app, std::function<int()>& run, const std::vect
   cmd->add_option("--max-attempts", o.max_attempts_per_object, "Grasp attempts per object before giving it up")
       ->capture_default_str();
   cmd->add_option("--time-limit", o.time_limit_s, "Simulated seconds (0: 60 + 45 per object)")->capture_default_str();
-  cmd->add_option("--reject-below", o.reject_below,
-                  "Objects recognised with a lower confidence (0-1) are unknown and go to the 'others' bin")
-      ->check(CLI::Range(0.0, 1.0))->capture_default_str();
+  cmd->add_option("--cell", o.cell, "Cell layout: bins and rules (default: scenes/cells/default.yaml)");
+  cmd->add_option("--reject-below", cli->reject_below,
+                  "Objects recognised with a lower confidence (0-1) are unknown and go to the cell's reject bin "
+                  "(default: the cell's reject_below)")
+      ->check(CLI::Range(0.0, 1.0))
+      ->each([cli](const std::string&) { cli->reject_below_given = true; });
+  cmd->add_option("--unknown-set", o.unknown_set, "Object set the model was not trained on, for --unknown-objects");
+  cmd->add_option("--unknown-objects", o.unknown_objects,
+                  "Also place this many objects of --unknown-set: the rules send them to the reject bin")
+      ->check(CLI::Range(0, 100))->capture_default_str();
   AddSetOption(*cmd, cli->sets);
   cmd->callback([&run, cli, command_line] {
     run = [cli, command_line] {
       if (!cli->sets.empty()) throw std::logic_error("episode: --set reached the parser (ExpandEpisodeSets not applied)");
       EpisodeOptions options = cli->options;
+      if (cli->reject_below_given) options.reject_below = cli->reject_below;
       for (const auto& p : cli->placements) options.placements.push_back(ParsePlacement(p));
       options.placement.mode = *sim::ParsePlacementMode(cli->placement_mode);  // Checked by the parser.
       options.self_calibrate = cli->self_calibrate == "on"    ? SelfCalibration::kOn

@@ -17,6 +17,7 @@ void AddPickCommand(CLI::App& app, std::function<int()>& run, const std::vector<
       "perceived), with a top-down friction grasp, and place it in a bin. Writes result.json (in_bin, "
       "slip_mm, cycle_time_s, wall_time_s, phases, tracking error) and run.json.");
   cmd->add_option("--scene", options->scene, "MJCF scene file, e.g. scenes/cell.xml")->required();
+  cmd->add_option("--cell", options->cell, "Cell layout: bins and rules (default: scenes/cells/default.yaml)");
   cmd->add_option("--object", options->object, "Object (free body) to pick, e.g. bottle1")->required();
   cmd->add_option("--bin", options->bin, "Bin to place it in: bottle, cup, ball or others (or bin_<name>)")
       ->required();

@@ -79,8 +79,9 @@ CalibrationFigures RunCalibration(const EpisodeOptions& options, const std::vect
   CheckRigOptions(options);
   PrepareOutputDir(options.out);
   std::mt19937_64 rng = EpisodeRng(options.seed, 0);
-  sim::Model model = LoadScene(options.scene);
-  const cell::CellLayout layout = ReadCellLayout(model);
+  const CellFile cell = ReadCellFileOrDefault(options.cell);
+  sim::Model model = LoadCellScene(options.scene, cell);
+  const cell::CellLayout layout = ReadCellLayout(model, cell);
   const Eigen::Isometry3d X_WC_prior = NominalCameraPose(model, "kinect");
   SimRig rig(model, layout, options, rng);
   const cell::HandEyeCalibration calibration = cell::CalibrateHandEye(rig.cell(), layout, X_WC_prior);

@@ -18,6 +18,7 @@
 #include "app/episode/sim_cell.h"
 #include "app/episode/sim_layout.h"
 #include "app/episode/sim_rig.h"
+#include "cell/layout_check.h"
 #include "cell/sorting_policy.h"
 #include "perception/descriptor.h"
 #include "perception/recognition_model.h"
@@ -35,9 +36,11 @@ constexpr double kSceneSettleTime = 1.0;  // s, after placing the objects and be
 
 class EpisodeRun {
  public:
-  EpisodeRun(const EpisodeOptions& options, const ObjectSet& set, const perception::RecognitionModel& recognizer)
-      : options_(options), set_(set), recognizer_(recognizer), rng_(EpisodeRng(options.seed, 0)),
-        model_(LoadEpisodeScene(options.scene, set)) {}
+  EpisodeRun(const EpisodeOptions& options, const ObjectSet& set, const ObjectSet& unknown,
+             const perception::RecognitionModel& recognizer)
+      : options_(options), set_(set), unknown_(unknown), recognizer_(recognizer), rng_(EpisodeRng(options.seed, 0)),
+        cell_(ReadCellFileOrDefault(options.cell)),
+        model_(LoadEpisodeScene(options.scene, WithUnknown(set, unknown), cell_)) {}
 
   EpisodeMetrics Run(const std::vector<std::string>& command_line);
 
@@ -54,8 +57,10 @@ class EpisodeRun {
 
   const EpisodeOptions& options_;
   const ObjectSet& set_;
+  const ObjectSet& unknown_;  // Objects the model does not know (none without --unknown-set).
   const perception::RecognitionModel& recognizer_;
   std::mt19937_64 rng_;
+  CellFile cell_;
   sim::Model model_;
   cell::CellLayout layout_;
   cell::CameraCalibration calibration_;
@@ -70,13 +75,17 @@ class EpisodeRun {
 
 // The robot's knowledge of its cell, from the nominal scene: it keeps it when a sweep displaces the camera.
 void EpisodeRun::Calibrate() {
-  layout_ = ReadCellLayout(model_);
+  layout_ = ReadCellLayout(model_, cell_);
+  if (options_.reject_below) layout_.rules.reject_below = *options_.reject_below;
   calibration_.X_WC = NominalCameraPose(model_, "kinect");
-  for (const auto& c : recognizer_.classes) {
-    if (!layout_.p_W_bin.count(c)) {
-      throw std::invalid_argument("model '" + options_.model.string() + "': class '" + c + "' has no bin '" +
-                                  sim::BinName(c) + "' in scene '" + options_.scene.string() + "'");
-    }
+  try {
+    cell::CheckRules(layout_, recognizer_.classes);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument("cell layout '" + cell_.source.string() + "' with model '" + options_.model.string() +
+                                "': " + e.what());
+  }
+  if (!unknown_.objects.empty() && layout_.rules.reject_bin.empty()) {
+    throw std::invalid_argument("cell layout '" + cell_.source.string() + "': unknown objects need a 'reject' bin");
   }
 }
 
@@ -101,6 +110,7 @@ void EpisodeRun::SelfCalibrate() {
 // calibration's captures draw their noise, so a seed sets the same scene with or without it).
 void EpisodeRun::DrawObjects() {
   chosen_ = ChooseObjects(set_, options_, rng_);
+  for (auto& spec : ChooseUnknownObjects(unknown_, options_.unknown_objects, rng_)) chosen_.push_back(std::move(spec));
   shapes_.clear();
   for (const auto& spec : chosen_) shapes_.push_back(sim::ObjectShapeOf(model_, model_.Id(mjOBJ_BODY, spec.name)));
   poses_ = DrawPoses(options_.placements, shapes_, sim::PlacementArea(), options_.placement, rng_);
@@ -117,21 +127,23 @@ void EpisodeRun::PlaceObjects() {
     sim::PlaceObject(model_, rig_->data(), body, poses[i], shapes[i]);
     const int label = static_cast<int>(std::find(label_names.begin(), label_names.end(), chosen[i].name) -
                                        label_names.begin()) + 1;
-    placed.push_back({chosen[i].name, chosen[i].category, body, label});
+    const bool unknown = i >= chosen.size() - static_cast<size_t>(options_.unknown_objects);
+    const std::string bin = unknown ? layout_.rules.reject_bin : *layout_.rules.BinOf(chosen[i].category);
+    placed.push_back({chosen[i].name, chosen[i].category, body, label, bin, unknown});
   }
   mj_forward(model_.get(), rig_->data().get());
   scorer_ = std::make_unique<EpisodeScorer>(std::move(placed), static_cast<int>(label_names.size()),
-                                            TableExtent{layout_.table_min_xy, layout_.table_max_xy});
+                                            TableExtent{layout_.table_min_xy, layout_.table_max_xy},
+                                            layout_.rules.reject_below);
 }
 
 // The policy's budget from the options (the number of objects asked for, not what the scene holds).
 cell::PolicyOptions EpisodeRun::Budget() const {
-  const int objects = ObjectCount(set_, options_);
+  const int objects = ObjectCount(set_, options_) + options_.unknown_objects;
   cell::PolicyOptions budget;
   budget.max_attempts_per_position = options_.max_attempts_per_object;
   budget.max_attempts = (options_.max_attempts_per_object + 1) * objects;
   budget.time_limit_s = options_.time_limit_s > 0 ? options_.time_limit_s : 60.0 + 45.0 * objects;
-  budget.reject_below = options_.reject_below;
   return budget;
 }
 
@@ -214,6 +226,7 @@ EpisodeMetrics EpisodeRun::Metrics(const cell::PolicyResult& result, double wall
   EpisodeMetrics m;
   m.seed = options_.seed;
   m.scene = options_.scene.string();
+  m.cell = cell_.source.string();
   m.object_set = set_.source.string();
   m.model = options_.model.string();
   m.descriptor = perception::DescriptorName(recognizer_.descriptor);
@@ -236,6 +249,7 @@ EpisodeMetrics RunEpisode(const EpisodeOptions& options, const std::vector<std::
   if (!(options.time_limit_s >= 0)) throw std::invalid_argument("--time-limit: expected >= 0");
   CheckRigOptions(options);
   const ObjectSet set = LoadObjectSet(options.object_set);
+  const ObjectSet unknown = LoadUnknownSet(options, set);
   const perception::RecognitionModel recognizer = perception::LoadModel(options.model);
   std::set<std::string> categories;
   for (const auto& spec : set.objects) categories.insert(spec.category);
@@ -246,7 +260,7 @@ EpisodeMetrics RunEpisode(const EpisodeOptions& options, const std::vector<std::
     }
   }
   PrepareOutputDir(options.out);
-  EpisodeRun run(options, set, recognizer);
+  EpisodeRun run(options, set, unknown, recognizer);
   return run.Run(command_line);
 }
 

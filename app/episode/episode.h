@@ -7,6 +7,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -33,7 +34,11 @@ enum class SelfCalibration {
 
 struct EpisodeOptions {
   std::filesystem::path scene;       ///< MJCF cell holding every object of the set.
+  std::filesystem::path cell;        ///< Bins and rules (scenes/cells/*.yaml); empty: the default cell.
   std::filesystem::path object_set;  ///< Which objects exist and their categories.
+  /// Objects the model was not trained on, added to the scene: the rules send them to the reject bin.
+  std::filesystem::path unknown_set;
+  int unknown_objects = 0;  ///< How many of them (drawn at random).
   std::filesystem::path model;       ///< Trained recognition model (sortcell train).
   std::filesystem::path video;       ///< Empty: no video.
   sim::VideoOptions video_options;   ///< Its camera, size and frame rate.
@@ -50,7 +55,8 @@ struct EpisodeOptions {
   // The policy's budget.
   int max_attempts_per_object = 3;  ///< Grasp attempts at one position before it is given up.
   double time_limit_s = 0;          ///< Simulated seconds of sorting (0: 60 + 45 per object placed).
-  double reject_below = 0;          ///< Objects recognised less surely go to the 'others' bin (0: none).
+  /// Objects recognised less surely go to the cell's reject bin; unset: the cell file's reject_below.
+  std::optional<double> reject_below;
 };
 
 /// Runs the episode and writes metrics.json and run.json (and the video) into options.out.

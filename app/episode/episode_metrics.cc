@@ -9,6 +9,14 @@ namespace sortcell::app {
 void ItemTally::Add(const ItemResult& item) {
   ++items;
   ++outcomes[item.outcome];
+  if (item.unknown) {
+    ++unknown;
+    unknown_rejected += item.outcome == cell::ItemOutcome::kSorted;  // Its bin is the reject bin.
+    unknown_in_category_bin += item.outcome == cell::ItemOutcome::kWrongBin;
+  } else {
+    ++known;
+    known_rejected += item.rejected;
+  }
   if (item.predicted_category) {
     ++classified;
     if (*item.predicted_category == item.true_category) ++recognised;
@@ -88,6 +96,13 @@ void to_json(nlohmann::json& j, const ItemResult& v) {
        {"outcome", v.outcome},
        {"cycle_time_s", OrNull(v.cycle_time_s)},
        {"final_xyz", v.final_xyz}};
+  // Records from before the cell files (no rule bin) are written back as they were read.
+  if (!v.rule_bin.empty()) {
+    j["rule_bin"] = v.rule_bin;
+    j["bin"] = v.bin;
+    j["unknown"] = v.unknown;
+    j["rejected"] = v.rejected;
+  }
 }
 
 void from_json(const nlohmann::json& j, ItemResult& v) {
@@ -99,6 +114,10 @@ void from_json(const nlohmann::json& j, ItemResult& v) {
   ReadField(j, "", "outcome", v.outcome);
   ReadNullable(j, "", "cycle_time_s", v.cycle_time_s);
   ReadField(j, "", "final_xyz", v.final_xyz);
+  ReadAddedField(j, "", "rule_bin", v.rule_bin);
+  ReadAddedField(j, "", "bin", v.bin);
+  ReadAddedField(j, "", "unknown", v.unknown);
+  ReadAddedField(j, "", "rejected", v.rejected);
 }
 
 void to_json(nlohmann::json& j, const EpisodeSummary& v) {
@@ -211,7 +230,7 @@ void to_json(nlohmann::json& j, const EpisodeVariation& v) {
 }
 
 void to_json(nlohmann::json& j, const AttemptLogEntry& v) {
-  j = {{"time_s", v.time_s}, {"category", v.category}, {"xy", v.xy}, {"result", v.result}};
+  j = {{"time_s", v.time_s}, {"category", v.category}, {"bin", v.bin}, {"xy", v.xy}, {"result", v.result}};
   // A skipped cluster has no attempt figures; an attempt has all of them.
   if (!v.duration_s) return;
   j["duration_s"] = *v.duration_s;
@@ -236,6 +255,7 @@ void to_json(nlohmann::json& j, const AttemptLogEntry& v) {
 void to_json(nlohmann::json& j, const EpisodeMetrics& v) {
   j = {{"seed", v.seed},
        {"scene", v.scene},
+       {"cell", v.cell},
        {"object_set", v.object_set},
        {"model", v.model},
        {"descriptor", v.descriptor},

@@ -26,6 +26,13 @@ struct ItemResult {
   cell::ItemOutcome outcome = cell::ItemOutcome::kLeftOnTable;
   std::optional<double> cycle_time_s;  ///< Null if never attempted.
   std::array<double, 3> final_xyz{};
+  /// The bin the cell's rules send it to (an unknown object: the reject bin), and the bin it ended
+  /// in (empty: none). Records from before the cell files have neither (both empty).
+  std::string rule_bin, bin;
+  /// From the sweep's unknown set: an object the model was not trained on.
+  bool unknown = false;
+  /// The policy's last look at it was less sure than the cell's reject_below: sent to the reject bin.
+  bool rejected = false;
 };
 
 /// Counts per outcome, every outcome present.
@@ -101,6 +108,7 @@ struct AttemptLogEntry {
   double time_s = 0;
   std::optional<double> duration_s;  ///< Null for a skipped cluster.
   std::string category;
+  std::string bin;  ///< Where the cell's rules send it (empty: undescribed).
   std::optional<double> confidence;
   std::array<double, 2> xy{};
   std::optional<double> pinch_yaw, width_m, top_z_m;
@@ -118,7 +126,7 @@ struct AttemptLogEntry {
 
 struct EpisodeMetrics {
   uint64_t seed = 0;
-  std::string scene, object_set, model, descriptor;
+  std::string scene, cell, object_set, model, descriptor;
   EpisodeVariation variation;
   std::vector<ItemResult> items;
   EpisodeSummary summary;
@@ -129,6 +137,9 @@ struct EpisodeMetrics {
 /// Counts over items: one episode's, or many episodes' pooled (sweeps).
 struct ItemTally {
   int items = 0, classified = 0, recognised = 0;
+  /// Objects of the unknown set: in all, in the reject bin, in another bin; objects of the model's set
+  /// in all and rejected (recognised less surely than reject_below).
+  int unknown = 0, unknown_rejected = 0, unknown_in_category_bin = 0, known = 0, known_rejected = 0;
   int completed = 0;   ///< Items that reached a bin (sorted or wrong_bin) with a cycle time.
   double cycle_s = 0;  ///< Their cycle times, summed.
   OutcomeCounts outcomes;

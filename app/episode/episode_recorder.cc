@@ -67,6 +67,7 @@ void EpisodeRecorder::Skipped(int detection, const cell::Detection& seen, robot:
   AttemptLogEntry entry;
   entry.time_s = cell_.Now();
   entry.category = seen.category.value_or("");
+  entry.bin = seen.bin;
   entry.xy = {seen.footprint.centre_xy.x(), seen.footprint.centre_xy.y()};
   entry.result = std::string("skipped: ") + robot::ToString(why);
   log_.push_back(entry);
@@ -127,6 +128,7 @@ void EpisodeRecorder::AttemptEnded(const cell::AttemptReport& report) {
   entry.time_s = report.start_s;
   entry.duration_s = report.end_s - report.start_s;
   entry.category = *d.category;
+  entry.bin = d.bin;
   entry.confidence = d.confidence;
   entry.xy = {d.footprint.centre_xy.x(), d.footprint.centre_xy.y()};
   entry.pinch_yaw = d.footprint.pinch_yaw;

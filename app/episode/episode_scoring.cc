@@ -4,8 +4,10 @@
 
 namespace sortcell::app {
 
-EpisodeScorer::EpisodeScorer(std::vector<PlacedObject> objects, int label_count, const TableExtent& table)
-    : objects_(std::move(objects)), label_count_(label_count), table_(table), tracks_(objects_.size()) {}
+EpisodeScorer::EpisodeScorer(std::vector<PlacedObject> objects, int label_count, const TableExtent& table,
+                             double reject_below)
+    : objects_(std::move(objects)), label_count_(label_count), table_(table), reject_below_(reject_below),
+      tracks_(objects_.size()) {}
 
 void EpisodeScorer::Observe(const cv::Mat& labels, const std::vector<DetectionRecord>& detections) {
   last_objects_.assign(detections.size(), -1);
@@ -67,16 +69,18 @@ void EpisodeScorer::Attempt(const AttemptRecord& attempt) {
   }
 }
 
-cell::ItemOutcome EpisodeScorer::OutcomeOf(size_t o, const sim::Data& data, const std::vector<sim::BinRef>& bins) const {
+std::optional<sim::BinRef> EpisodeScorer::BinHolding(size_t o, const sim::Data& data,
+                                                     const std::vector<sim::BinRef>& bins) const {
+  for (const auto& bin : bins) {
+    if (sim::InBin(data, objects_[o].body, bin)) return bin;
+  }
+  return std::nullopt;
+}
+
+cell::ItemOutcome EpisodeScorer::OutcomeOf(size_t o, const sim::Data& data, const std::optional<sim::BinRef>& in_bin) const {
   const PlacedObject& object = objects_[o];
   const Track& t = tracks_[o];
-  std::optional<cell::ItemOutcome> in_bin;
-  for (const auto& bin : bins) {
-    if (sim::InBin(data, object.body, bin.body)) {
-      in_bin = bin.category == object.category ? cell::ItemOutcome::kSorted : cell::ItemOutcome::kWrongBin;
-    }
-  }
-  if (in_bin) return *in_bin;
+  if (in_bin) return in_bin->name == object.bin ? cell::ItemOutcome::kSorted : cell::ItemOutcome::kWrongBin;
   const Eigen::Vector3d p = sim::BodyPose(data, object.body).translation();
   const bool on_table = (p.head<2>().array() >= table_.min_xy.array()).all() &&
                         (p.head<2>().array() <= table_.max_xy.array()).all() && p.z() > -0.05;
@@ -99,7 +103,12 @@ std::vector<ItemResult> EpisodeScorer::Items(const sim::Data& data, const std::v
     item.predicted_category = t.predicted;
     item.confidence = t.predicted ? t.confidence : 0.0;
     item.attempts = t.attempts;
-    item.outcome = OutcomeOf(o, data, bins);
+    const std::optional<sim::BinRef> in_bin = BinHolding(o, data, bins);
+    item.outcome = OutcomeOf(o, data, in_bin);
+    item.rule_bin = objects_[o].bin;
+    if (in_bin) item.bin = in_bin->name;
+    item.unknown = objects_[o].unknown;
+    item.rejected = t.predicted && t.confidence < reject_below_;
     if (t.attempts > 0) item.cycle_time_s = t.cycle_time_s;
     item.final_xyz = {p.x(), p.y(), p.z()};
     items.push_back(item);

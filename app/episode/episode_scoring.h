@@ -24,6 +24,8 @@ struct PlacedObject {
   std::string name, category;
   int body = -1;   ///< Body id in the model.
   int label = 0;   ///< Its value in the Kinect's label image.
+  std::string bin;       ///< Where the cell's rules send it: sorted when it ends there.
+  bool unknown = false;  ///< Not of the model's set (its bin is the reject bin).
 };
 
 /// What the policy saw of one detection, for the scorer.
@@ -54,8 +56,9 @@ struct TableExtent {
 
 class EpisodeScorer {
  public:
-  /// `label_count`: the largest value of the label image.
-  EpisodeScorer(std::vector<PlacedObject> objects, int label_count, const TableExtent& table);
+  /// `label_count`: the largest value of the label image; `reject_below`: the cell's (an item the
+  /// policy last recognised less surely was rejected).
+  EpisodeScorer(std::vector<PlacedObject> objects, int label_count, const TableExtent& table, double reject_below = 0);
 
   /// After each observation, the policy's detections in its order.
   void Observe(const cv::Mat& labels, const std::vector<DetectionRecord>& detections);
@@ -65,8 +68,8 @@ class EpisodeScorer {
   void Ungraspable(int detection);
   void Attempt(const AttemptRecord& attempt);
 
-  /// Per placed object, its outcome from where it is now: in its category's bin (sorted), in another
-  /// bin (wrong_bin), off the table or lifted and lost (dropped), given up without a plan or put back
+  /// Per placed object, its outcome from where it is now: in the bin the rules send it to (sorted), in
+  /// another bin (wrong_bin), off the table or lifted and lost (dropped), given up without a plan or put back
   /// because its bin was out of reach (unreachable), given up as wider than the gripper (ungraspable),
   /// attempted but never lifted (grasp_failed), never seen (not_detected), else left_on_table.
   std::vector<ItemResult> Items(const sim::Data& data, const std::vector<sim::BinRef>& bins) const;
@@ -90,11 +93,13 @@ class EpisodeScorer {
     std::optional<std::string> predicted;
     double confidence = 0;
   };
-  cell::ItemOutcome OutcomeOf(size_t object, const sim::Data& data, const std::vector<sim::BinRef>& bins) const;
+  cell::ItemOutcome OutcomeOf(size_t object, const sim::Data& data, const std::optional<sim::BinRef>& in_bin) const;
+  std::optional<sim::BinRef> BinHolding(size_t object, const sim::Data& data, const std::vector<sim::BinRef>& bins) const;
 
   std::vector<PlacedObject> objects_;
   int label_count_;
   TableExtent table_;
+  double reject_below_;
   std::vector<Track> tracks_;
   std::vector<int> last_objects_;  // Per detection of the last observation.
   int attempts_ = 0, grasps_ = 0;

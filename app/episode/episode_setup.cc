@@ -7,6 +7,7 @@
 
 #include "app/common/data_dir.h"
 #include "app/common/output_dir.h"
+#include "app/episode/sim_layout.h"
 #include "sim/scene_composer.h"
 
 namespace sortcell::app {
@@ -30,7 +31,7 @@ bool IncludesAll(const std::filesystem::path& scene, const std::vector<std::file
 
 }  // namespace
 
-sim::Model LoadEpisodeScene(const std::filesystem::path& scene, const ObjectSet& set) {
+sim::Model LoadEpisodeScene(const std::filesystem::path& scene, const ObjectSet& set, const CellFile& cell) {
   const std::filesystem::path data = DataDir();
   std::error_code ec;
   const bool default_cell = std::filesystem::equivalent(scene, data / "scenes" / "cell.xml", ec);
@@ -38,9 +39,10 @@ sim::Model LoadEpisodeScene(const std::filesystem::path& scene, const ObjectSet&
   for (const auto& o : set.objects) fragments.push_back(o.model);
   // The default cell holding another set is composed straight away, not loaded first to find that out.
   if (default_cell && !IncludesAll(scene, fragments)) {
-    return sim::LoadComposedCell(data / "models", fragments, scene.string() + " with " + set.source.string());
+    return sim::LoadComposedCell(data / "models", fragments, scene.string() + " with " + set.source.string(), {},
+                                 BinsXml(cell, cell::CellLayout()));
   }
-  sim::Model model = LoadScene(scene);
+  sim::Model model = LoadCellScene(scene, cell);
   std::string missing;
   for (const auto& o : set.objects) {
     if (mj_name2id(model.get(), mjOBJ_BODY, o.name.c_str()) < 0) missing += (missing.empty() ? "'" : ", '") + o.name + "'";
@@ -50,6 +52,41 @@ sim::Model LoadEpisodeScene(const std::filesystem::path& scene, const ObjectSet&
                                 set.source.string() + "' (the default cell, scenes/cell.xml, takes any set)");
   }
   return model;
+}
+
+ObjectSet LoadUnknownSet(const EpisodeOptions& options, const ObjectSet& set) {
+  if (options.unknown_objects < 0) throw std::invalid_argument("--unknown-objects: expected >= 0");
+  if (options.unknown_objects == 0) return {};
+  if (options.unknown_set.empty()) throw std::invalid_argument("--unknown-objects: needs --unknown-set");
+  ObjectSet unknown = LoadObjectSet(options.unknown_set);
+  if (options.unknown_objects > static_cast<int>(unknown.objects.size())) {
+    throw std::invalid_argument("--unknown-objects: expected at most " + std::to_string(unknown.objects.size()) +
+                                " (the objects of set '" + options.unknown_set.string() + "'), got " +
+                                std::to_string(options.unknown_objects));
+  }
+  for (const auto& spec : unknown.objects) {
+    for (const auto& known : set.objects) {
+      if (spec.name == known.name) {
+        throw std::invalid_argument("--unknown-set '" + options.unknown_set.string() + "': object '" + spec.name +
+                                    "' is also in set '" + set.source.string() + "'");
+      }
+    }
+  }
+  return unknown;
+}
+
+ObjectSet WithUnknown(const ObjectSet& set, const ObjectSet& unknown) {
+  ObjectSet all = set;
+  all.objects.insert(all.objects.end(), unknown.objects.begin(), unknown.objects.end());
+  return all;
+}
+
+std::vector<ObjectSpec> ChooseUnknownObjects(const ObjectSet& unknown, int count, std::mt19937_64& rng) {
+  if (count <= 0) return {};
+  std::vector<ObjectSpec> all = unknown.objects;
+  std::shuffle(all.begin(), all.end(), rng);
+  all.resize(count);
+  return all;
 }
 
 int ObjectCount(const ObjectSet& set, const EpisodeOptions& options) {

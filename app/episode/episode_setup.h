@@ -6,6 +6,7 @@
 #include <random>
 #include <vector>
 
+#include "app/common/cell_file.h"
 #include "app/common/object_set.h"
 #include "app/episode/episode.h"
 #include "sim/clutter_placement.h"
@@ -13,12 +14,23 @@
 
 namespace sortcell::app {
 
-/// The episode's scene: `scene` as it is when it holds every object of `set` as a body; else the cell
-/// `scene` names (its table, bins, camera and arm: the cell's models under DataDir()) composed with the
-/// set's objects instead of the scene's own (sim::ComposeCell), so any set, imported ones included,
-/// sorts in the default cell. Composed only for the default cell (scenes/cell.xml).
-/// @throws std::invalid_argument naming the scene and the objects it lacks for any other scene.
-sim::Model LoadEpisodeScene(const std::filesystem::path& scene, const ObjectSet& set);
+/// The episode's scene with the bins of `cell`: `scene` as it is when it holds every object of `set`
+/// as a body; else the cell `scene` names (its table, camera and arm: the cell's models under
+/// DataDir()) composed with the set's objects instead of the scene's own (sim::ComposeCell), so any
+/// set, imported ones included, sorts in the default cell. Composed only for the default cell
+/// (scenes/cell.xml).
+/// @throws std::invalid_argument naming the scene and the objects it lacks for any other scene, or
+///         as LoadCellScene.
+sim::Model LoadEpisodeScene(const std::filesystem::path& scene, const ObjectSet& set, const CellFile& cell);
+
+/// The objects the model does not know (options.unknown_set), none when options.unknown_objects is 0.
+/// @throws std::invalid_argument naming the option or set: a count without a set or beyond its size,
+///         an object named as one of `set`'s.
+ObjectSet LoadUnknownSet(const EpisodeOptions& options, const ObjectSet& set);
+/// `set` with `unknown`'s objects after its own: every object the scene must hold.
+ObjectSet WithUnknown(const ObjectSet& set, const ObjectSet& unknown);
+/// `count` objects of `unknown` drawn at random (no draw from `rng` for none).
+std::vector<ObjectSpec> ChooseUnknownObjects(const ObjectSet& unknown, int count, std::mt19937_64& rng);
 
 /// How many objects the episode asks for: `options.objects`, or (0) all of the set, at most 6.
 /// @throws std::invalid_argument for a count outside 1..set size.

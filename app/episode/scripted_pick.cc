@@ -52,8 +52,8 @@ PickTarget FindTarget(const sim::Model& model, const PickOptions& options) {
   PickTarget target;
   target.object = model.Id(mjOBJ_BODY, options.object);
   for (const auto& bin : sim::Bins(model)) {
-    bin_names.push_back(sim::BinName(bin.category));
-    if (sim::BinName(bin.category) == bin_name) target.bin = bin;
+    bin_names.push_back(sim::BinName(bin.name));
+    if (sim::BinName(bin.name) == bin_name) target.bin = bin;
   }
   if (target.bin.body < 0) {
     throw std::invalid_argument("scene '" + options.scene.string() + "': no bin named '" + options.bin +
@@ -130,9 +130,10 @@ nlohmann::json ResultJson(const PickOptions& options, const PickResult& result, 
 PickResult RunPick(const PickOptions& options, const std::vector<std::string>& command_line) {
   const auto wall_start = WallClock::now();
   PrepareOutputDir(options.out);
-  const sim::Model model = LoadScene(options.scene);
+  const CellFile cell_file = ReadCellFileOrDefault(options.cell);
+  const sim::Model model = LoadCellScene(options.scene, cell_file);
   const PickTarget target = FindTarget(model, options);
-  const cell::CellLayout layout = ReadCellLayout(model);
+  const cell::CellLayout layout = ReadCellLayout(model, cell_file);
   const int tcp = model.Id(mjOBJ_SITE, "tcp");
 
   sim::Data data(model);
@@ -175,7 +176,7 @@ PickResult RunPick(const PickOptions& options, const std::vector<std::string>& c
   if (grasp.status == robot::GraspStatus::kOk) {
     cell::PickRequest request;
     request.grasp = grasp;
-    request.p_W_release = layout.p_W_bin.at(target.bin.category);  // The bin's middle.
+    request.p_W_release = cell::BinNamed(layout, target.bin.name).p_W_floor;  // The bin's middle.
     request.place_yaw_step = robot::GraspOptions().place_yaw_step;  // Any yaw: the bin's middle.
     request.q_home = layout.q_observe;
     request.speeds = layout.speeds;
@@ -189,7 +190,7 @@ PickResult RunPick(const PickOptions& options, const std::vector<std::string>& c
   }
   result.cycle_time_s = cell.Now() - t0;
   motions.Wait("settle_result", kPickSettleTime);
-  result.in_bin = sim::InBin(data, target.object, target.bin.body);
+  result.in_bin = sim::InBin(data, target.object, target.bin);
   result.status = outcome ? PickStatus(*outcome, result.in_bin) : robot::ToString(grasp.status);
   if (video) {
     video->Close();

@@ -15,6 +15,7 @@ namespace sortcell::app {
 
 struct PickOptions {
   std::filesystem::path scene;
+  std::filesystem::path cell;  ///< Bins and rules; empty: the default cell.
   std::string object;
   std::string bin;  ///< "cup" or "bin_cup"
   std::filesystem::path video;  ///< Empty: no video.

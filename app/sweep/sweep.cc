@@ -19,13 +19,16 @@
 #include <stdexcept>
 #include <thread>
 
+#include "app/common/cell_file.h"
 #include "app/common/data_dir.h"
 #include "app/common/object_set.h"
 #include "app/common/output_dir.h"
 #include "app/common/progress.h"
 #include "app/common/wall_clock.h"
-#include "app/sweep/sweep_lock.h"
+#include "app/episode/episode_setup.h"
+#include "app/episode/sim_layout.h"
 #include "app/recognition/default_model.h"
+#include "app/sweep/sweep_lock.h"
 #include "app/sweep/sweep_record.h"
 #include "app/sweep/sweep_report.h"
 #include "app/sweep/sweep_spec.h"
@@ -228,6 +231,8 @@ std::vector<std::string> EpisodeArguments(const SweepSetup& s, const Worker& w) 
                                 "--seed",        std::to_string(w.seed),
                                 "--out",         w.dir.string(),
                                 "--model",       w.axes.contains("model") ? w.axes["model"].get<std::string>() : s.model.string()};
+  if (!s.spec.cell.empty()) args.insert(args.end(), {"--cell", s.spec.cell.string()});
+  if (!s.spec.unknown_set.empty()) args.insert(args.end(), {"--unknown-set", s.spec.unknown_set.string()});
   static const std::map<std::string, std::string> kAxisOptions{
       {"light_intensity", "--light-intensity"}, {"noise_scale", "--noise-scale"},   {"friction_scale", "--friction-scale"},
       {"mass_scale", "--mass-scale"},           {"camera_shift_m", "--camera-shift"}, {"camera_turn_rad", "--camera-turn"},
@@ -235,6 +240,7 @@ std::vector<std::string> EpisodeArguments(const SweepSetup& s, const Worker& w) 
       {"colour_jitter", "--colour-jitter"}};
   for (const auto& [axis, value] : w.axes.items()) {
     if (axis == "objects") args.insert(args.end(), {"--objects", std::to_string(value.get<int>())});
+    if (axis == "unknown_objects") args.insert(args.end(), {"--unknown-objects", std::to_string(value.get<int>())});
     if (axis == "placement") args.insert(args.end(), {"--placement", value.get<std::string>()});
     if (axis == "self_calibrate") args.insert(args.end(), {"--self-calibrate", value.get<std::string>()});
     const auto option = kAxisOptions.find(axis);
@@ -384,6 +390,30 @@ class EpisodeRunner {
   std::map<pid_t, Worker> running_;
 };
 
+// The cell layout, the unknown set and the scene holding both sets, checked once rather than in every
+// worker; a warning for each object a bin cannot hold.
+void CheckCell(const SweepSpec& spec, const ObjectSet& set) {
+  const CellFile cell = ReadCellFileOrDefault(spec.cell);
+  EpisodeOptions unknowns;
+  unknowns.unknown_set = spec.unknown_set;
+  unknowns.unknown_objects = spec.unknown_set.empty() ? 0 : 1;
+  const ObjectSet unknown = LoadUnknownSet(unknowns, set);
+  const sim::Model model = LoadEpisodeScene(spec.scene, WithUnknown(set, unknown), cell);
+  const cell::CellLayout layout = ReadCellLayout(model, cell);
+  const std::string where = "cell layout '" + cell.source.string() + "'";
+  if (!unknown.objects.empty() && layout.rules.reject_bin.empty()) {
+    throw std::invalid_argument(where + ": unknown objects (" + spec.unknown_set.string() + ") need a 'reject' bin");
+  }
+  std::vector<std::pair<std::string, std::string>> objects_and_bins;
+  for (const auto& o : set.objects) {
+    const auto bin = layout.rules.BinOf(o.category);
+    if (!bin) throw std::invalid_argument(where + ": category '" + o.category + "' goes to no bin (no rule for it and no \"*\")");
+    objects_and_bins.emplace_back(o.name, *bin);
+  }
+  for (const auto& o : unknown.objects) objects_and_bins.emplace_back(o.name, layout.rules.reject_bin);
+  for (const auto& w : BinCapacityWarnings(model, layout, objects_and_bins)) spdlog::warn("{}: {}", where, w);
+}
+
 }  // namespace
 
 SweepRun RunSweep(const SweepOptions& options, const std::vector<std::string>& command_line) {
@@ -393,7 +423,7 @@ SweepRun RunSweep(const SweepOptions& options, const std::vector<std::string>& c
   CheckOptions(options);
   const SweepSpec spec = LoadSweepSpec(options.spec, options.sets);
   const ObjectSet set = LoadObjectSet(spec.object_set);
-  LoadScene(spec.scene);  // Fails here, once, rather than in every worker.
+  CheckCell(spec, set);  // Fails here, once, rather than in every worker.
   PrepareOutputDir(options.out);
   const SweepLock lock(options.out);  // Before anything in the folder is read or written.
   RemoveStalePartialFiles(options.out);  // What a killed sweep was writing.

@@ -67,6 +67,7 @@ struct GroupFigures {
   std::pair<double, double> ci95{0, 1};
   OutcomeCounts outcomes;
   double sim_time_s = 0, episode_wall_time_s = 0;
+  int unknown = 0, unknown_rejected = 0, unknown_in_category_bin = 0, known = 0, known_rejected = 0;
 };
 
 GroupFigures Figures(const Tally& t) {
@@ -94,7 +95,24 @@ GroupFigures Figures(const Tally& t) {
   f.carry_slip_max_mm = t.slip_max_mm;
   f.carry_slip_mean_mm = Ratio(t.slip_sum_mm, t.carries);
   f.carry_turn_max_deg = t.turn_max_deg;
+  f.unknown = t.items.unknown;
+  f.unknown_rejected = t.items.unknown_rejected;
+  f.unknown_in_category_bin = t.items.unknown_in_category_bin;
+  f.known = t.items.known;
+  f.known_rejected = t.items.known_rejected;
   return f;
+}
+
+// Objects the model does not know (the sweep's unknown set) and the rejections of those it knows.
+nlohmann::json RejectionJson(const GroupFigures& f) {
+  return {{"unknown_objects", f.unknown},
+          {"unknown_rejected", f.unknown_rejected},
+          {"unknown_rejected_rate", OrNull(Ratio(f.unknown_rejected, f.unknown))},
+          {"unknown_in_category_bin", f.unknown_in_category_bin},
+          {"unknown_in_category_bin_rate", OrNull(Ratio(f.unknown_in_category_bin, f.unknown))},
+          {"known_objects", f.known},
+          {"known_rejected", f.known_rejected},
+          {"known_rejected_rate", OrNull(Ratio(f.known_rejected, f.known))}};
 }
 
 nlohmann::json FiguresJson(const GroupFigures& f) {
@@ -117,7 +135,8 @@ nlohmann::json FiguresJson(const GroupFigures& f) {
           {"carry_turn_max_deg", f.carry_turn_max_deg},
           {"sim_time_s", f.sim_time_s},
           {"episode_wall_time_s", f.episode_wall_time_s},
-          {"real_time_factor", OrNull(f.real_time_factor)}};
+          {"real_time_factor", OrNull(f.real_time_factor)},
+          {"rejection", RejectionJson(f)}};
 }
 
 // The outcomes other than sorted (the failures), in metrics.json's order.
@@ -235,6 +254,14 @@ std::string MarkdownOverview(const SweepSpec& spec, const GroupFigures& all) {
                     all.mean_cycle_time_s ? fmt::format("{:.1f} s", *all.mean_cycle_time_s) : "n/a",
                     all.picks_per_hour ? fmt::format("{:.0f}", *all.picks_per_hour) : "n/a");
   md += MarkdownPhases(all);
+  if (all.unknown > 0 || all.known_rejected > 0) {
+    md += fmt::format(
+        "Unknown objects: {} of {} rejected ({}), {} sorted into a category bin ({}); known objects wrongly "
+        "rejected: {} of {} ({}).\n\n",
+        all.unknown_rejected, all.unknown, Percent(Ratio(all.unknown_rejected, all.unknown)), all.unknown_in_category_bin,
+        Percent(Ratio(all.unknown_in_category_bin, all.unknown)), all.known_rejected, all.known,
+        Percent(Ratio(all.known_rejected, all.known)));
+  }
   md += "Outcomes: ";
   for (size_t i = 0; i < cell::kItemOutcomes.size(); ++i) {
     const auto o = cell::kItemOutcomes[i];

@@ -12,9 +12,9 @@
 namespace sortcell::app {
 namespace {
 
-const std::set<std::string> kTopLevelKeys{"scene", "object_set", "model",  "seed", "episodes",
-                                          "seeds", "mode",       "episode_timeout_s", "axes"};
-const std::set<std::string> kPathKeys{"scene", "object_set", "model"};
+const std::set<std::string> kTopLevelKeys{"scene", "cell",  "object_set", "unknown_set",       "model",
+                                          "seed",  "episodes", "seeds",   "mode", "episode_timeout_s", "axes"};
+const std::set<std::string> kPathKeys{"scene", "cell", "object_set", "unknown_set", "model"};
 
 // Reads the spec's keys: files are relative to the spec's folder and must exist.
 class SpecReader {
@@ -107,6 +107,8 @@ void ReadFiles(const SpecReader& r, const YAML::Node& root, SweepSpec& spec) {
   spec.scene = r.File("scene", y.String(root, "scene", "the top level"));
   spec.object_set = r.File("object_set", y.String(root, "object_set", "the top level"));
   if (root["model"] && !root["model"].IsNull()) spec.model = r.File("model", y.String(root, "model", "the top level"));
+  if (root["cell"]) spec.cell = r.File("cell", y.String(root, "cell", "the top level"));
+  if (root["unknown_set"]) spec.unknown_set = r.File("unknown_set", y.String(root, "unknown_set", "the top level"));
 }
 
 void ReadEpisodes(const YamlReader& y, const YAML::Node& root, SweepSpec& spec) {
@@ -158,9 +160,9 @@ nlohmann::json AxisValue(const SpecReader& r, const std::string& name, const YAM
     }
     return v.Scalar();
   }
-  if (name == "objects") {
+  if (name == "objects" || name == "unknown_objects") {
     const long long k = y.Integer(v, where);
-    if (k < 1) y.Fail("key '" + where + "': expected at least 1 object");
+    if (name == "objects" && k < 1) y.Fail("key '" + where + "': expected at least 1 object");
     return k;
   }
   const double x = y.Number(v, where);
@@ -210,7 +212,8 @@ void ReadAxes(const SpecReader& r, const YAML::Node& root, SweepSpec& spec) {
 const std::vector<std::string>& SweepAxisNames() {
   static const std::vector<std::string> names{"objects",     "light_intensity", "camera_shift_m", "camera_turn_rad",
                                                "noise_scale", "friction_scale",  "mass_scale",     "model",
-                                               "reject_below", "placement",      "lying_fraction", "self_calibrate", "colour_jitter"};
+                                               "reject_below", "placement",      "lying_fraction", "self_calibrate", "colour_jitter",
+                                               "unknown_objects"};
   return names;
 }
 
@@ -226,7 +229,7 @@ namespace {
 
 // A value drawn from a range axis.
 nlohmann::json DrawFromRange(const SweepAxis& axis, std::mt19937_64& rng) {
-  if (axis.name == "objects") {
+  if (axis.name == "objects" || axis.name == "unknown_objects") {
     return std::uniform_int_distribution<int>(static_cast<int>(axis.min), static_cast<int>(axis.max))(rng);
   }
   return std::uniform_real_distribution<double>(axis.min, axis.max)(rng);
@@ -279,6 +282,10 @@ SweepSpec LoadSweepSpec(const std::filesystem::path& file, const std::vector<std
   ReadEpisodes(reader.yaml(), root, spec);
   ReadRunSettings(reader.yaml(), root, spec);
   ReadAxes(reader, root, spec);
+  const bool unknowns = std::any_of(spec.axes.begin(), spec.axes.end(), [](const SweepAxis& a) {
+    return a.name == "unknown_objects";
+  });
+  if (unknowns && spec.unknown_set.empty()) reader.yaml().Fail("axis 'unknown_objects' needs the key 'unknown_set'");
   return spec;
 }
 

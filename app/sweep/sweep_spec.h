@@ -4,7 +4,9 @@
 /// random or laid out as a grid.
 ///
 ///   scene: ../cell.xml                  # relative to the spec file
+///   cell: ../cells/default.yaml         # optional: bins and rules (default: the default cell)
 ///   object_set: ../objects/paper.yaml
+///   unknown_set: ../objects/ycb_dev.yaml  # objects the model does not know, for axis unknown_objects
 ///   model: ../../out/models/x.json      # optional; default: the cached default model of the set
 ///   seed: 0                             # base seed
 ///   episodes: 100                       # random: how many; grid: repeats per grid cell
@@ -20,6 +22,7 @@
 ///     lying_fraction: [0.3]             # chance a bottle or box lies on its side
 ///     colour_jitter: {min: 0, max: 1}  # each object's colours varied (hue, saturation, brightness)
 ///     self_calibrate: [on, off]         # hand-eye calibration first (default auto: when the camera moves)
+///     unknown_objects: [0, 1, 2]        # objects of unknown_set added (the rules send them to the reject bin)
 ///
 /// In grid mode a range axis is drawn per repeat: every grid cell sees the same draws.
 
@@ -44,6 +47,8 @@ struct SweepAxis {
 struct SweepSpec {
   std::filesystem::path source;
   std::filesystem::path scene, object_set, model;  ///< Absolute; model empty: the default.
+  std::filesystem::path cell;         ///< Absolute; empty: the default cell.
+  std::filesystem::path unknown_set;  ///< Absolute; empty: none (then no unknown_objects axis).
   uint64_t seed = 0;
   int episodes = 1;
   std::vector<uint64_t> seeds;  ///< When given, replaces `episodes`.
@@ -62,8 +67,8 @@ struct SweepSpec {
 const std::vector<std::string>& SweepAxisNames();
 
 /// Loads a spec; `overrides` ("KEY=VALUE", from `sortcell sweep --set`) replace keys of the file
-/// before it is read: a top-level key (scene, object_set, model, seed, episodes, seeds, mode,
-/// episode_timeout_s) or an axis, "axes.NAME=VALUE" (one value: that axis fixed at it). VALUE is
+/// before it is read: a top-level key (scene, cell, object_set, unknown_set, model, seed, episodes,
+/// seeds, mode, episode_timeout_s) or an axis, "axes.NAME=VALUE" (one value: that axis fixed at it). VALUE is
 /// YAML ("3", "[1, 2]", "{min: 1, max: 2}"); files given so are relative to the working folder;
 /// setting one of episodes and seeds drops the other.
 /// @throws std::invalid_argument "sweep spec '<file>': <what>" for a missing file, bad YAML, an

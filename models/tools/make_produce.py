@@ -439,6 +439,7 @@ def main():
 <mujoco model="sortcell_produce">
   <compiler angle="radian" autolimits="true"/>
   <include file="../models/cell/cell.inc.xml"/>
+  <include file="../models/cell/bins.inc.xml"/>
   <!-- Seventy objects resting on the table need more contacts and constraint rows than MuJoCo's
        default budget. -->
   <size nconmax="500" njmax="4000"/>

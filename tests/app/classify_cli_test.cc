@@ -91,7 +91,7 @@ TEST(ClassifyCli, BadInputIsOneLineExitTwo) {
   ExpectOneLineError(RunSortcell("classify --pcd " + tiny.string() + " --model " + kModel), "cannot be described");
 }
 
-TEST(ClassifyCli, TheEpisodeSortsUnknownObjectsIntoOthers) {
+TEST(ClassifyCli, TheEpisodeSortsUnsureObjectsIntoTheRejectBin) {
   ASSERT_TRUE(fs::exists(kModel));
   const std::string out = TempPath("episode_reject");
   const auto r = RunSortcell("episode --scene " + kSource + "/scenes/cell.xml --object-set " + kSource +
@@ -100,11 +100,16 @@ TEST(ClassifyCli, TheEpisodeSortsUnknownObjectsIntoOthers) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const nlohmann::json m = ReadJson(fs::path(out) / "metrics.json");
   ASSERT_EQ(m["items"].size(), 2u);
-  for (const auto& item : m["items"]) EXPECT_EQ(item["outcome"], "wrong_bin") << item.dump();  // All in 'others'.
+  // The default cell's reject bin is 'others': both there, rejected, what the model called them kept.
+  for (const auto& item : m["items"]) {
+    EXPECT_EQ(item["outcome"], "wrong_bin") << item.dump();
+    EXPECT_EQ(item["bin"], "others") << item.dump();
+    EXPECT_EQ(item["rule_bin"], item["true_category"]) << item.dump();
+    EXPECT_EQ(item["rejected"], true) << item.dump();
+  }
   for (const auto& a : m["attempts"]) {
-    if (a.contains("category")) {
-      EXPECT_EQ(a["category"], "others") << a.dump();
-    }
+    EXPECT_EQ(a["bin"], "others") << a.dump();
+    EXPECT_NE(a["category"], "others") << a.dump();
   }
 }
 

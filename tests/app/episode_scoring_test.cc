@@ -22,7 +22,7 @@ const char* kCellXml = R"(
   <worldbody>
     <geom name="table_top" type="plane" pos="0.3 0 0" size="0.6 0.7 0.01"/>
     <body name="bin_cup" pos="0.45 0.48 0">
-      <site name="bin_cup" pos="0 0 0.008" size="0.01"/>
+      <site name="bin_cup" type="box" pos="0 0 0.008" size="0.1 0.1 0.001"/>
       <geom type="box" pos="0 0 0.004" size="0.108 0.108 0.004"/>
     </body>
     <body name="a" pos="0.5 0 0.03"><freejoint/><geom type="box" size="0.02 0.02 0.02"/></body>
@@ -31,6 +31,15 @@ const char* kCellXml = R"(
     <body name="d" pos="0.4 0 0.03"><freejoint/><geom type="box" size="0.02 0.02 0.02"/></body>
   </worldbody>
 </mujoco>)";
+
+// The cell file of that scene: bin 'cup', 0.20 m square inside; cups to it, balls to 'ball'.
+CellFile CupCell() {
+  CellFile cell;
+  cell.source = "cup cell";
+  cell.bins.push_back({"cup", cell::Bin{Eigen::Vector3d(0.45, 0.48, 0.008), Eigen::Vector2d(0.1, 0.1)}});
+  cell.rules.bin_of = {{"cup", "cup"}, {"ball", "ball"}};
+  return cell;
+}
 
 class ScorerTest : public ::testing::Test {
  protected:
@@ -42,9 +51,9 @@ class ScorerTest : public ::testing::Test {
     mj_forward(model_.get(), data_.get());
   }
   EpisodeScorer Scorer() const {
-    const cell::CellLayout layout = ReadCellLayout(model_);
-    return EpisodeScorer({{"a", "cup", Body("a"), 1}, {"b", "cup", Body("b"), 2}, {"c", "ball", Body("c"), 3},
-                          {"d", "cup", Body("d"), 4}},
+    const cell::CellLayout layout = ReadCellLayout(model_, CupCell());
+    return EpisodeScorer({{"a", "cup", Body("a"), 1, "cup"}, {"b", "cup", Body("b"), 2, "cup"},
+                          {"c", "ball", Body("c"), 3, "ball"}, {"d", "cup", Body("d"), 4, "cup"}},
                          4, {layout.table_min_xy, layout.table_max_xy});
   }
   // A 2x2 label image: pixel i shows object label i + 1.
@@ -54,22 +63,30 @@ class ScorerTest : public ::testing::Test {
   sim::Data data_{model_};
 };
 
-TEST_F(ScorerTest, ReadsTheLayoutFromTheScene) {
-  const cell::CellLayout layout = ReadCellLayout(model_);
-  ASSERT_EQ(layout.p_W_bin.count("cup"), 1u);
-  EXPECT_TRUE(layout.p_W_bin.at("cup").isApprox(Eigen::Vector3d(0.45, 0.48, 0.008)));
+TEST_F(ScorerTest, ReadsTheLayoutFromTheCellFileAndTheTableFromTheScene) {
+  const cell::CellLayout layout = ReadCellLayout(model_, CupCell());
+  ASSERT_EQ(layout.bins.count("cup"), 1u);
+  EXPECT_TRUE(layout.bins.at("cup").p_W_floor.isApprox(Eigen::Vector3d(0.45, 0.48, 0.008)));
   EXPECT_TRUE(layout.table_min_xy.isApprox(Eigen::Vector2d(-0.3, -0.7)));
   EXPECT_TRUE(layout.table_max_xy.isApprox(Eigen::Vector2d(0.9, 0.7)));
 }
 
-TEST(SimLayout, ASceneWithoutTableOrBinSiteIsNamed) {
+TEST(SimLayout, ASceneWithoutTableOrBinSiteOrWithOtherBinsIsNamed) {
+  CellFile no_bins = CupCell();
+  no_bins.bins.clear();
   const sim::Model no_table = sim::Model::FromVirtualFiles(
       {{"t.xml", "<mujoco><worldbody><geom name='floor' type='plane' size='1 1 0.1'/></worldbody></mujoco>"}}, "no table");
-  EXPECT_EQ(ErrorOf([&] { ReadCellLayout(no_table); }), "scene 'no table': no table geom 'table_top'");
+  EXPECT_EQ(ErrorOf([&] { ReadCellLayout(no_table, no_bins); }), "scene 'no table': no table geom 'table_top'");
   const sim::Model no_site = sim::Model::FromVirtualFiles(
       {{"b.xml", "<mujoco><worldbody><body name='bin_cup'><geom type='box' size='0.1 0.1 0.01'/></body></worldbody></mujoco>"}},
       "no site");
-  EXPECT_EQ(ErrorOf([&] { ReadCellLayout(no_site); }), "scene 'no site': bin 'bin_cup' has no floor site 'bin_cup'");
+  EXPECT_EQ(ErrorOf([&] { ReadCellLayout(no_site, CupCell()); }),
+            "scene 'no site': bin 'bin_cup' has no box site 'bin_cup' (its floor centre, sized to its inside)");
+  // The scene's bin stands elsewhere than the cell file's.
+  const sim::Model moved = sim::Model::FromVirtualFiles({{"cell.xml", kCellXml}}, "inline cell");
+  CellFile elsewhere = CupCell();
+  elsewhere.bins[0].bin.p_W_floor.x() = 0.15;
+  EXPECT_NE(ErrorOf([&] { ReadCellLayout(moved, elsewhere); }).find("bin 'cup' stands elsewhere"), std::string::npos);
   EXPECT_NE(ErrorOf([&] { NominalCameraPose(no_site, "kinect"); }).find("kinect"), std::string::npos);
 }
 

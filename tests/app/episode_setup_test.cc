@@ -7,6 +7,7 @@
 
 #include <random>
 
+#include "app/common/output_dir.h"
 #include "app/episode/episode.h"
 #include "error_of.h"
 #include "perception/recognition_model.h"
@@ -129,11 +130,19 @@ TEST(EpisodeSetup, AModelThatDoesNotKnowACategoryOfTheSetIsRefused) {
                 "/scenes/objects/paper.yaml'");
 }
 
-TEST(EpisodeSetup, AModelClassWithoutABinIsRefused) {
+TEST(EpisodeSetup, AModelClassTheRulesSendNowhereIsRefused) {
   const auto model = ModelWithClasses({"bottle", "cup", "ball", "others", "plate"}, "five_classes");
-  EXPECT_EQ(ErrorOf([&] { RunEpisode(PaperEpisode(model), {}); }),
-            "model '" + model.string() + "': class 'plate' has no bin 'bin_plate' in scene '" + kSource +
-                "/scenes/cell.xml'");
+  // The default bins with a rule per category of the set and no "*": a plate goes nowhere.
+  std::string text = ReadTextFile(kSource + "/scenes/cells/default.yaml");
+  const std::string wildcard = "\"*\": others";
+  ASSERT_NE(text.find(wildcard), std::string::npos);
+  text.replace(text.find(wildcard), wildcard.size(), "others: others");
+  EpisodeOptions options = PaperEpisode(model);
+  options.cell = std::filesystem::path(sortcell_test::TestTempDir()) / "no_wildcard.yaml";
+  WriteTextFile(options.cell, text);
+  EXPECT_EQ(ErrorOf([&] { RunEpisode(options, {}); }),
+            "cell layout '" + options.cell.string() + "' with model '" + model.string() +
+                "': rules: the model's class 'plate' goes to no bin (no rule for it and no \"*\")");
 }
 
 }  // namespace

@@ -28,7 +28,7 @@ std::filesystem::path CellScene() { return std::filesystem::path(SORTCELL_SOURCE
 // true position in the true camera frame, clean and through the Kinect's noise.
 TEST(MarkerSighting, FindsTheGrippersMarkerWhereTheSimulatorHasIt) {
   sim::Model model = LoadScene(CellScene());
-  const cell::CellLayout layout = ReadCellLayout(model);
+  const cell::CellLayout layout = ReadCellLayout(model, ReadCellFile(DefaultCellFile()));
   sim::Data data(model);
   const std::vector<std::string> bodies = sim::FreeBodyNames(model);  // Off the table: the arm sweeps it.
   for (size_t i = 0; i < bodies.size(); ++i) sim::StowObject(model, data, model.Id(mjOBJ_BODY, bodies[i]), static_cast<int>(i));

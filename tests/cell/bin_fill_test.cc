@@ -11,10 +11,10 @@ namespace {
 
 const Eigen::Isometry3d kIdentity = Eigen::Isometry3d::Identity();
 
-// The layout with one bin, 'others', floor at (0.45, -0.48, 0.008).
+// The layout with one bin, 'others', floor at (0.45, -0.48, 0.008), 0.20 m square inside.
 CellLayout OneBin() {
   CellLayout layout;
-  layout.p_W_bin = {{"others", Eigen::Vector3d(0.45, -0.48, 0.008)}};
+  layout.bins["others"] = Bin{Eigen::Vector3d(0.45, -0.48, 0.008), Eigen::Vector2d(0.10, 0.10)};
   return layout;
 }
 
@@ -43,7 +43,7 @@ TEST(BinFill, EmptyBinsTakeTheSlotsInOrderAndLyingObjectsAboveTheWalls) {
     EXPECT_DOUBLE_EQ(r.yaw_step, layout.place_yaw_step);
   }
   const BinRelease lying = bins.Lying("others");
-  EXPECT_TRUE(lying.p_W_floor.isApprox(layout.p_W_bin.at("others")));
+  EXPECT_TRUE(lying.p_W_floor.isApprox(layout.bins.at("others").p_W_floor));
   EXPECT_DOUBLE_EQ(lying.clearance, layout.bin_wall_height + 0.01);
   // Along either diagonal: the held object lies along the TCP's x, (-sin yaw, cos yaw).
   EXPECT_NEAR(std::abs(std::sin(lying.yaw_offset)), std::abs(std::cos(lying.yaw_offset)), 1e-9);
@@ -123,8 +123,8 @@ TEST(BinFill, ReleasesAreRememberedUntilACaptureSeesThere) {
 TEST(BinFill, MisuseIsNamed) {
   CellLayout layout = OneBin();
   const BinFill bins(layout);
-  EXPECT_EQ(sortcell_test::ErrorOf([&] { bins.Upright("plate", 0, 0.035, 0.03); }), "cell layout: no bin for category 'plate'");
-  EXPECT_EQ(sortcell_test::ErrorOf([&] { bins.Lying("plate"); }), "cell layout: no bin for category 'plate'");
+  EXPECT_EQ(sortcell_test::ErrorOf([&] { bins.Upright("plate", 0, 0.035, 0.03); }), "cell layout: no bin 'plate'");
+  EXPECT_EQ(sortcell_test::ErrorOf([&] { bins.Lying("plate"); }), "cell layout: no bin 'plate'");
   layout.bin_slots.clear();
   const BinFill no_slots(layout);
   EXPECT_EQ(sortcell_test::ErrorOf([&] { no_slots.Upright("others", 0, 0.035, 0.03); }), "cell layout: no bin slots");

@@ -25,8 +25,9 @@ const Cylinder kCup{{0.5, -0.1}, 0.04, 0.10, 220, 120, 30};   // orange, short: 
 
 CellLayout Layout() {
   CellLayout layout;
-  layout.p_W_bin["bottle"] = Eigen::Vector3d(0.15, 0.48, 0.008);
-  layout.p_W_bin["cup"] = Eigen::Vector3d(0.45, 0.48, 0.008);
+  layout.bins["bottle"] = Bin{Eigen::Vector3d(0.15, 0.48, 0.008), Eigen::Vector2d(0.10, 0.10)};
+  layout.bins["cup"] = Bin{Eigen::Vector3d(0.45, 0.48, 0.008), Eigen::Vector2d(0.10, 0.10)};
+  layout.rules.bin_of = {{"bottle", "bottle"}, {"cup", "cup"}};
   return layout;
 }
 
@@ -274,7 +275,7 @@ TEST(SortingPolicy, TheTimeBudgetEndsTheEpisode) {
 
 TEST(SortingPolicy, PutsBackAnObjectWhoseBinIsOutOfReachWithoutCountingItDropped) {
   CellLayout layout = Layout();
-  layout.p_W_bin["bottle"] = Eigen::Vector3d(2.0, 2.0, 0.0);
+  layout.bins["bottle"].p_W_floor = Eigen::Vector3d(2.0, 2.0, 0.0);
   const SortRun run = Sort({kBottle}, {true, true}, {}, layout);
   ASSERT_EQ(run.seen.results.size(), 1u);  // Given up as unreachable afterwards: no second attempt.
   EXPECT_EQ(run.seen.results[0], AttemptResult::kPutBack);
@@ -358,7 +359,7 @@ TEST(SortingPolicy, NeverPicksAFragmentTooSmallToDescribe) {
 
 TEST(SortingPolicy, RejectsAModelClassWithoutABin) {
   CellLayout layout = Layout();
-  layout.p_W_bin.erase("cup");
+  layout.rules.bin_of.erase("cup");
   FakeCell cell(layout.q_observe);
   const CameraCalibration calibration = Calibration();
   try {
@@ -387,9 +388,10 @@ TEST(SortingPolicy, RejectsBudgetsOutOfRange) {
 
 TEST(CellLayout, BinSlotsCycleAndAnUnknownBinIsNamed) {
   const CellLayout layout = Layout();
-  EXPECT_TRUE(BinSlot(layout, "cup", 0).isApprox(layout.p_W_bin.at("cup") + layout.bin_slots[0]));
-  EXPECT_TRUE(BinSlot(layout, "cup", 6).isApprox(layout.p_W_bin.at("cup") + layout.bin_slots[1]));
-  EXPECT_EQ(sortcell_test::ErrorOf([&] { BinSlot(layout, "plate", 0); }), "cell layout: no bin for category 'plate'");
+  const Eigen::Vector3d p_W_cup = layout.bins.at("cup").p_W_floor;
+  EXPECT_TRUE(BinSlot(layout, "cup", 0).isApprox(p_W_cup + Eigen::Vector3d(-0.05, -0.05, 0)));
+  EXPECT_TRUE(BinSlot(layout, "cup", 6).isApprox(p_W_cup + Eigen::Vector3d(0.05, 0.05, 0)));
+  EXPECT_EQ(sortcell_test::ErrorOf([&] { BinSlot(layout, "plate", 0); }), "cell layout: no bin 'plate'");
 }
 
 TEST(ObserveScene, MisuseThrowsAndAnEmptyViewIsAStatus) {
