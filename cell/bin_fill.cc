@@ -140,10 +140,12 @@ BinRelease BinFill::Upright(const std::string& bin, int filled, double radius, d
 BinRelease BinFill::Lying(const std::string& bin) const {
   const Eigen::Vector2d half = MapOf(bin).half;  // Names an unknown bin first.
   const Eigen::Vector2d reach = half.array() - kLyingHalfWidth;
-  // The object hangs along the TCP's x axis, (-sin yaw, cos yaw) for a top-down pinch at yaw: yaws
-  // pi/4 + k pi/2 lay it along either diagonal, whichever the arm turns to more easily. (Choosing the
+  // The object hangs along the TCP's x axis, (-sin yaw, cos yaw) for a top-down pinch at yaw: either
+  // diagonal, whichever the arm turns to more easily, let go above what is on both. (Choosing the
   // emptier one made the arm turn the wrist the long way, and a bottle grasped off its middle swung
-  // out over a wall.) Let go above what is on either diagonal's axis.
+  // out over a wall.) But when something stands above the walls on one diagonal (a bottle upright in
+  // a corner slot) and not on the other, it goes along the other: let go above the standing bottle, a
+  // lying one came to rest across its cap, above the bin.
   auto axis = [&](double sign) {
     BinRelease band;
     band.from = Eigen::Vector2d(-reach.x(), -sign * reach.y());
@@ -151,12 +153,20 @@ BinRelease BinFill::Lying(const std::string& bin) const {
     band.half_width = kAxisHalfWidth;
     return HighestUnder(bin, band);
   };
+  // The diagonal along `sign` (its direction (reach.x, sign reach.y)) and its mirror through the middle.
+  auto along = [&](double sign) { return std::atan2(-reach.x(), sign * reach.y()); };
+  const double rising = axis(1), falling = axis(-1), above_walls = layout_.bin_wall_height + 0.01;
   BinRelease release;
   release.p_W_floor = layout_.bins.at(bin).p_W_floor;
-  // Along the diagonal (-sin yaw, cos yaw) = reach, or its mirror: both diagonals of a square bin.
-  release.yaw_offset = std::atan2(reach.x(), reach.y());
-  release.yaw_step = std::abs(reach.x() - reach.y()) < 1e-9 ? M_PI / 2 : M_PI;
-  release.clearance = std::max(layout_.bin_wall_height + 0.01, std::max(axis(1), axis(-1)) + kAboveContents);
+  release.yaw_offset = along(-1);
+  release.yaw_step = std::abs(reach.x() - reach.y()) < 1e-9 ? M_PI / 2 : M_PI;  // A square's both diagonals.
+  double under = std::max(rising, falling);
+  if (under + kAboveContents > above_walls && std::min(rising, falling) < under) {
+    release.yaw_offset = along(rising < falling ? 1 : -1);
+    release.yaw_step = M_PI;
+    under = std::min(rising, falling);
+  }
+  release.clearance = std::max(above_walls, under + kAboveContents);
   // Where it ends is not known until a capture sees it: anywhere in the bin.
   release.half_width = 2 * half.maxCoeff();
   return release;

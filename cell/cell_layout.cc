@@ -34,7 +34,8 @@ const Bin& BinNamed(const CellLayout& layout, const std::string& bin) {
 Eigen::Vector3d BinSlot(const CellLayout& layout, const std::string& bin, int filled) {
   const Bin& b = BinNamed(layout, bin);
   if (layout.bin_slots.empty()) return b.p_W_floor;
-  const Eigen::Vector2d slot = layout.bin_slots[filled % layout.bin_slots.size()].cwiseProduct(b.inner_half);
+  const Eigen::Vector2d room = (b.inner_half.array() - layout.bin_slot_inset).max(0.0);
+  const Eigen::Vector2d slot = layout.bin_slots[filled % layout.bin_slots.size()].cwiseProduct(room);
   return b.p_W_floor + Eigen::Vector3d(slot.x(), slot.y(), 0);
 }
 

@@ -62,9 +62,13 @@ struct CellLayout {
   std::map<std::string, Bin> bins;
   /// Which bin each recognised object goes into.
   SortingRules rules;
-  /// Where released objects go in a bin, in order, as fractions of its inner half extents: its
-  /// quadrants, then the middle, so a bin takes four objects without dropping one onto another.
-  std::vector<Eigen::Vector2d> bin_slots{{-0.5, -0.5}, {0.5, 0.5}, {-0.5, 0.5}, {0.5, -0.5}, {0, 0}};
+  /// Where released objects go in a bin, in order: its corners, then the middle, so a bin takes four
+  /// objects without dropping one onto another. Each is a direction from the floor's centre (signs
+  /// along x and y); a corner slot's centre stays bin_slot_inset from the walls. (In a larger bin the
+  /// corner slots move apart: in a 0.26 m bin, slots half way to the walls put an upright bottle on the
+  /// edge of one lying across the middle, and it toppled out over the wall.)
+  std::vector<Eigen::Vector2d> bin_slots{{-1, -1}, {1, 1}, {-1, 1}, {1, -1}, {0, 0}};
+  double bin_slot_inset = 0.05;
   /// Held objects are released square to the bin: placement yaws in steps of this (rad).
   double place_yaw_step = M_PI / 2;
   /// Every bin's walls (m). An object longer than a bin is wide goes in along the diagonal, in the

@@ -113,9 +113,13 @@ TEST(BinFill, ReleasesAreRememberedUntilACaptureSeesThere) {
     EXPECT_DOUBLE_EQ(seen.HighestUnder("others", first), 0.0);
   }
   EXPECT_TRUE(bins.Upright("others", 0, 0.035, 0.03).p_W_floor.isApprox(BinSlot(layout, "others", 1)));
-  // A lying object is let go above the bottle on the diagonal, and may then lie anywhere in the bin.
+  // A lying object goes along the other diagonal (the bottle stands on this one's end), let go just
+  // above the walls, and may then lie anywhere in the bin.
   const BinRelease lying = bins.Lying("others");
-  EXPECT_DOUBLE_EQ(lying.clearance, 0.22 + 0.015);
+  EXPECT_DOUBLE_EQ(lying.clearance, layout.bin_wall_height + 0.01);
+  EXPECT_DOUBLE_EQ(lying.yaw_step, M_PI);
+  const Eigen::Vector2d along(-std::sin(lying.yaw_offset), std::cos(lying.yaw_offset));
+  EXPECT_NEAR(std::abs(along.x() + along.y()), 0, 1e-9) << "along the diagonal from (-x, +y) to (+x, -y)";
   bins.Released("others", lying, 0.07);
   EXPECT_DOUBLE_EQ(bins.Upright("others", 1, 0.035, 0.03).clearance, 0.22 + 0.07 + 0.015);
 }
