@@ -140,8 +140,9 @@ BinRelease BinFill::Upright(const std::string& bin, int filled, double radius, d
 BinRelease BinFill::Lying(const std::string& bin) const {
   const Eigen::Vector2d half = MapOf(bin).half;  // Names an unknown bin first.
   const Eigen::Vector2d reach = half.array() - kLyingHalfWidth;
-  // The object hangs along the TCP's x axis, (-sin yaw, cos yaw) for a top-down pinch at yaw: either
-  // diagonal, whichever the arm turns to more easily, let go above what is on both. (Choosing the
+  // The object hangs along the TCP's x axis, (-sin yaw, cos yaw) for a top-down pinch at yaw: in a
+  // square bin either diagonal, whichever the arm turns to more easily (in an oblong one, one
+  // diagonal), let go above what is on both. (Choosing the
   // emptier one made the arm turn the wrist the long way, and a bottle grasped off its middle swung
   // out over a wall.) But when something stands above the walls on one diagonal (a bottle upright in
   // a corner slot) and not on the other, it goes along the other: let go above the standing bottle, a

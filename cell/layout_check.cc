@@ -4,6 +4,7 @@
 
 #include <fmt/format.h>
 
+#include "cell/bin_fill.h"
 #include "robot/grasp_planner.h"
 
 namespace sortcell::cell {
@@ -56,6 +57,15 @@ void CheckOne(const CellLayout& layout, const std::string& name, const Bin& bin)
       throw std::invalid_argument(fmt::format("bin '{}' at {}: the arm cannot reach down into it at {}", name,
                                               Xy(bin.p_W_floor), Xy(p_W)));
     }
+  }
+  // A lying object, along a diagonal, let go above the walls (BinFill::Lying of the empty bin).
+  const BinRelease lying = BinFill(layout).Lying(name);
+  options.place_yaw_step = lying.yaw_step;
+  options.place_yaw_offset = lying.yaw_offset;
+  options.release_clearance = lying.clearance;
+  if (!robot::PlanPlacement(lying.p_W_floor, kHeldAboveGrasp, layout.q_observe, options).ok) {
+    throw std::invalid_argument(fmt::format("bin '{}' at {}: the arm cannot lay a lying object along its diagonal",
+                                            name, Xy(bin.p_W_floor)));
   }
 }
 

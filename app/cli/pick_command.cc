@@ -19,7 +19,7 @@ void AddPickCommand(CLI::App& app, std::function<int()>& run, const std::vector<
   cmd->add_option("--scene", options->scene, "MJCF scene file, e.g. scenes/cell.xml")->required();
   cmd->add_option("--cell", options->cell, "Cell layout: bins and rules (default: scenes/cells/default.yaml)");
   cmd->add_option("--object", options->object, "Object (free body) to pick, e.g. bottle1")->required();
-  cmd->add_option("--bin", options->bin, "Bin to place it in: bottle, cup, ball or others (or bin_<name>)")
+  cmd->add_option("--bin", options->bin, "Bin of the cell layout to place it in, e.g. cup (or bin_<name>)")
       ->required();
   cmd->add_option("--video", options->video, "Also write an H.264 MP4 from the review camera (30 fps)");
   auto video_size = std::make_shared<std::string>("1280x720");

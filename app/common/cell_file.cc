@@ -7,6 +7,7 @@
 #include "app/common/data_dir.h"
 #include "app/common/yaml_reader.h"
 #include "cell/layout_check.h"
+#include "sim/ground_truth.h"
 
 namespace sortcell::app {
 namespace {
@@ -57,9 +58,14 @@ cell::SortingRules ReadRules(const YamlReader& reader, const YAML::Node& root) {
   if (!map) reader.Fail("missing key 'rules'");
   if (!map.IsMap() || map.size() == 0) reader.Fail("key 'rules': expected a map category: bin, found " + NodeKind(map));
   for (const auto& rule : map) {
-    const std::string category = rule.first.as<std::string>();
-    if (!rule.second.IsScalar()) reader.Fail("key 'rules." + category + "': expected a bin name");
-    const std::string bin = rule.second.as<std::string>();
+    if (!rule.first.IsScalar() || rule.first.Scalar().empty()) {
+      reader.Fail("key 'rules': expected category names (or \"*\") as keys, found " + NodeKind(rule.first));
+    }
+    const std::string category = rule.first.Scalar();
+    if (!rule.second.IsScalar() || rule.second.Scalar().empty()) {
+      reader.Fail("key 'rules." + category + "': expected a bin name, found " + NodeKind(rule.second));
+    }
+    const std::string bin = rule.second.Scalar();
     (category == "*" ? rules.otherwise : rules.bin_of[category]) = bin;
   }
   if (root["reject"]) rules.reject_bin = reader.String(root, "reject", "the top level");
@@ -119,20 +125,20 @@ std::string BinsXml(const CellFile& cell, const cell::CellLayout& walls) {
   xml << "<!-- The bins of cell layout '" << cell.name << "' (written by sortcell from " << cell.source.filename().string()
       << "). -->\n<mujoco>\n  <asset>\n";
   for (const auto& b : cell.bins) {
-    xml << "    <material name=\"bin_" << b.name << "\" rgba=\"" << b.colour[0] << " " << b.colour[1] << " "
+    xml << "    <material name=\"" << sim::BinName(b.name) << "\" rgba=\"" << b.colour[0] << " " << b.colour[1] << " "
         << b.colour[2] << " 1\"/>\n";
   }
   xml << "  </asset>\n  <worldbody>\n";
   const double t = walls.bin_wall_thickness, h = walls.bin_wall_height;
   for (const auto& b : cell.bins) {
     const Eigen::Vector2d in = b.bin.inner_half, out = in.array() + t;
-    const std::string name = "bin_" + b.name;
+    const std::string name = sim::BinName(b.name);
     xml << "    <body name=\"" << name << "\" pos=\"" << b.bin.p_W_floor.x() << " " << b.bin.p_W_floor.y()
         << " 0\" childclass=\"env\">\n";
     xml << "      <site name=\"" << name << "\" type=\"box\" pos=\"0 0 " << kFloorThickness << "\" size=\"" << in.x()
         << " " << in.y() << " 0.001\" group=\"4\"/>\n";
     xml << "      <geom type=\"box\" pos=\"0 0 " << kFloorThickness / 2 << "\" size=\"" << out.x() << " " << out.y()
-        << " " << kFloorThickness / 2 << "\" material=\"bin_wall\"/>\n";
+        << " " << kFloorThickness / 2 << "\" material=\"bins_floor\"/>\n";
     const double wall_z = kFloorThickness + (h - kFloorThickness) / 2, wall_half = (h - kFloorThickness) / 2;
     for (const double s : {1.0, -1.0}) {
       xml << "      <geom type=\"box\" pos=\"" << s * (in.x() + t / 2) << " 0 " << wall_z << "\" size=\"" << t / 2 << " "

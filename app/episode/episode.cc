@@ -1,5 +1,7 @@
 #include "app/episode/episode.h"
 
+#include <spdlog/spdlog.h>
+
 #include <algorithm>
 #include <memory>
 #include <random>
@@ -33,6 +35,7 @@ namespace sortcell::app {
 namespace {
 
 constexpr double kSceneSettleTime = 1.0;  // s, after placing the objects and before scoring
+constexpr int kObjectDraws = 20;          // Draws of the episode's objects before "they do not fit".
 
 class EpisodeRun {
  public:
@@ -108,12 +111,21 @@ void EpisodeRun::SelfCalibrate() {
 
 // The objects: chosen, and where asked or at random non-overlapping poses (drawn before the
 // calibration's captures draw their noise, so a seed sets the same scene with or without it).
+// A draw of large objects may not fit the table apart (two 0.22 m plates among six produce objects):
+// then the objects are drawn again, up to kObjectDraws times (a draw that fits uses the generator as before).
 void EpisodeRun::DrawObjects() {
-  chosen_ = ChooseObjects(set_, options_, rng_);
-  for (auto& spec : ChooseUnknownObjects(unknown_, options_.unknown_objects, rng_)) chosen_.push_back(std::move(spec));
-  shapes_.clear();
-  for (const auto& spec : chosen_) shapes_.push_back(sim::ObjectShapeOf(model_, model_.Id(mjOBJ_BODY, spec.name)));
-  poses_ = DrawPoses(options_.placements, shapes_, sim::PlacementArea(), options_.placement, rng_);
+  for (int draw = 1;; ++draw) {
+    chosen_ = ChooseObjects(set_, options_, rng_);
+    for (auto& spec : ChooseUnknownObjects(unknown_, options_.unknown_objects, rng_)) chosen_.push_back(std::move(spec));
+    shapes_.clear();
+    for (const auto& spec : chosen_) shapes_.push_back(sim::ObjectShapeOf(model_, model_.Id(mjOBJ_BODY, spec.name)));
+    if (draw == kObjectDraws) break;
+    if (auto poses = TryDrawPoses(options_.placements, shapes_, sim::PlacementArea(), options_.placement, rng_)) {
+      poses_ = std::move(*poses);
+      return;
+    }
+  }
+  poses_ = DrawPoses(options_.placements, shapes_, sim::PlacementArea(), options_.placement, rng_);  // Or says why not.
 }
 
 void EpisodeRun::PlaceObjects() {
@@ -122,6 +134,7 @@ void EpisodeRun::PlaceObjects() {
   const std::vector<sim::TablePose>& poses = poses_;
   const std::vector<std::string>& label_names = rig_->kinect().object_names();
   std::vector<PlacedObject> placed;
+  std::vector<std::pair<std::string, std::string>> objects_and_bins;
   for (size_t i = 0; i < chosen.size(); ++i) {
     const int body = model_.Id(mjOBJ_BODY, chosen[i].name);
     sim::PlaceObject(model_, rig_->data(), body, poses[i], shapes[i]);
@@ -130,6 +143,10 @@ void EpisodeRun::PlaceObjects() {
     const bool unknown = i >= chosen.size() - static_cast<size_t>(options_.unknown_objects);
     const std::string bin = unknown ? layout_.rules.reject_bin : *layout_.rules.BinOf(chosen[i].category);
     placed.push_back({chosen[i].name, chosen[i].category, body, label, bin, unknown});
+    objects_and_bins.emplace_back(chosen[i].name, bin);
+  }
+  for (const auto& w : BinCapacityWarnings(model_, layout_, objects_and_bins)) {
+    spdlog::warn("cell layout '{}': {}", cell_.source.string(), w);
   }
   mj_forward(model_.get(), rig_->data().get());
   scorer_ = std::make_unique<EpisodeScorer>(std::move(placed), static_cast<int>(label_names.size()),

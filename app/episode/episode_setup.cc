@@ -120,9 +120,10 @@ std::vector<ObjectSpec> ChooseObjects(const ObjectSet& set, const EpisodeOptions
   return chosen;
 }
 
-std::vector<sim::TablePose> DrawPoses(const std::vector<ObjectPlacement>& placements,
-                                      const std::vector<sim::ObjectShape>& shapes, const sim::PlacementArea& area,
-                                      const sim::PlacementOptions& placement, std::mt19937_64& rng) {
+std::optional<std::vector<sim::TablePose>> TryDrawPoses(const std::vector<ObjectPlacement>& placements,
+                                                        const std::vector<sim::ObjectShape>& shapes,
+                                                        const sim::PlacementArea& area,
+                                                        const sim::PlacementOptions& placement, std::mt19937_64& rng) {
   std::vector<sim::TablePose> fixed;
   for (size_t i = 0; i < placements.size(); ++i) {
     const ObjectPlacement& p = placements[i];
@@ -131,7 +132,13 @@ std::vector<sim::TablePose> DrawPoses(const std::vector<ObjectPlacement>& placem
     }
     fixed.push_back({p.x, p.y, p.yaw, p.lying});
   }
-  if (auto poses = sim::SampleClutter(shapes, fixed, area, placement, rng)) return *poses;
+  return sim::SampleClutter(shapes, fixed, area, placement, rng);
+}
+
+std::vector<sim::TablePose> DrawPoses(const std::vector<ObjectPlacement>& placements,
+                                      const std::vector<sim::ObjectShape>& shapes, const sim::PlacementArea& area,
+                                      const sim::PlacementOptions& placement, std::mt19937_64& rng) {
+  if (auto poses = TryDrawPoses(placements, shapes, area, placement, rng)) return *poses;
   throw std::invalid_argument("--objects: " + std::to_string(shapes.size()) + " objects do not fit the table area (" +
                               sim::ToString(placement.mode) + " placement) with the given placements");
 }

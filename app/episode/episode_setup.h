@@ -3,6 +3,7 @@
 /// Setting an episode's scene up: which objects of the set take part and where they stand.
 
 #include <filesystem>
+#include <optional>
 #include <random>
 #include <vector>
 
@@ -49,5 +50,11 @@ std::vector<ObjectSpec> ChooseObjects(const ObjectSet& set, const EpisodeOptions
 std::vector<sim::TablePose> DrawPoses(const std::vector<ObjectPlacement>& placements,
                                       const std::vector<sim::ObjectShape>& shapes, const sim::PlacementArea& area,
                                       const sim::PlacementOptions& placement, std::mt19937_64& rng);
+/// As DrawPoses, but empty when no arrangement is found.
+/// @throws std::invalid_argument "--place: ..." for a placement lying that cannot lie.
+std::optional<std::vector<sim::TablePose>> TryDrawPoses(const std::vector<ObjectPlacement>& placements,
+                                                        const std::vector<sim::ObjectShape>& shapes,
+                                                        const sim::PlacementArea& area,
+                                                        const sim::PlacementOptions& placement, std::mt19937_64& rng);
 
 }  // namespace sortcell::app

@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "app/common/data_dir.h"
+#include "cell/layout_check.h"
 #include "sim/camera_model.h"
 #include "sim/ground_truth.h"
 #include "sim/object_shape.h"
@@ -62,6 +63,11 @@ cell::CellLayout ReadCellLayout(const sim::Model& model, const CellFile& cell) {
   const Eigen::Vector2d half(model.get()->geom_size[3 * table], model.get()->geom_size[3 * table + 1]);
   layout.table_min_xy = centre - half;
   layout.table_max_xy = centre + half;
+  try {
+    cell::CheckBins(layout);  // On this scene's table.
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument("cell layout '" + cell.source.string() + "' in scene '" + model.source() + "': " + e.what());
+  }
   return layout;
 }
 

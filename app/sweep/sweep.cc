@@ -9,6 +9,7 @@
 #include <spdlog/fmt/fmt.h>
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <chrono>
 #include <csignal>
@@ -392,12 +393,33 @@ class EpisodeRunner {
 
 // The cell layout, the unknown set and the scene holding both sets, checked once rather than in every
 // worker; a warning for each object a bin cannot hold.
+// The largest value axis `name` takes (0 without it).
+double AxisMax(const SweepSpec& spec, const std::string& name) {
+  double most = 0;
+  for (const auto& axis : spec.axes) {
+    if (axis.name != name) continue;
+    if (axis.is_range()) most = std::max(most, axis.max);
+    for (const auto& v : axis.values) most = std::max(most, v.get<double>());
+  }
+  return most;
+}
+
 void CheckCell(const SweepSpec& spec, const ObjectSet& set) {
   const CellFile cell = ReadCellFileOrDefault(spec.cell);
   EpisodeOptions unknowns;
   unknowns.unknown_set = spec.unknown_set;
   unknowns.unknown_objects = spec.unknown_set.empty() ? 0 : 1;
   const ObjectSet unknown = LoadUnknownSet(unknowns, set);
+  const std::string in_spec = "sweep spec '" + spec.source.string() + "': ";
+  if (AxisMax(spec, "unknown_objects") > static_cast<double>(unknown.objects.size())) {
+    throw std::invalid_argument(in_spec + "axis 'unknown_objects' reaches " + fmt::format("{:g}", AxisMax(spec, "unknown_objects")) +
+                                ", but unknown set '" + spec.unknown_set.string() + "' has " +
+                                std::to_string(unknown.objects.size()) + " objects");
+  }
+  if (AxisMax(spec, "reject_below") > 0 && cell.rules.reject_bin.empty()) {
+    throw std::invalid_argument(in_spec + "axis 'reject_below' needs a 'reject' bin in cell layout '" +
+                                cell.source.string() + "'");
+  }
   const sim::Model model = LoadEpisodeScene(spec.scene, WithUnknown(set, unknown), cell);
   const cell::CellLayout layout = ReadCellLayout(model, cell);
   const std::string where = "cell layout '" + cell.source.string() + "'";

@@ -346,6 +346,27 @@ std::vector<AxisGroup> GroupByObject(const std::vector<SweepRecord>& records) {
   return groups;
 }
 
+namespace {
+
+// The categories whose recognition the sweep checked on one object only (every item of the category,
+// unknown objects aside, was the same object): a set with a single instance of a category, or a sweep
+// too short to draw the others.
+std::vector<std::string> SingleInstanceCategories(const std::vector<SweepRecord>& records) {
+  std::map<std::string, std::set<std::string>> objects;
+  for (const auto& r : records) {
+    for (const auto& item : r.items) {
+      if (!item.unknown) objects[item.true_category].insert(item.name);
+    }
+  }
+  std::vector<std::string> single;
+  for (const auto& [category, names] : objects) {
+    if (names.size() == 1) single.push_back(category + " (" + *names.begin() + ")");
+  }
+  return single;
+}
+
+}  // namespace
+
 // The episodes' hand-eye self-calibrations: how many succeeded, the camera error they left (median
 // and largest) against the nominal pose's, and what they cost. Null when no episode calibrated.
 // The upper median and the largest of values (not empty).
@@ -449,6 +470,12 @@ nlohmann::json WriteSweepReport(const std::filesystem::path& dir, const SweepSpe
   md += MarkdownRuns(summary["runs"], summary["resources"]);
   summary["calibration"] = CalibrationSummary(records);
   md += MarkdownCalibration(summary["calibration"]);
+  summary["single_instance_categories"] = SingleInstanceCategories(records);
+  if (!summary["single_instance_categories"].empty()) {
+    std::string list;
+    for (const auto& c : summary["single_instance_categories"]) list += (list.empty() ? "" : ", ") + c.get<std::string>();
+    md += "\nRecognition of " + list + " was checked on that one object only: no other object of its category took part.\n";
+  }
   for (const auto& axis : spec.axes) {
     const std::vector<AxisGroup> groups = GroupByAxis(axis, records);
     if (groups.size() < 2) continue;

@@ -166,7 +166,7 @@ nlohmann::json AxisValue(const SpecReader& r, const std::string& name, const YAM
     return k;
   }
   const double x = y.Number(v, where);
-  if (name == "lying_fraction" || name == "colour_jitter") {
+  if (name == "lying_fraction" || name == "colour_jitter" || name == "reject_below") {
     if (!(x >= 0 && x <= 1)) y.Fail("key '" + where + "': expected a fraction in [0, 1]");
     return x;
   }
@@ -286,6 +286,7 @@ SweepSpec LoadSweepSpec(const std::filesystem::path& file, const std::vector<std
     return a.name == "unknown_objects";
   });
   if (unknowns && spec.unknown_set.empty()) reader.yaml().Fail("axis 'unknown_objects' needs the key 'unknown_set'");
+  if (!unknowns && !spec.unknown_set.empty()) reader.yaml().Fail("key 'unknown_set' needs the axis 'unknown_objects'");
   return spec;
 }
 

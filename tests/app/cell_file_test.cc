@@ -85,6 +85,8 @@ TEST(CellFile, LayoutsTheRobotCannotWorkInAreRefusedWithTheReason) {
   EXPECT_NE(error(a, "rules: {bottle: b}\n").find("rules: no bin 'b' in the layout"), std::string::npos);
   EXPECT_NE(error(a, rules + "reject_below: 0.5\n").find("needs a 'reject' bin"), std::string::npos);
   EXPECT_NE(error(a, rules + "colour: red\n").find("unknown key 'colour'"), std::string::npos);
+  EXPECT_NE(error(a, "rules: {[x, y]: a}\n").find("key 'rules': expected category names"), std::string::npos);
+  EXPECT_NE(error(a, "rules: {\"*\": \"\"}\n").find("key 'rules.*': expected a bin name"), std::string::npos);
   EXPECT_NE(error("  - {name: a, at: [0.15], size: [0.26, 0.26]}\n").find("bins[0].at': expected a list of 2 numbers"),
             std::string::npos);
 }

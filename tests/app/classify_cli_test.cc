@@ -1,6 +1,7 @@
 // Recognition on the command line: `segment --model` names every segment of a capture, `classify`
 // names one segment's cloud (the same answer), `--reject-below` calls the unsure 'unknown' (and the
-// episode sorts them into 'others'). The model comes from the CTest fixture episode_model.
+// episode sorts them into the cell's reject bin; objects of an unknown set belong there). The model
+// comes from the CTest fixture episode_model.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -111,6 +112,36 @@ TEST(ClassifyCli, TheEpisodeSortsUnsureObjectsIntoTheRejectBin) {
     EXPECT_EQ(a["bin"], "others") << a.dump();
     EXPECT_NE(a["category"], "others") << a.dump();
   }
+}
+
+TEST(ClassifyCli, UnknownObjectsBelongInTheRejectBin) {
+  ASSERT_TRUE(fs::exists(kModel));
+  const std::string out = TempPath("episode_unknown");
+  // Everything rejected (--reject-below 1): the known bottle ends in the reject bin, wrongly; the produce
+  // object the model never saw ends there rightly.
+  const auto r = RunSortcell("episode --scene " + kSource + "/scenes/cell.xml --cell " + kSource +
+                             "/scenes/cells/default_reject.yaml --object-set " + kSource +
+                             "/scenes/objects/paper.yaml --unknown-set " + kSource +
+                             "/scenes/objects/produce_one_each.yaml --unknown-objects 1 --model " + kModel +
+                             " --seed 2 --objects 1 --place bottle1=0.55,0.15 --reject-below 1 --out " + out);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json m = ReadJson(fs::path(out) / "metrics.json");
+  ASSERT_EQ(m["items"].size(), 2u);
+  const auto& known = m["items"][0];
+  const auto& unknown = m["items"][1];
+  EXPECT_EQ(known["name"], "bottle1");
+  EXPECT_EQ(known["unknown"], false);
+  EXPECT_EQ(known["rule_bin"], "bottle");
+  EXPECT_EQ(unknown["unknown"], true) << unknown.dump();
+  EXPECT_EQ(unknown["rule_bin"], "reject");
+  for (const auto& item : {known, unknown}) {
+    if (item["bin"] != "") {
+      EXPECT_EQ(item["bin"], "reject") << item.dump();
+    }
+  }
+  EXPECT_EQ(known["bin"] == "reject" ? known["outcome"] : nlohmann::json("wrong_bin"), "wrong_bin") << known.dump();
+  EXPECT_EQ(unknown["bin"] == "reject" ? unknown["outcome"] : nlohmann::json("sorted"), "sorted") << unknown.dump();
+  EXPECT_EQ(m["cell"], kSource + "/scenes/cells/default_reject.yaml");
 }
 
 }  // namespace
