@@ -249,11 +249,23 @@ std::string RelativeFiles(const std::string& text,
   return out + text.substr(from);
 }
 
+// A keyframe "checked": the state `data` holds (the first batch at rest), to load in mujoco-simulate.
+std::string CheckedKeyframe(const sim::Model& model, const sim::Data& data) {
+  std::ostringstream key;
+  key.precision(9);
+  key << "  <keyframe>\n    <key name=\"checked\" qpos=\"";
+  for (int i = 0; i < model->nq; ++i) key << (i ? " " : "") << data->qpos[i];
+  key << "\" ctrl=\"";
+  for (int i = 0; i < model->nu; ++i) key << (i ? " " : "") << data->ctrl[i];
+  key << "\"/>\n  </keyframe>\n";
+  return key.str();
+}
+
 // The composed scene on disk for mujoco-simulate: the cell's files named from `out`; imported objects'
 // fragments copied beside it (their meshes named from `out`, their textures from scenes/, where
-// MuJoCo looks for every texture of the cell: texturedir).
+// MuJoCo looks for every texture of the cell: texturedir); `keyframe` before its end.
 void WriteSceneFiles(const ObjectSet& set, const std::filesystem::path& models_dir, const std::filesystem::path& out,
-                     const std::filesystem::path& scene) {
+                     const std::filesystem::path& scene, const std::string& keyframe) {
   const std::filesystem::path scenes_dir = std::filesystem::absolute(models_dir.parent_path() / "scenes").lexically_normal();
   const std::filesystem::path out_dir = std::filesystem::absolute(out).lexically_normal();
   const auto from_out = [&](const std::filesystem::path& f) { return f.lexically_relative(out_dir); };
@@ -279,6 +291,7 @@ void WriteSceneFiles(const ObjectSet& set, const std::filesystem::path& models_d
     }
     const size_t after_compiler = file.text.find("/>\n") + 3;
     file.text.insert(after_compiler, "  <compiler texturedir=\"" + from_out(scenes_dir).string() + "/\"/>\n");
+    file.text.insert(file.text.rfind("</mujoco>"), keyframe);
     WriteTextFile(scene, file.text);
   }
 }
@@ -309,16 +322,18 @@ ObjectCheck CheckObjects(const ObjectSet& set, const std::filesystem::path& out,
     shapes.push_back(sim::ObjectShapeOf(rig.model, bodies.back()));
   }
   ObjectCheck check;
+  std::string keyframe;  // The first batch at rest, as the first still shows it.
   while (!remaining.empty()) {
     std::vector<size_t> batch;
     const std::vector<sim::TablePose> spots = NextBatch(remaining, shapes, batch);
     for (auto& r : DropBatch(rig, set, bodies, shapes, batch, spots, options)) check.objects.push_back(std::move(r));
+    if (keyframe.empty()) keyframe = CheckedKeyframe(rig.model, rig.data);
     check.stills.push_back(out / ("objects_" + std::to_string(check.stills.size() + 1) + ".png"));
     WriteStill(rig, check.stills.back());
   }
   check.scene = out / "scene.xml";
   WriteCheckJson(set, check, out);
-  WriteSceneFiles(set, models_dir, out, check.scene);
+  WriteSceneFiles(set, models_dir, out, check.scene, keyframe);
   return check;
 }
 

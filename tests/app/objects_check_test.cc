@@ -1,5 +1,5 @@
 // `sortcell objects check` on a user's object: imported, dropped on the table, found resting on its
-// flat base, with a still and a scene file.
+// flat base, with a still and a scene file whose keyframe holds it at rest.
 #include <gtest/gtest.h>
 
 #include <cstdlib>
@@ -9,6 +9,7 @@
 
 #include "../assets/user_objects.h"
 #include "run_sortcell.h"
+#include "sim/model.h"
 #include "temp_dir.h"
 
 namespace {
@@ -28,7 +29,14 @@ TEST(ObjectsCheck, AnImportedObjectRestsOnTheTable) {
   EXPECT_EQ(thing.at("import").at("collision_pieces"), 2);
   EXPECT_LT(thing.at("tilt_deg").get<double>(), 2.0);  // stands on its flat base
   EXPECT_TRUE(std::filesystem::exists(out / "objects_1.png"));
-  EXPECT_TRUE(std::filesystem::exists(out / "scene.xml"));
+  // mujoco-simulate opens the scene; its keyframe "checked" has the object where it came to rest.
+  const sortcell::sim::Model scene = sortcell::sim::Model::FromFile((out / "scene.xml").string());
+  const int key = mj_name2id(scene.get(), mjOBJ_KEY, "checked");
+  ASSERT_GE(key, 0);
+  const int body = scene.Id(mjOBJ_BODY, thing.at("name").get<std::string>());
+  const double* p = scene->key_qpos + key * scene->nq + scene->jnt_qposadr[scene->body_jntadr[body]];
+  const auto settled = thing.at("settled_at_m");
+  for (int i = 0; i < 3; ++i) EXPECT_NEAR(p[i], settled[i].get<double>(), 1e-6) << i;
 }
 
 }  // namespace
