@@ -88,6 +88,29 @@ TEST(ObjectImport, AUrdfWithATextureAndTwoConvexPieces) {
   EXPECT_EQ(colliding, 2);
 }
 
+// A ball given as URDF primitives: its footprint is its equator (what the fingers close across), its
+// inertia a solid sphere's, its origin at its base.
+TEST(ObjectImport, ASpherePrimitiveIsAsWideAsItsEquator) {
+  sortcell_test::TempDir dir;
+  const std::filesystem::path urdf = dir.path() / "ball.urdf";
+  std::ofstream(urdf) << "<robot name='ball'><link name='ball'>"
+                         "<inertial><mass value='0.2'/><inertia ixx='1e-3' iyy='1e-3' izz='1e-3' ixy='0' ixz='0' iyz='0'/></inertial>"
+                         "<visual><geometry><sphere radius='0.035'/></geometry></visual>"
+                         "<collision><geometry><sphere radius='0.035'/></geometry></collision>"
+                         "</link></robot>";
+  assets::ObjectSource source;
+  source.name = "ball";
+  source.urdf = urdf;
+  const auto r = assets::ImportObject(source, dir.path() / "cache").report;
+  EXPECT_EQ(r.collision_pieces, 1);
+  EXPECT_NEAR(r.grip_width, 0.07, 1e-3);
+  EXPECT_TRUE(r.size.isApprox(Eigen::Vector3d::Constant(0.07), 1e-3)) << r.size.transpose();
+  EXPECT_NEAR(r.volume, 4.0 / 3.0 * M_PI * std::pow(0.035, 3), 1e-9);
+  const double solid = 0.4 * 0.2 * 0.035 * 0.035;  // 2/5 m r^2, never the URDF's 1e-3
+  EXPECT_TRUE(r.principal_inertia.isApprox(Eigen::Vector3d::Constant(solid), 1e-3)) << r.principal_inertia.transpose();
+  EXPECT_NEAR(r.com.z(), 0.035, 1e-6);  // the origin at its base
+}
+
 TEST(ObjectImport, BoxMassPropertiesAndMinimumWidth) {
   const auto hull = assets::ConvexHull({{0, 0, 0}, {0.2, 0, 0}, {0, 0.1, 0}, {0.2, 0.1, 0},
                                         {0, 0, 0.05}, {0.2, 0, 0.05}, {0, 0.1, 0.05}, {0.2, 0.1, 0.05}, {0.1, 0.05, 0.02}});
