@@ -36,11 +36,6 @@ void CheckOne(const CellLayout& layout, const std::string& name, const Bin& bin)
                                             inside.x(), inside.y(), kMinBinInside, kMaxBinInside));
   }
   const Footprint outer = OuterOf(layout, bin);
-  if ((outer.min.array() < layout.table_min_xy.array()).any() || (outer.max.array() > layout.table_max_xy.array()).any()) {
-    throw std::invalid_argument(fmt::format("bin '{}' at {} stands off the table (x {}..{}, y {}..{} m)", name,
-                                            Xy(bin.p_W_floor), layout.table_min_xy.x(), layout.table_max_xy.x(),
-                                            layout.table_min_xy.y(), layout.table_max_xy.y()));
-  }
   const Footprint pick_area{layout.workspace_min_W.head<2>(), layout.workspace_max_W.head<2>()};
   if (Overlap(outer, pick_area, 0)) {
     throw std::invalid_argument(fmt::format(
@@ -71,8 +66,21 @@ void CheckOne(const CellLayout& layout, const std::string& name, const Bin& bin)
 
 }  // namespace
 
+void CheckBinsOnTable(const CellLayout& layout) {
+  for (const auto& [name, bin] : layout.bins) {
+    const Footprint outer = OuterOf(layout, bin);
+    if ((outer.min.array() < layout.table_min_xy.array()).any() ||
+        (outer.max.array() > layout.table_max_xy.array()).any()) {
+      throw std::invalid_argument(fmt::format("bin '{}' at {} stands off the table (x {}..{}, y {}..{} m)", name,
+                                              Xy(bin.p_W_floor), layout.table_min_xy.x(), layout.table_max_xy.x(),
+                                              layout.table_min_xy.y(), layout.table_max_xy.y()));
+    }
+  }
+}
+
 void CheckBins(const CellLayout& layout) {
   if (layout.bins.empty()) throw std::invalid_argument("no bins");
+  CheckBinsOnTable(layout);
   for (const auto& [name, bin] : layout.bins) CheckOne(layout, name, bin);
   for (auto a = layout.bins.begin(); a != layout.bins.end(); ++a) {
     for (auto b = std::next(a); b != layout.bins.end(); ++b) {

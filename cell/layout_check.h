@@ -18,6 +18,9 @@ inline constexpr double kMaxBinInside = 0.60;
 
 /// @throws std::invalid_argument with the reason (naming the bins) if the bins cannot be used.
 void CheckBins(const CellLayout& layout);
+/// The part of CheckBins that depends on the table (a scene's may be smaller than the layout's default).
+/// @throws std::invalid_argument naming the bin that stands off the table.
+void CheckBinsOnTable(const CellLayout& layout);
 
 /// @throws std::invalid_argument naming the class or bin if a rule names a bin the layout lacks,
 ///         reject_below is outside [0, 1], or the rules send one of `classes` nowhere.

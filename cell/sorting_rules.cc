@@ -12,7 +12,7 @@ std::optional<std::string> SortingRules::BinOf(const std::string& category) cons
 }
 
 std::optional<std::string> SortingRules::BinFor(const std::string& category, double confidence) const {
-  if (!reject_bin.empty() && confidence < reject_below) return reject_bin;
+  if (Rejects(confidence)) return reject_bin;
   return BinOf(category);
 }
 

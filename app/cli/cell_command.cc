@@ -54,7 +54,7 @@ bool CheckSet(const CellFile& cell, const ObjectSet& set, std::string& text, std
     if (const auto bin = layout.rules.BinOf(o.category)) objects_and_bins.emplace_back(o.name, *bin);
   }
   const sim::Model model = sim::LoadComposedCell(std::filesystem::path(DataDir()) / "models", fragments,
-                                                 set.source.string(), {}, BinsXml(cell, layout));
+                                                 set.source.string(), {}, BinsXml(cell));
   warnings = BinCapacityWarnings(model, layout, objects_and_bins);
   return all_sorted;
 }
@@ -63,7 +63,7 @@ bool CheckSet(const CellFile& cell, const ObjectSet& set, std::string& text, std
 void WriteScene(const CellFile& cell, const std::filesystem::path& out) {
   PrepareOutputDir(out);
   const std::filesystem::path models = std::filesystem::path(DataDir()) / "models";
-  for (const auto& file : sim::ComposeCell(models, {}, {}, BinsXml(cell, cell.Layout()))) {
+  for (const auto& file : sim::ComposeCell(models, {}, {}, BinsXml(cell))) {
     const std::string name = file.name == "sortcell_composed.xml" ? "scene.xml" : file.name;
     std::ofstream(out / name) << file.text;
   }

@@ -119,7 +119,8 @@ CellFile ReadCellFileOrDefault(const std::filesystem::path& file) {
   return ReadCellFile(file.empty() ? DefaultCellFile() : file);
 }
 
-std::string BinsXml(const CellFile& cell, const cell::CellLayout& walls) {
+std::string BinsXml(const CellFile& cell) {
+  const cell::CellLayout walls = cell.Layout();
   std::ostringstream xml;
   xml.precision(6);
   xml << "<!-- The bins of cell layout '" << cell.name << "' (written by sortcell from " << cell.source.filename().string()

@@ -48,7 +48,8 @@ CellFile ReadCellFile(const std::filesystem::path& file);
 CellFile ReadCellFileOrDefault(const std::filesystem::path& file);
 
 /// The bins as an MJCF fragment for the cell (models/cell/cell.inc.xml's classes and materials): a
-/// body "bin_<name>" per bin, with a box site of that name at its floor centre sized to its inside.
-std::string BinsXml(const CellFile& cell, const cell::CellLayout& walls);
+/// body "bin_<name>" per bin, with a box site of that name at its floor centre sized to its inside,
+/// walls as cell::CellLayout has them.
+std::string BinsXml(const CellFile& cell);
 
 }  // namespace sortcell::app

@@ -151,7 +151,7 @@ void EpisodeRun::PlaceObjects() {
   mj_forward(model_.get(), rig_->data().get());
   scorer_ = std::make_unique<EpisodeScorer>(std::move(placed), static_cast<int>(label_names.size()),
                                             TableExtent{layout_.table_min_xy, layout_.table_max_xy},
-                                            layout_.rules.reject_below);
+                                            layout_.rules);
 }
 
 // The policy's budget from the options (the number of objects asked for, not what the scene holds).

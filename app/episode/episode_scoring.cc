@@ -5,8 +5,8 @@
 namespace sortcell::app {
 
 EpisodeScorer::EpisodeScorer(std::vector<PlacedObject> objects, int label_count, const TableExtent& table,
-                             double reject_below)
-    : objects_(std::move(objects)), label_count_(label_count), table_(table), reject_below_(reject_below),
+                             cell::SortingRules rules)
+    : objects_(std::move(objects)), label_count_(label_count), table_(table), rules_(std::move(rules)),
       tracks_(objects_.size()) {}
 
 void EpisodeScorer::Observe(const cv::Mat& labels, const std::vector<DetectionRecord>& detections) {
@@ -108,7 +108,7 @@ std::vector<ItemResult> EpisodeScorer::Items(const sim::Data& data, const std::v
     item.rule_bin = objects_[o].bin;
     if (in_bin) item.bin = in_bin->name;
     item.unknown = objects_[o].unknown;
-    item.rejected = t.predicted && t.confidence < reject_below_;
+    item.rejected = t.predicted && rules_.Rejects(t.confidence);
     if (t.attempts > 0) item.cycle_time_s = t.cycle_time_s;
     item.final_xyz = {p.x(), p.y(), p.z()};
     items.push_back(item);

@@ -14,6 +14,7 @@
 
 #include "app/episode/episode_metrics.h"
 #include "cell/outcomes.h"
+#include "cell/sorting_rules.h"
 #include "sim/ground_truth.h"
 #include "sim/model.h"
 
@@ -56,9 +57,10 @@ struct TableExtent {
 
 class EpisodeScorer {
  public:
-  /// `label_count`: the largest value of the label image; `reject_below`: the cell's (an item the
-  /// policy last recognised less surely was rejected).
-  EpisodeScorer(std::vector<PlacedObject> objects, int label_count, const TableExtent& table, double reject_below = 0);
+  /// `label_count`: the largest value of the label image; `rules`: the cell's (an item the policy last
+  /// recognised less surely than their reject_below was rejected).
+  EpisodeScorer(std::vector<PlacedObject> objects, int label_count, const TableExtent& table,
+                cell::SortingRules rules = {});
 
   /// After each observation, the policy's detections in its order.
   void Observe(const cv::Mat& labels, const std::vector<DetectionRecord>& detections);
@@ -99,7 +101,7 @@ class EpisodeScorer {
   std::vector<PlacedObject> objects_;
   int label_count_;
   TableExtent table_;
-  double reject_below_;
+  cell::SortingRules rules_;
   std::vector<Track> tracks_;
   std::vector<int> last_objects_;  // Per detection of the last observation.
   int attempts_ = 0, grasps_ = 0;

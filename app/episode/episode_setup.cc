@@ -40,7 +40,7 @@ sim::Model LoadEpisodeScene(const std::filesystem::path& scene, const ObjectSet&
   // The default cell holding another set is composed straight away, not loaded first to find that out.
   if (default_cell && !IncludesAll(scene, fragments)) {
     return sim::LoadComposedCell(data / "models", fragments, scene.string() + " with " + set.source.string(), {},
-                                 BinsXml(cell, cell::CellLayout()));
+                                 BinsXml(cell));
   }
   sim::Model model = LoadCellScene(scene, cell);
   std::string missing;

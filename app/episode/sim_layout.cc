@@ -23,7 +23,7 @@ constexpr double kSameBin = 1e-4;  // Bin positions and sizes that agree this we
 sim::Model LoadCellScene(const std::filesystem::path& scene, const CellFile& cell) {
   // MuJoCo finds virtual files by their bare name: this one stands for any include of "bins.inc.xml".
   std::vector<sim::Model::VirtualFile> files = sim::ModelTextures(std::filesystem::path(DataDir()) / "models");
-  files.push_back({"bins.inc.xml", BinsXml(cell, cell::CellLayout())});
+  files.push_back({"bins.inc.xml", BinsXml(cell)});
   sim::Model model = sim::Model::FromFile(scene.string(), files);
   CheckSceneBins(model, cell);
   return model;
@@ -64,7 +64,7 @@ cell::CellLayout ReadCellLayout(const sim::Model& model, const CellFile& cell) {
   layout.table_min_xy = centre - half;
   layout.table_max_xy = centre + half;
   try {
-    cell::CheckBins(layout);  // On this scene's table.
+    cell::CheckBinsOnTable(layout);  // The rest was checked when the cell file was read.
   } catch (const std::invalid_argument& e) {
     throw std::invalid_argument("cell layout '" + cell.source.string() + "' in scene '" + model.source() + "': " + e.what());
   }
