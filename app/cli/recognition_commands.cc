@@ -8,6 +8,7 @@
 
 #include "app/cli/cli_validators.h"
 #include "app/recognition/dataset_capture.h"
+#include "app/recognition/default_model.h"
 #include "app/common/object_set.h"
 #include "app/common/output_dir.h"
 #include "app/recognition/out_of_set.h"
@@ -29,8 +30,8 @@ struct DatasetOptions {
 };
 
 struct TrainOptions {
-  std::filesystem::path dataset, out;
-  std::string descriptor;
+  std::filesystem::path dataset, objects, out;
+  std::string descriptor = perception::DescriptorName(perception::DescriptorKind::kColorCvfhNorm);
   std::string label = perception::ToString(perception::LabelKind::kCategory);
   std::string group_by = ToString(Grouping::kSequence);
 };
@@ -95,6 +96,40 @@ int EvalCommand(const perception::RecognitionModel& model, const Dataset& d, con
   WriteJson(o.out / "run.json", RunRecord(command_line, 0, {{"command", "eval"}}));
   std::cout << "Evaluated " << perception::DescriptorTitle(model.descriptor) << ": " << summary << ". Tables in "
             << o.out.string() << "/tables.md\n";
+  return 0;
+}
+
+// `sortcell train --objects SET --out MODEL`: the default recipe (the cell's default model's), its
+// scenes kept beside the model.
+int TrainFromSetCommand(const TrainOptions& o) {
+  const ObjectSet set = LoadObjectSet(o.objects);
+  if (o.out.has_parent_path()) PrepareOutputDir(o.out.parent_path());
+  const std::filesystem::path scenes = o.out.string() + ".scenes";
+  const auto start = WallClock::now();
+  const perception::RecognitionModel model = TrainDefaultRecipe(set, scenes);
+  perception::SaveModel(o.out, model);
+  std::cout << "Trained the default recipe for " << set.name << " (" << DefaultRecipeTitle() << "): "
+            << model.classes.size() << " " << ToString(model.label_kind) << " classes, grouped-CV accuracy "
+            << model.cv_accuracy << ", " << std::lround(SecondsSince(start)) << " s. Model " << o.out.string()
+            << ", its scenes in " << scenes.string() << "/\n";
+  return 0;
+}
+
+int TrainFromDatasetCommand(const TrainOptions& o) {
+  TrainRequest request;
+  request.descriptor = perception::ParseDescriptorKind(o.descriptor);
+  request.label_kind = ParseOption("--label", o.label, perception::ParseLabelKind);
+  request.group_by = ParseOption("--group-by", o.group_by, ParseGrouping);
+  const Dataset d = LoadDataset(o.dataset);
+  if (o.out.has_parent_path()) PrepareOutputDir(o.out.parent_path());
+  const auto start = WallClock::now();
+  const perception::RecognitionModel model = TrainModel(d, {}, request);
+  perception::SaveModel(o.out, model);
+  std::cout << "Trained " << perception::DescriptorTitle(model.descriptor) << " on " << d.samples.size()
+            << " samples, " << model.classes.size() << " " << ToString(model.label_kind) << " classes: C "
+            << model.classifier.C() << ", gamma " << model.classifier.gamma() << ", grouped-CV accuracy " << model.cv_accuracy << ", "
+            << model.classifier.support_vectors() << " support vectors, " << std::lround(SecondsSince(start))
+            << " s. Model " << o.out.string() << "\n";
   return 0;
 }
 
@@ -182,36 +217,29 @@ void AddDatasetCommand(CLI::App& app, std::function<int()>& run, const std::vect
   });
 }
 
-void AddTrainCommand(CLI::App& app, std::function<int()>& run, const std::vector<std::string>& command_line) {
+void AddTrainCommand(CLI::App& app, std::function<int()>& run, const std::vector<std::string>& /*command_line*/) {
   auto o = std::make_shared<TrainOptions>();
   CLI::App* cmd = app.add_subcommand(
       "train",
       "Train a multi-class RBF SVM (libsvm) on a dataset with one descriptor. Features are scaled to [0, 1] "
       "per feature on the training data; (C, gamma) come from a grid searched with grouped 3-fold "
       "cross-validation (groups: contiguous thirds of each turntable revolution, or whole instances). The "
-      "model file holds the descriptor, its parameters, the classes, the scaling and a format version.");
-  cmd->add_option("--dataset", o->dataset, "Dataset folder from sortcell dataset")->required();
-  cmd->add_option("--descriptor", o->descriptor, "cvfh | color-cvfh | color-cvfh-norm")->required();
+      "model file holds the descriptor, its parameters, the classes, the scaling and a format version. With "
+      "--objects SET instead of --dataset: the default recipe for that set, the one episodes and sweeps train "
+      "on first use (" + DefaultRecipeTitle() + "), its scenes kept in MODEL.scenes/.");
+  CLI::Option* dataset = cmd->add_option("--dataset", o->dataset, "Dataset folder from sortcell dataset");
+  CLI::Option* objects = cmd->add_option("--objects", o->objects, "Object set YAML: train the default recipe on it");
+  dataset->excludes(objects);
+  CLI::Option* descriptor = cmd->add_option("--descriptor", o->descriptor, "cvfh | color-cvfh | color-cvfh-norm")->capture_default_str();
   cmd->add_option("--out", o->out, "Model file to write, e.g. out/models/paper.model.json")->required();
-  cmd->add_option("--label", o->label, "What to recognise: category | instance")->capture_default_str();
-  cmd->add_option("--group-by", o->group_by, "Cross-validation groups: sequence | instance")->capture_default_str();
-  cmd->callback([&run, o, command_line] {
-    run = [o, command_line] {
-      TrainRequest request;
-      request.descriptor = perception::ParseDescriptorKind(o->descriptor);
-      request.label_kind = ParseOption("--label", o->label, perception::ParseLabelKind);
-      request.group_by = ParseOption("--group-by", o->group_by, ParseGrouping);
-      const Dataset d = LoadDataset(o->dataset);
-      if (o->out.has_parent_path()) PrepareOutputDir(o->out.parent_path());
-      const auto start = WallClock::now();
-      const perception::RecognitionModel model = TrainModel(d, {}, request);
-      perception::SaveModel(o->out, model);
-      std::cout << "Trained " << perception::DescriptorTitle(model.descriptor) << " on " << d.samples.size()
-                << " samples, " << model.classes.size() << " " << ToString(model.label_kind) << " classes: C "
-                << model.classifier.C() << ", gamma " << model.classifier.gamma() << ", grouped-CV accuracy " << model.cv_accuracy << ", "
-                << model.classifier.support_vectors() << " support vectors, " << std::lround(SecondsSince(start))
-                << " s. Model " << o->out.string() << "\n";
-      return 0;
+  CLI::Option* label = cmd->add_option("--label", o->label, "What to recognise: category | instance")->capture_default_str();
+  CLI::Option* group = cmd->add_option("--group-by", o->group_by, "Cross-validation groups: sequence | instance")->capture_default_str();
+  for (CLI::Option* recipe_fixed : {descriptor, label, group}) objects->excludes(recipe_fixed);
+  cmd->callback([&run, o] {
+    run = [o] {
+      if (!o->objects.empty()) return TrainFromSetCommand(*o);
+      if (o->dataset.empty()) throw std::invalid_argument("train: give --dataset DIR or --objects SET.yaml");
+      return TrainFromDatasetCommand(*o);
     };
   });
 }

@@ -4,6 +4,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdlib>
 
 #include <fstream>
@@ -96,6 +97,23 @@ bool DefaultModelIsCurrent(const ObjectSet& set) {
          (!std::filesystem::exists(DigestPath(path)) || ReadDigest(DigestPath(path)) == TrainedOnDigest(set));
 }
 
+std::string DefaultRecipeTitle() {
+  const SceneOptions scenes = DefaultTrainingScenes();
+  return fmt::format("{} random cell scenes ({}; {:g} % lying; seed {}), {}", scenes.scenes,
+                     PlacementModesText(scenes.modes), 100 * scenes.placement.lying_fraction, scenes.seed,
+                     perception::DescriptorTitle(TrainRequest{}.descriptor));
+}
+
+perception::RecognitionModel TrainDefaultRecipe(const ObjectSet& set, const std::filesystem::path& dataset_dir) {
+  SceneOptions scenes = DefaultTrainingScenes();
+  // A set smaller than a scene's largest count: every scene holds at most all of it.
+  scenes.max_objects = std::min<int>(scenes.max_objects, static_cast<int>(set.objects.size()));
+  scenes.min_objects = std::min(scenes.min_objects, scenes.max_objects);
+  const Dataset dataset = CaptureScenes(set, scenes, dataset_dir);
+  SaveDataset(dataset_dir, dataset);
+  return TrainModel(dataset, {}, TrainRequest{});
+}
+
 std::filesystem::path EnsureDefaultModel(const ObjectSet& set) {
   const std::filesystem::path path = DefaultModelPath(set);
   const std::string digest = TrainedOnDigest(set);
@@ -103,10 +121,7 @@ std::filesystem::path EnsureDefaultModel(const ObjectSet& set) {
   spdlog::info("{} trained model at {}: training one on 150 random scenes of '{}' (about 20 s)",
                std::filesystem::exists(path) ? "the objects, the Kinect colour model or the training scenes have changed since the" : "no",
                path.string(), set.name);
-  const std::filesystem::path data = DefaultDatasetDir(set);
-  const Dataset dataset = CaptureScenes(set, DefaultTrainingScenes(), data);
-  SaveDataset(data, dataset);
-  const perception::RecognitionModel model = TrainModel(dataset, {}, TrainRequest{});
+  const perception::RecognitionModel model = TrainDefaultRecipe(set, DefaultDatasetDir(set));
   const std::filesystem::path temporary = path.string() + ".tmp" + std::to_string(::getpid());
   perception::SaveModel(temporary, model);
   // The model first, its digest last: a run stopped between the two leaves an old digest beside the

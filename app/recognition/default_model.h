@@ -8,6 +8,7 @@
 #include <string>
 
 #include "app/common/object_set.h"
+#include "perception/recognition_model.h"
 
 namespace sortcell::app {
 
@@ -26,6 +27,15 @@ std::string DefaultModelHint(const ObjectSet& set);
 /// and the current Kinect colour model (the digest beside it says so; a model without one was put there
 /// by hand, with sortcell train, and counts as current).
 bool DefaultModelIsCurrent(const ObjectSet& set);
+
+/// The default recipe, the one every default model is made with: 150 random cell scenes of `set` (seed 0;
+/// sparse, dense and clustered in turns; 30 % of the bottles and boxes lying) captured into
+/// `dataset_dir` (kept there), and Color-CVFH (normalization) trained on them.
+perception::RecognitionModel TrainDefaultRecipe(const ObjectSet& set, const std::filesystem::path& dataset_dir);
+
+/// The recipe in words, e.g. "150 random cell scenes (sparse, dense, clustered; 30 % lying; seed 0),
+/// Color-CVFH (normalization)".
+std::string DefaultRecipeTitle();
 
 /// Trains the default model of `set` if it is not there yet, or was trained on other object models or
 /// another Kinect colour model (150 random scenes, seed 0; about 20 s;

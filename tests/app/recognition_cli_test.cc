@@ -83,6 +83,15 @@ TEST(RecognitionCli, TrainAndEvalRejectUnknownDescriptorMissingDatasetAndBadMode
                      "--label: unknown label kind 'colour'");
 }
 
+TEST(RecognitionCli, TrainFromASetRejectsAMissingSetAndRecipeOptions) {
+  ExpectOneLineError(RunSortcell("train --objects " + Dir() + "/none.yaml --out " + Dir() + "/m.json"), "none.yaml");
+  ExpectOneLineError(RunSortcell("train --out " + Dir() + "/m.json"), "give --dataset DIR or --objects SET.yaml");
+  // The recipe is the default model's: its descriptor and labels are not the user's to change here.
+  ExpectOneLineError(RunSortcell("train --objects " + Dir() + "/none.yaml --descriptor cvfh --out " + Dir() + "/m.json"),
+                     "--descriptor");
+  ExpectOneLineError(RunSortcell("train --objects a.yaml --dataset " + Dir() + " --out " + Dir() + "/m.json"), "--dataset");
+}
+
 TEST(RecognitionCli, ExperimentAndDatasetRejectBadValues) {
   ExpectOneLineError(RunSortcell("experiment 4 --out " + Dir() + "/x"), "experiment");
   ExpectOneLineError(RunSortcell("experiment 2 --split unseen-instance --out " + Dir() + "/x"),

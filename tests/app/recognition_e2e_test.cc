@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 
@@ -73,6 +74,31 @@ TEST(RecognitionE2e, DatasetTrainEvalOnTwoColoursOfOneShape) {
   }
   EXPECT_GE(accuracy["color-cvfh-norm"], 0.95);
   EXPECT_GT(accuracy["color-cvfh-norm"], accuracy["cvfh"] + 0.2) << "shape alone cannot tell them apart";
+}
+
+// `train --objects`: the default recipe (random cell scenes of the set) on a tiny set of two bottles of
+// one shape: the model knows the set's two categories, tells them apart in its own cross-validation,
+// and its scenes are kept beside it.
+TEST(RecognitionE2e, TrainFromATinySetWithTheDefaultRecipe) {
+  const std::string set = Dir("tiny_set.yaml");
+  std::ofstream(set) << "name: tiny\nobjects:\n"
+                     << "  - {name: bottle1, category: green, instance: bottle1, model: "
+                     << (kRoot / "models/objects/bottle1.inc.xml").string() << "}\n"
+                     << "  - {name: bottle2, category: blue, instance: bottle2, model: "
+                     << (kRoot / "models/objects/bottle2.inc.xml").string() << "}\n";
+  const std::string model = Dir("tiny") + "/tiny.model.json";
+  const auto r = RunSortcell("train --objects " + set + " --out " + model);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("Trained the default recipe for tiny"), std::string::npos) << r.out;
+  const nlohmann::json m = ReadJson(model);
+  EXPECT_EQ(m["descriptor"], "color-cvfh-norm");
+  std::vector<std::string> classes = m["classes"];
+  std::sort(classes.begin(), classes.end());
+  EXPECT_EQ(classes, (std::vector<std::string>{"blue", "green"}));
+  EXPECT_GE(m["training"]["cv_accuracy"].get<double>(), 0.95);
+  const nlohmann::json scenes = ReadJson(model + ".scenes/manifest.json");
+  EXPECT_EQ(scenes["capture"]["scenes"], 150);
+  EXPECT_GE(scenes["samples"].size(), 150u) << "every scene holds both bottles, most of them seen";
 }
 
 }  // namespace
