@@ -12,6 +12,7 @@
 #include <stdexcept>
 
 #include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
 
 #include "app/common/output_dir.h"
 #include "app/common/progress.h"
@@ -104,6 +105,20 @@ std::vector<RgbdObjectsView> FindRgbdObjectsViews(const std::filesystem::path& r
 
 namespace {
 
+// The largest 8-connected region of `pixels`: the edge pixels left out cut the object off from the
+// patches of table or background that the mask also covers.
+cv::Mat LargestRegion(const cv::Mat& pixels) {
+  cv::Mat labels, stats, centroids;
+  const int count = cv::connectedComponentsWithStats(pixels, labels, stats, centroids, 8, CV_32S);
+  int largest = 0;  // Label 0 is the unmasked rest.
+  for (int label = 1; label < count; ++label) {
+    if (largest == 0 || stats.at<int>(label, cv::CC_STAT_AREA) > stats.at<int>(largest, cv::CC_STAT_AREA)) largest = label;
+  }
+  cv::Mat region = cv::Mat::zeros(pixels.size(), CV_8UC1);
+  if (largest > 0) region.setTo(255, labels == largest);
+  return region;
+}
+
 // The masked pixels with depth that show the object: not at a depth edge, not far from its median depth.
 cv::Mat ObjectPixels(const cv::Mat& depth, const cv::Mat& mask, const RgbdObjectsCamera& camera) {
   std::vector<uint16_t> masked;
@@ -132,7 +147,7 @@ cv::Mat ObjectPixels(const cv::Mat& depth, const cv::Mat& mask, const RgbdObject
       if ((hi - lo) / 1000.0 <= camera.edge_jump_m) object.at<uint8_t>(v, u) = 255;
     }
   }
-  return object;
+  return LargestRegion(object);
 }
 
 }  // namespace

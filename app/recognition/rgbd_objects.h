@@ -25,7 +25,9 @@ struct RgbdObjectsCamera {
   /// masked pixel whose 3x3 neighbourhood in the depth crop spans more than `edge_jump_m` is at a
   /// depth edge (a mixed pixel, or background beside the object), and one farther than
   /// `from_median_m` from the masked pixels' median depth is background seen past the object; both
-  /// are left out.
+  /// are left out, and of what remains only the largest connected region is kept (the masks also
+  /// cover patches of the table beside the object, nearer than `from_median_m` behind it: a real ball's
+  /// cloud reached 0.15 m deep with them, 0.03 m without).
   double edge_jump_m = 0.02;
   double from_median_m = 0.15;
 };

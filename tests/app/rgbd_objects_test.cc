@@ -103,6 +103,24 @@ TEST(RgbdObjects, MaskPixelsPastTheDepthEdgeAreLeftOut) {
   EXPECT_LT(static_cast<int>(cloud->size()), sphere);
 }
 
+TEST(RgbdObjects, ATablePatchTheMaskCoversBehindTheObjectIsLeftOut) {
+  // The same sphere before a table only 8 cm behind it (nearer than from_median_m), the mask 5 px wider
+  // than the sphere: past the rim's mixed pixels lies a ring of table, cut off from the sphere.
+  const fs::path root = fs::path(sortcell_test::TestTempDir()) / "rgbd_patch";
+  WriteView(root / "ball" / "ball_1", "ball_1", 1, 1, Shape::kSphere, 0.03, {10, 20, 200});
+  const std::string stem = (root / "ball/ball_1/ball_1_1_1_").string();
+  cv::Mat depth = cv::imread(stem + "depthcrop.png", cv::IMREAD_ANYDEPTH);
+  cv::Mat mask = cv::imread(stem + "maskcrop.png", cv::IMREAD_GRAYSCALE);
+  const int sphere = cv::countNonZero(mask);
+  depth.setTo(880, depth == 0);
+  cv::dilate(mask, mask, cv::Mat(), cv::Point(-1, -1), 5);
+  cv::imwrite(stem + "depthcrop.png", depth);
+  cv::imwrite(stem + "maskcrop.png", mask);
+  const perception::Cloud::Ptr cloud = app::ReadRgbdObjectsView(app::FindRgbdObjectsViews(root).at(0));
+  for (const auto& p : cloud->points) EXPECT_LT(p.z, 0.80) << "a table point at " << p.z;
+  EXPECT_GT(static_cast<int>(cloud->size()), sphere * 8 / 10);
+}
+
 TEST(RgbdObjects, BadFilesAreNamed) {
   const fs::path root = fs::path(sortcell_test::TestTempDir()) / "rgbd_bad";
   const fs::path folder = root / "cup" / "cup_1";
