@@ -163,7 +163,7 @@ void AddEpisodeCommand(CLI::App& app, std::function<int()>& run, const std::vect
   cmd->add_option("--model", o.model,
                   "Recognition model from sortcell train (default: <set>-color-cvfh-norm.model.json in the model cache, build/models or $SORTCELL_MODEL_CACHE)");
   cmd->add_flag("--train-if-missing", cli->train_if_missing,
-                "Without --model: train and cache the default model first if it is not there (about 20 s)");
+                "Without --model: train and cache the default model first if it is not there (sortcell train --objects; about 30 s for 150 scenes)");
   cmd->add_option("--video", o.video, "Also write an H.264 MP4 from the review camera (30 fps, with overlay)");
   cmd->add_option("--video-size", cli->video_size, "The video's WIDTHxHEIGHT (at most 1280x960)")
       ->check(kVideoSize)

@@ -63,6 +63,43 @@ void Import(const YamlReader& reader, const YAML::Node& node, const std::string&
   if (!imported.from_cache) LogImport(spec, imported.report);
 }
 
+// `training_variety: [FILE, ...]`: the objects of those sets, each of one of `set`'s categories.
+void LoadTrainingVariety(const YamlReader& reader, const YAML::Node& node, const std::filesystem::path& base,
+                         ObjectSet& set) {
+  if (!node.IsSequence() || node.size() == 0) {
+    reader.Fail("key 'training_variety': expected a non-empty list of object set files, found " + NodeKind(node));
+  }
+  const std::vector<std::string> categories = set.Categories();
+  std::set<std::string> names;
+  for (const auto& o : set.objects) names.insert(o.name);
+  for (size_t i = 0; i < node.size(); ++i) {
+    const std::string where = "training_variety[" + std::to_string(i) + "]";
+    if (!node[i].IsScalar() || node[i].Scalar().empty()) {
+      reader.Fail("key '" + where + "': expected an object set file, found " + NodeKind(node[i]));
+    }
+    const std::filesystem::path file = (base / node[i].Scalar()).lexically_normal();
+    ObjectSet variety;
+    try {
+      variety = LoadObjectSet(file);
+    } catch (const std::invalid_argument& e) {
+      reader.Fail("key '" + where + "': " + e.what());
+    }
+    if (!variety.training_variety.empty()) {
+      reader.Fail("key '" + where + "': '" + file.string() + "' names a training variety of its own (one level only)");
+    }
+    for (const ObjectSpec& o : variety.objects) {
+      if (std::find(categories.begin(), categories.end(), o.category) == categories.end()) {
+        reader.Fail("key '" + where + "': object '" + o.name + "' of '" + file.string() + "' is a " + o.category +
+                    ", not one of this set's categories");
+      }
+      if (!names.insert(o.name).second) {
+        reader.Fail("key '" + where + "': object name '" + o.name + "' of '" + file.string() + "' is taken");
+      }
+      set.training_variety.push_back(o);
+    }
+  }
+}
+
 }  // namespace
 
 std::filesystem::path ImportCacheDir() {
@@ -95,7 +132,7 @@ ObjectSet LoadObjectSet(const std::filesystem::path& file) {
   const YamlReader reader("object set", file);
   const YAML::Node root = reader.LoadMap("name and objects");
   std::error_code ec;
-  reader.RejectUnknownKeys(root, "the top level", {"name", "objects"});
+  reader.RejectUnknownKeys(root, "the top level", {"name", "objects", "training_variety"});
 
   ObjectSet set;
   set.source = file;
@@ -134,7 +171,15 @@ ObjectSet LoadObjectSet(const std::filesystem::path& file) {
     }
     set.objects.push_back(std::move(spec));
   }
+  if (root["training_variety"]) LoadTrainingVariety(reader, root["training_variety"], base, set);
   return set;
+}
+
+ObjectSet ObjectSet::WithTrainingVariety() const {
+  ObjectSet all = *this;
+  all.objects.insert(all.objects.end(), training_variety.begin(), training_variety.end());
+  all.training_variety.clear();
+  return all;
 }
 
 std::string ObjectModelsDigest(const ObjectSet& set, const std::filesystem::path& texture_dir) {
@@ -144,6 +189,7 @@ std::string ObjectModelsDigest(const ObjectSet& set, const std::filesystem::path
     content.append(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
   };
   for (const auto& object : set.objects) append(object.model);
+  for (const auto& object : set.training_variety) append(object.model);
   std::error_code ec;
   if (std::filesystem::is_directory(texture_dir, ec)) {
     std::vector<std::filesystem::path> files;

@@ -11,6 +11,12 @@
 /// (OBJ or STL, with `mass` or `density`), relative to the YAML file; `urdf` and `mesh` objects are
 /// imported (assets/object_import.h) into the import cache and may say `mass`, `density`, `scale` and
 /// `friction`. Unknown keys are rejected.
+///
+/// Optional `training_variety: [balls.yaml, ...]`: object sets of more members of this set's categories
+/// (generated or imported), which the set's default recognition model also learns from, so that it
+/// covers a category rather than the set's few instances. They are never placed in episodes. Their
+/// objects must belong to the set's categories, their names must differ from the set's, and they may
+/// not name a variety of their own.
 
 #include <filesystem>
 #include <optional>
@@ -34,6 +40,11 @@ struct ObjectSet {
   std::string name;
   std::filesystem::path source;  ///< The YAML file.
   std::vector<ObjectSpec> objects;
+  /// The objects of the `training_variety` sets, for training only.
+  std::vector<ObjectSpec> training_variety;
+
+  /// This set with its training variety among its objects (what its default model is trained on).
+  ObjectSet WithTrainingVariety() const;
 
   /// Distinct categories in order of first appearance.
   std::vector<std::string> Categories() const;
@@ -52,7 +63,7 @@ ObjectSet LoadObjectSet(const std::filesystem::path& file);
 /// (compile definition SORTCELL_DEFAULT_IMPORT_CACHE, <build folder>/imports); else out/imports.
 std::filesystem::path ImportCacheDir();
 
-/// A digest of what the set's objects look like: the content of their model files and of every file
+/// A digest of what the set's objects look like (its training variety's included): the content of their model files and of every file
 /// in `texture_dir` (none if it does not exist). Captures record it, so data of other models is not
 /// reused. Not a cryptographic hash: it tells versions of a set apart, nothing more.
 std::string ObjectModelsDigest(const ObjectSet& set, const std::filesystem::path& texture_dir);

@@ -25,17 +25,24 @@ std::filesystem::path DefaultDatasetDir(const ObjectSet& set) { return ModelCach
 // was trained on, so that a cached model of objects or a sensor that have changed since is trained again.
 std::filesystem::path DigestPath(const std::filesystem::path& model) { return model.string() + ".trained_on"; }
 
-// The default model's training scenes: every placement mode the cell meets, some objects lying.
-SceneOptions DefaultTrainingScenes() {
+// The default model's training scenes of `set` (its training variety among its objects): every
+// placement mode the cell meets, some objects lying; 150 scenes for the set's own objects and more in
+// proportion for its variety, so its own objects are seen as often as without one.
+SceneOptions DefaultTrainingScenes(const ObjectSet& set) {
   SceneOptions scenes;
   scenes.modes = {sim::PlacementMode::kSparse, sim::PlacementMode::kDense, sim::PlacementMode::kClustered};
   scenes.placement.lying_fraction = 0.3;
+  const size_t own = std::max<size_t>(1, set.objects.size()), all = own + set.training_variety.size();
+  scenes.scenes = static_cast<int>((scenes.scenes * all + own / 2) / own);
+  // A set smaller than a scene's largest count: every scene holds at most all of it.
+  scenes.max_objects = std::min<int>(scenes.max_objects, static_cast<int>(all));
+  scenes.min_objects = std::min(scenes.min_objects, scenes.max_objects);
   return scenes;
 }
 
 // The same as `sortcell dataset` options.
-std::string DefaultTrainingSceneArguments() {
-  const SceneOptions scenes = DefaultTrainingScenes();
+std::string DefaultTrainingSceneArguments(const ObjectSet& set) {
+  const SceneOptions scenes = DefaultTrainingScenes(set);
   return "--scenes " + std::to_string(scenes.scenes) + " --placement " + PlacementModesText(scenes.modes) +
          " --lying-fraction " + fmt::format("{:g}", scenes.placement.lying_fraction);
 }
@@ -56,7 +63,7 @@ std::string SegmentationDigest() {
 // the scenes it is trained on and how they are segmented.
 std::string TrainedOnDigest(const ObjectSet& set) {
   return ObjectModelsDigest(set, ObjectTexturesDir()) + " colour " + sim::ToString(sim::KinectColourParams{}) +
-         " scenes " + DefaultTrainingSceneArguments() + " segmentation " + SegmentationDigest();
+         " scenes " + DefaultTrainingSceneArguments(set) + " segmentation " + SegmentationDigest();
 }
 
 std::string ReadDigest(const std::filesystem::path& file) {
@@ -83,11 +90,9 @@ std::filesystem::path DefaultModelPath(const ObjectSet& set) {
 }
 
 std::string DefaultModelHint(const ObjectSet& set) {
-  const std::string data = DefaultDatasetDir(set).string();
-  return "make one with --train-if-missing, or: sortcell dataset --objects " + set.source.string() +
-         " " + DefaultTrainingSceneArguments() + " --out " + data + " && sortcell train --dataset " + data +
-         " --descriptor color-cvfh-norm --out " + DefaultModelPath(set).string() +
-         " (model cache " + ModelCacheDir().string() + "; set SORTCELL_MODEL_CACHE for another folder)";
+  return "make one with --train-if-missing, or: sortcell train --objects " + set.source.string() + " --out " +
+         DefaultModelPath(set).string() + " (model cache " + ModelCacheDir().string() +
+         "; set SORTCELL_MODEL_CACHE for another folder)";
 }
 
 bool DefaultModelIsCurrent(const ObjectSet& set) {
@@ -98,18 +103,14 @@ bool DefaultModelIsCurrent(const ObjectSet& set) {
 }
 
 std::string DefaultRecipeTitle() {
-  const SceneOptions scenes = DefaultTrainingScenes();
-  return fmt::format("{} random cell scenes ({}; {:g} % lying; seed {}), {}", scenes.scenes,
-                     PlacementModesText(scenes.modes), 100 * scenes.placement.lying_fraction, scenes.seed,
+  const SceneOptions scenes = DefaultTrainingScenes(ObjectSet{});
+  return fmt::format("{} random cell scenes, more in proportion for a training variety ({}; {:g} % lying; seed {}), {}",
+                     scenes.scenes, PlacementModesText(scenes.modes), 100 * scenes.placement.lying_fraction, scenes.seed,
                      perception::DescriptorTitle(TrainRequest{}.descriptor));
 }
 
 perception::RecognitionModel TrainDefaultRecipe(const ObjectSet& set, const std::filesystem::path& dataset_dir) {
-  SceneOptions scenes = DefaultTrainingScenes();
-  // A set smaller than a scene's largest count: every scene holds at most all of it.
-  scenes.max_objects = std::min<int>(scenes.max_objects, static_cast<int>(set.objects.size()));
-  scenes.min_objects = std::min(scenes.min_objects, scenes.max_objects);
-  const Dataset dataset = CaptureScenes(set, scenes, dataset_dir);
+  const Dataset dataset = CaptureScenes(set.WithTrainingVariety(), DefaultTrainingScenes(set), dataset_dir);
   SaveDataset(dataset_dir, dataset);
   return TrainModel(dataset, {}, TrainRequest{});
 }
@@ -118,9 +119,10 @@ std::filesystem::path EnsureDefaultModel(const ObjectSet& set) {
   const std::filesystem::path path = DefaultModelPath(set);
   const std::string digest = TrainedOnDigest(set);
   if (DefaultModelIsCurrent(set)) return path;
-  spdlog::info("{} trained model at {}: training one on 150 random scenes of '{}' (about 20 s)",
+  spdlog::info("{} trained model at {}: training one on {} random scenes of '{}'{} (about {} s)",
                std::filesystem::exists(path) ? "the objects, the Kinect colour model or the training scenes have changed since the" : "no",
-               path.string(), set.name);
+               path.string(), DefaultTrainingScenes(set).scenes, set.name,
+               set.training_variety.empty() ? "" : " and its training variety", DefaultTrainingScenes(set).scenes / 5);
   const perception::RecognitionModel model = TrainDefaultRecipe(set, DefaultDatasetDir(set));
   const std::filesystem::path temporary = path.string() + ".tmp" + std::to_string(::getpid());
   perception::SaveModel(temporary, model);

@@ -28,7 +28,8 @@ std::string DefaultModelHint(const ObjectSet& set);
 /// by hand, with sortcell train, and counts as current).
 bool DefaultModelIsCurrent(const ObjectSet& set);
 
-/// The default recipe, the one every default model is made with: 150 random cell scenes of `set` (seed 0;
+/// The default recipe, the one every default model is made with: random cell scenes of `set` and of its
+/// training variety (150 for the set's own objects and more in proportion for the variety; seed 0;
 /// sparse, dense and clustered in turns; 30 % of the bottles and boxes lying) captured into
 /// `dataset_dir` (kept there), and Color-CVFH (normalization) trained on them.
 perception::RecognitionModel TrainDefaultRecipe(const ObjectSet& set, const std::filesystem::path& dataset_dir);
@@ -38,7 +39,7 @@ perception::RecognitionModel TrainDefaultRecipe(const ObjectSet& set, const std:
 std::string DefaultRecipeTitle();
 
 /// Trains the default model of `set` if it is not there yet, or was trained on other object models or
-/// another Kinect colour model (150 random scenes, seed 0; about 20 s;
+/// another Kinect colour model (TrainDefaultRecipe; about 30 s for 150 scenes;
 /// the scenes' dataset is kept next to it) and returns its path. Written to a temporary file and
 /// renamed, so concurrent runs never read a half-written model.
 std::filesystem::path EnsureDefaultModel(const ObjectSet& set);

@@ -89,6 +89,44 @@ TEST(ObjectSet, TheModelsDigestChangesWithAModelOrATexture) {
   EXPECT_EQ(sortcell::app::ObjectModelsDigest(set, dir + "no_textures").size(), 16u);
 }
 
+TEST(ObjectSet, ATrainingVarietyAddsObjectsOfTheSetsCategoriesForTrainingOnly) {
+  const auto variety = Write("variety.yaml", "name: v\nobjects:\n  - {name: v1, category: ball, instance: v1, " + kModel +
+                                                 "}\n  - {name: v2, category: ball, instance: v2, " + kModel + "}\n");
+  const auto path = Write("with_variety.yaml", "name: s\ntraining_variety: [" + variety +
+                                                   "]\nobjects:\n  - {name: a, category: ball, instance: a, " + kModel + "}\n");
+  const auto set = LoadObjectSet(path);
+  ASSERT_EQ(set.objects.size(), 1u);
+  ASSERT_EQ(set.training_variety.size(), 2u);
+  EXPECT_EQ(set.training_variety[1].name, "v2");
+  const auto all = set.WithTrainingVariety();
+  EXPECT_EQ(all.objects.size(), 3u);
+  EXPECT_TRUE(all.training_variety.empty());
+  // The variety is part of what the set's model was trained on.
+  const auto plain = LoadObjectSet(Write("without_variety.yaml", "name: s\nobjects:\n  - {name: a, category: ball, instance: a, " + kModel + "}\n"));
+  EXPECT_NE(sortcell::app::ObjectModelsDigest(set, "none"), sortcell::app::ObjectModelsDigest(plain, "none"));
+}
+
+TEST(ObjectSet, ATrainingVarietyOfAnotherCategoryATakenNameOrItsOwnVarietyIsRefused) {
+  const auto other = Write("variety_other.yaml", "name: v\nobjects:\n  - {name: v1, category: cup, instance: v1, " + kModel + "}\n");
+  const auto taken = Write("variety_taken.yaml", "name: v\nobjects:\n  - {name: a, category: ball, instance: v1, " + kModel + "}\n");
+  const auto nested = Write("variety_nested.yaml", "name: v\ntraining_variety: [" + other +
+                                                       "]\nobjects:\n  - {name: n1, category: cup, instance: n1, " + kModel + "}\n");
+  const auto with = [](const std::string& name, const std::string& variety) {
+    return Write(name, "name: s\ntraining_variety: " + variety + "\nobjects:\n  - {name: a, category: ball, instance: a, " +
+                           kModel + "}\n");
+  };
+  std::string e = ErrorOf(with("tv1.yaml", "[" + other + "]"));
+  EXPECT_NE(e.find("training_variety[0]': object 'v1' of '" + other + "' is a cup, not one of this set's categories"), std::string::npos) << e;
+  e = ErrorOf(with("tv2.yaml", "[" + taken + "]"));
+  EXPECT_NE(e.find("object name 'a' of '" + taken + "' is taken"), std::string::npos) << e;
+  e = ErrorOf(with("tv3.yaml", "[" + nested + "]"));
+  EXPECT_NE(e.find("names a training variety of its own"), std::string::npos) << e;
+  e = ErrorOf(with("tv4.yaml", "[/nonexistent/balls.yaml]"));
+  EXPECT_NE(e.find("tv4.yaml': key 'training_variety[0]': object set '/nonexistent/balls.yaml'"), std::string::npos) << e;
+  e = ErrorOf(with("tv5.yaml", "balls.yaml"));
+  EXPECT_NE(e.find("key 'training_variety': expected a non-empty list of object set files, found 'balls.yaml'"), std::string::npos) << e;
+}
+
 TEST(ObjectSet, FindNamesTheSetAndTheObject) {
   const auto set = LoadObjectSet(SORTCELL_SOURCE_DIR "/scenes/objects/paper.yaml");
   try {
