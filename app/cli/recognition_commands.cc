@@ -89,6 +89,9 @@ int EvalCommand(const perception::RecognitionModel& model, const Dataset& d, con
     summary += fmt::format("{}{} samples of categories it does not know (mean confidence {:.2f})",
                            summary.empty() ? "" : "; ", out_of_set.size(), mean);
   }
+  const auto by_instance = ClassifyByInstance(model, d);
+  results["by_instance"] = InstanceJson(by_instance);
+  std::ofstream(o.out / "tables.md", std::ios::app) << "\n" << InstanceMarkdown(by_instance);
   results["descriptor"] = perception::DescriptorName(model.descriptor);
   results["dataset"] = o.dataset.string();
   results["model"] = o.model.string();
@@ -96,6 +99,12 @@ int EvalCommand(const perception::RecognitionModel& model, const Dataset& d, con
   WriteJson(o.out / "run.json", RunRecord(command_line, 0, {{"command", "eval"}}));
   std::cout << "Evaluated " << perception::DescriptorTitle(model.descriptor) << ": " << summary << ". Tables in "
             << o.out.string() << "/tables.md\n";
+  for (const auto& [instance, r] : by_instance) {
+    if (r.known) {
+      std::cout << fmt::format("  {} ({}): {:.1f} % of {} called {}\n", instance, r.category, 100.0 * r.correct / r.samples,
+                               r.samples, r.category);
+    }
+  }
   return 0;
 }
 

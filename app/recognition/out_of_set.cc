@@ -19,6 +19,34 @@ double RejectedShare(const std::vector<double>& confidences, double threshold) {
   return confidences.empty() ? 0.0 : static_cast<double>(below) / confidences.size();
 }
 
+nlohmann::json ConfidenceJson(const std::vector<double>& sorted) {
+  const double mean = sorted.empty() ? 0.0 : std::accumulate(sorted.begin(), sorted.end(), 0.0) / sorted.size();
+  return {{"mean", mean},
+          {"median", Quantile(sorted, 0.5)},
+          {"p10", Quantile(sorted, 0.1)},
+          {"p90", Quantile(sorted, 0.9)},
+          {"max", sorted.empty() ? 0.0 : sorted.back()}};
+}
+
+nlohmann::json RejectedJson(const std::vector<double>& confidences) {
+  nlohmann::json rejected;
+  for (double t : kThresholds) rejected[fmt::format("{:.1f}", t)] = RejectedShare(confidences, t);
+  return rejected;
+}
+
+std::string CalledText(const std::map<std::string, int>& called) {
+  std::string text;
+  for (const auto& [cls, n] : called) text += fmt::format("{}{} {}", text.empty() ? "" : ", ", cls, n);
+  return text;
+}
+
+// Counts over ten bins of 0.1 (a confidence of 1 in the last).
+std::vector<int> Histogram(const std::vector<double>& confidences) {
+  std::vector<int> bins(10, 0);
+  for (double c : confidences) ++bins[std::clamp(static_cast<int>(c * 10), 0, 9)];
+  return bins;
+}
+
 }  // namespace
 
 void SplitBySet(const perception::RecognitionModel& model, const Dataset& dataset, std::vector<int>& in_set,
@@ -50,20 +78,10 @@ OutOfSetReport ClassifyOutOfSet(const perception::RecognitionModel& model, const
 nlohmann::json OutOfSetJson(const OutOfSetReport& report) {
   nlohmann::json out = nlohmann::json::object();
   for (const auto& [name, c] : report) {
-    const double mean = c.confidences.empty() ? 0.0
-                                              : std::accumulate(c.confidences.begin(), c.confidences.end(), 0.0) /
-                                                    c.confidences.size();
-    nlohmann::json rejected;
-    for (double t : kThresholds) rejected[fmt::format("{:.1f}", t)] = RejectedShare(c.confidences, t);
     out[name] = {{"samples", c.samples},
                  {"called", c.called},
-                 {"confidence",
-                  {{"mean", mean},
-                   {"median", Quantile(c.confidences, 0.5)},
-                   {"p10", Quantile(c.confidences, 0.1)},
-                   {"p90", Quantile(c.confidences, 0.9)},
-                   {"max", c.confidences.empty() ? 0.0 : c.confidences.back()}}},
-                 {"rejected_below", rejected}};
+                 {"confidence", ConfidenceJson(c.confidences)},
+                 {"rejected_below", RejectedJson(c.confidences)}};
   }
   return out;
 }
@@ -76,13 +94,67 @@ std::string OutOfSetMarkdown(const OutOfSetReport& report) {
   for (size_t i = 0; i < std::size(kThresholds); ++i) md += "---:|";
   md += "\n";
   for (const auto& [name, c] : report) {
-    std::string called;
-    for (const auto& [cls, n] : c.called) called += fmt::format("{}{} {}", called.empty() ? "" : ", ", cls, n);
+    const std::string called = CalledText(c.called);
     const double mean = std::accumulate(c.confidences.begin(), c.confidences.end(), 0.0) / std::max<size_t>(1, c.confidences.size());
     md += fmt::format("| {} | {} | {} | {:.2f} / {:.2f} / {:.2f} / {:.2f} |", name, c.samples, called, mean,
                       Quantile(c.confidences, 0.5), Quantile(c.confidences, 0.9),
                       c.confidences.empty() ? 0.0 : c.confidences.back());
     for (double t : kThresholds) md += fmt::format(" {:.0f} % |", 100 * RejectedShare(c.confidences, t));
+    md += "\n";
+  }
+  return md;
+}
+
+std::map<std::string, InstanceResults> ClassifyByInstance(const perception::RecognitionModel& model,
+                                                          const Dataset& dataset) {
+  std::map<std::string, InstanceResults> report;
+  for (const Sample& s : dataset.samples) {
+    const std::string& truth = Dataset::Label(s, model.label_kind);
+    const auto result = model.Classify(s.parts);
+    InstanceResults& r = report[s.instance];
+    r.category = truth;
+    r.known = std::find(model.classes.begin(), model.classes.end(), truth) != model.classes.end();
+    ++r.samples;
+    r.correct += result.name == truth ? 1 : 0;
+    ++r.called[result.name];
+    r.confidences.push_back(result.confidence);
+  }
+  for (auto& [name, r] : report) std::sort(r.confidences.begin(), r.confidences.end());
+  return report;
+}
+
+nlohmann::json InstanceJson(const std::map<std::string, InstanceResults>& report) {
+  nlohmann::json out = nlohmann::json::object();
+  for (const auto& [name, r] : report) {
+    out[name] = {{"category", r.category},
+                 {"known", r.known},
+                 {"samples", r.samples},
+                 {"correct_share", r.known ? nlohmann::json(static_cast<double>(r.correct) / r.samples) : nlohmann::json()},
+                 {"called", r.called},
+                 {"confidence", ConfidenceJson(r.confidences)},
+                 {"histogram", Histogram(r.confidences)},
+                 {"rejected_below", RejectedJson(r.confidences)}};
+  }
+  return out;
+}
+
+std::string InstanceMarkdown(const std::map<std::string, InstanceResults>& report) {
+  std::string md = "## By instance\n\nKnown instances: the share called their category, and the share each threshold would "
+                   "reject wrongly; unknown ones (a category the model has no class for): the share it would rightly reject. "
+                   "Confidence histogram: samples per tenth, 0-0.1 first.\n\n"
+                   "| instance | category | samples | called right | called | confidence median | histogram |";
+  for (double t : kThresholds) md += fmt::format(" rejected below {:.1f} |", t);
+  md += "\n|---|---|---:|---:|---|---:|---|";
+  for (size_t i = 0; i < std::size(kThresholds); ++i) md += "---:|";
+  md += "\n";
+  for (const auto& [name, r] : report) {
+    const std::vector<int> bins = Histogram(r.confidences);
+    std::string histogram;
+    for (int n : bins) histogram += fmt::format("{}{}", histogram.empty() ? "" : " ", n);
+    md += fmt::format("| {} | {}{} | {} | {} | {} | {:.2f} | {} |", name, r.category, r.known ? "" : " (unknown)", r.samples,
+                      r.known ? fmt::format("{:.1f} %", 100.0 * r.correct / r.samples) : "-", CalledText(r.called),
+                      Quantile(r.confidences, 0.5), histogram);
+    for (double t : kThresholds) md += fmt::format(" {:.0f} % |", 100 * RejectedShare(r.confidences, t));
     md += "\n";
   }
   return md;

@@ -39,4 +39,25 @@ nlohmann::json OutOfSetJson(const OutOfSetReport& report);
 /// The same as a Markdown section for tables.md.
 std::string OutOfSetMarkdown(const OutOfSetReport& report);
 
+/// Every sample of one instance (known or not): what it was called and how confidently. For a known
+/// instance the share called right; for either, the share a threshold would reject (a known one's
+/// wrongly). Real views are judged instance by instance: one real apple is not the category.
+struct InstanceResults {
+  std::string category;
+  bool known = false;  ///< Its category is one of the model's classes.
+  int samples = 0, correct = 0;
+  std::map<std::string, int> called;
+  std::vector<double> confidences;  ///< Sorted.
+};
+
+/// Per instance (the category label of the model's kind decides known and correct).
+std::map<std::string, InstanceResults> ClassifyByInstance(const perception::RecognitionModel& model, const Dataset& dataset);
+
+/// {"<instance>": {"category", "known", "samples", "correct_share", "called", "confidence": {...},
+/// "histogram": [10 counts over 0-0.1, ..., 0.9-1], "rejected_below": {...}}}.
+nlohmann::json InstanceJson(const std::map<std::string, InstanceResults>& report);
+
+/// The same as a Markdown section for tables.md.
+std::string InstanceMarkdown(const std::map<std::string, InstanceResults>& report);
+
 }  // namespace sortcell::app

@@ -205,6 +205,16 @@ TEST(RgbdObjects, ImportTrainAndEvalRunOnTheDatasetsFormat) {
   // A red ball and a green can, seen in training: the model tells them apart.
   EXPECT_GE(results["accuracy"].get<double>(), 0.95);
   EXPECT_FALSE(results.contains("out_of_set"));
+  // Instance by instance: each known, its share called right, its confidences binned by tenths.
+  const auto& can2 = results["by_instance"]["can_2"];
+  EXPECT_EQ(can2["category"], "can");
+  EXPECT_TRUE(can2["known"].get<bool>());
+  EXPECT_EQ(can2["samples"], 7);  // Its eighth view has no mask.
+  EXPECT_GE(can2["correct_share"].get<double>(), 0.95);
+  int binned = 0;
+  for (int n : can2["histogram"]) binned += n;
+  EXPECT_EQ(binned, 7);
+  EXPECT_NE(eval.out.find("can_2 (can): "), std::string::npos) << eval.out;
 
   // The real banana (where ../shared is beside the checkout), a category this model does not know:
   // eval reports what it was called and how confidently, not a score.
@@ -231,6 +241,9 @@ TEST(RgbdObjects, ImportTrainAndEvalRunOnTheDatasetsFormat) {
   std::ifstream tables(out / "eval_banana" / "tables.md");
   const std::string md((std::istreambuf_iterator<char>(tables)), std::istreambuf_iterator<char>());
   EXPECT_NE(md.find("| banana | "), std::string::npos) << md;
+  EXPECT_NE(md.find("| banana_1 | banana (unknown) | "), std::string::npos) << md;
+  EXPECT_FALSE(b["by_instance"]["banana_1"]["known"].get<bool>());
+  EXPECT_TRUE(b["by_instance"]["banana_1"]["correct_share"].is_null());
 }
 
 TEST(RgbdObjects, TheCommandRefusesAMixOfSourcesAndAnEmptyFolder) {
