@@ -7,6 +7,7 @@
 #include <opencv2/core/mat.hpp>
 
 #include <random>
+#include <string>
 
 #include "sim/camera_model.h"
 #include "sim/kinect_colour.h"
@@ -39,9 +40,23 @@ struct KinectNoiseParams {
   bool shadows = true;
   /// Multiplies both noise sigmas (sweeps vary it; 1 = the Kinect).
   double noise_scale = 1.0;
+  /// The PrimeSense chip matches the projected pattern over a window of pixels, so each depth is the
+  /// window's mean disparity over the same surface (neighbours within window_surface_m in depth): small
+  /// round objects come out flatter towards the camera. Measured on real views of a 6 cm ball
+  /// (../shared/real/rgbd-object, ball_2): the mean of CVFH's viewpoint block was bin 114.8 of 128,
+  /// against 106 for simulated balls without the window and 113.5 with a 9 px one. 0 or 1 = off.
+  int correlation_window_px = 0;
+  double window_surface_m = 0.02;
   /// The colour camera: exposure, white balance, saturation, blur and noise as measured on real views.
   KinectColourParams colour;
 };
+
+/// The per-capture variation of training captures' depth, so that a model covers the cell's simulated
+/// Kinect and real ones: noise scale x U(1, 2) (real units, rooms and surfaces are noisier than the
+/// published figures), and the correlation window (9 px) on for half of the captures.
+KinectNoiseParams JitterDepth(const KinectNoiseParams& params, std::mt19937_64& rng);
+/// JitterDepth's ranges in one line, for digests of what a model was trained on.
+std::string DepthJitterText();
 
 /// Axial standard deviation (m) at depth z (m) and incidence angle theta (rad).
 double AxialSigma(const KinectNoiseParams& params, double z, double theta);
@@ -49,9 +64,13 @@ double AxialSigma(const KinectNoiseParams& params, double z, double theta);
 /// Depth step (m) of the disparity quantisation at depth z.
 double QuantizationStep(const KinectNoiseParams& params, double z);
 
+/// The depth as the correlation window sees it: each finite pixel the mean disparity of the pixels of
+/// its `window` x `window` neighbourhood within `surface_m` of its depth (NaN stays NaN). Exposed for tests.
+cv::Mat CorrelationWindowDepth(const cv::Mat& depth, int window, double surface_m);
+
 /// Returns the noisy depth (CV_32FC1, metres, NaN where the sensor gives no depth) for an ideal
-/// planar depth image (CV_32FC1, NaN = nothing there) seen through intrinsics `k`. Steps: incidence
-/// angles from the clean surface; projector shadows (the projector sits baseline_m to the camera's
+/// planar depth image (CV_32FC1, NaN = nothing there) seen through intrinsics `k`. Steps: the
+/// correlation window (when on); incidence angles from the clean surface; projector shadows (the projector sits baseline_m to the camera's
 /// +x, so shadows fall to the left of foreground edges, ~ f b (1/z_fg - 1/z_bg) px wide); lateral
 /// jitter; range and grazing dropouts; axial Gaussian noise; disparity quantisation.
 /// Deterministic for a given rng state.

@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <opencv2/core.hpp>
 
 namespace {
@@ -156,6 +157,55 @@ TEST(KinectNoise, RejectsAnImageOfTheWrongShape) {
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("640x480"), std::string::npos) << e.what();
   }
+}
+
+// A sphere of radius `r` centred `z0` ahead on the optical axis, in front of nothing (NaN around it).
+cv::Mat Sphere(double z0, double r) {
+  const CameraIntrinsics k = Kinect();
+  cv::Mat depth(480, 640, CV_32FC1, cv::Scalar(std::numeric_limits<float>::quiet_NaN()));
+  for (int v = 0; v < 480; ++v) {
+    for (int u = 0; u < 640; ++u) {
+      const double x = (u - k.cx) / k.fx * z0, y = (v - k.cy) / k.fy * z0;  // Near-orthographic: fine at 0.7 m.
+      if (x * x + y * y < r * r) depth.at<float>(v, u) = static_cast<float>(z0 - std::sqrt(r * r - x * x - y * y));
+    }
+  }
+  return depth;
+}
+
+TEST(KinectNoise, TheCorrelationWindowFlattensASmallSphereAndKeepsItsOutline) {
+  const cv::Mat sphere = Sphere(0.7, 0.03);
+  const cv::Mat windowed = CorrelationWindowDepth(sphere, 9, 0.02);
+  EXPECT_EQ(cv::countNonZero(windowed == windowed), cv::countNonZero(sphere == sphere)) << "no depth added or lost";
+  // The centre stays (a symmetric neighbourhood); near the rim the window reaches in: nearer than the sphere.
+  EXPECT_NEAR(windowed.at<float>(240, 320), sphere.at<float>(240, 320), 0.0005);
+  const int rim_u = 320 + static_cast<int>(0.028 / 0.7 * 525);  // 2 mm inside the outline.
+  EXPECT_LT(windowed.at<float>(240, rim_u), sphere.at<float>(240, rim_u) - 0.003);
+  // Off (0 or 1) is the input itself.
+  EXPECT_EQ(CorrelationWindowDepth(sphere, 1, 0.02).data, sphere.data);
+}
+
+TEST(KinectNoise, TheWindowKeepsToOneSurface) {
+  // A step of 5 cm: each side keeps its own depth up to the edge.
+  cv::Mat step = FlatDepth(1.0);
+  step.colRange(320, 640).setTo(1.05);
+  const cv::Mat windowed = CorrelationWindowDepth(step, 9, 0.02);
+  EXPECT_NEAR(windowed.at<float>(240, 319), 1.0, 1e-6);
+  EXPECT_NEAR(windowed.at<float>(240, 320), 1.05, 1e-6);
+}
+
+TEST(KinectNoise, TrainingCapturesVaryTheNoiseAndTheWindow) {
+  std::mt19937_64 rng(5);
+  int windowed = 0;
+  for (int i = 0; i < 200; ++i) {
+    const KinectNoiseParams p = JitterDepth({}, rng);
+    EXPECT_GE(p.noise_scale, 1.0);
+    EXPECT_LE(p.noise_scale, 2.0);
+    EXPECT_TRUE(p.correlation_window_px == 0 || p.correlation_window_px == 9);
+    windowed += p.correlation_window_px == 9 ? 1 : 0;
+  }
+  EXPECT_GT(windowed, 70);
+  EXPECT_LT(windowed, 130);
+  EXPECT_NE(DepthJitterText().find("9 px"), std::string::npos);
 }
 
 }  // namespace
