@@ -110,6 +110,13 @@ struct OffscreenRenderer::Impl {
 
 OffscreenRenderer::OffscreenRenderer(const Model& model) : impl_(std::make_unique<Impl>()) {
   InstallMujocoHandlers();
+  // MuJoCo 2.2.2 draws at most 100 textures per render context; the rest render white, silently
+  // (DESIGN.md section 5): refuse rather than render garbage.
+  if (model->ntex > kMaxTextures) {
+    throw std::invalid_argument("scene '" + model.source() + "': " + std::to_string(model->ntex) +
+                                " textures, more than the " + std::to_string(kMaxTextures) +
+                                " MuJoCo 2.2's renderer draws (compose fewer textured objects into one scene)");
+  }
   impl_->model = &model;
   GlContext::Instance().MakeCurrent();
   mjv_defaultScene(&impl_->scene);

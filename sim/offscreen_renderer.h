@@ -30,11 +30,16 @@ struct Lighting {
   double tilt_x = 0.0, tilt_y = 0.0;  ///< Added to each light direction's x and y before normalising.
 };
 
+/// The most textures MuJoCo 2.2.2's renderer draws per context (measured: the 101st and later render
+/// white; about 400 crash).
+inline constexpr int kMaxTextures = 100;
+
 /// Renders a model's fixed cameras to colour, the raw depth buffer and segment ids. The OSMesa
 /// context is created once per process and shared; each renderer owns its model's GPU resources.
 class OffscreenRenderer {
  public:
-  /// @throws std::runtime_error if no OSMesa context can be created.
+  /// @throws std::runtime_error if no OSMesa context can be created; std::invalid_argument naming the
+  ///         scene if it holds more than kMaxTextures textures.
   explicit OffscreenRenderer(const Model& model);
   ~OffscreenRenderer();
   OffscreenRenderer(const OffscreenRenderer&) = delete;

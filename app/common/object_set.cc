@@ -175,12 +175,6 @@ ObjectSet LoadObjectSet(const std::filesystem::path& file) {
   return set;
 }
 
-ObjectSet ObjectSet::WithTrainingVariety() const {
-  ObjectSet all = *this;
-  all.objects.insert(all.objects.end(), training_variety.begin(), training_variety.end());
-  all.training_variety.clear();
-  return all;
-}
 
 std::string ObjectModelsDigest(const ObjectSet& set, const std::filesystem::path& texture_dir) {
   std::string content;

@@ -43,9 +43,6 @@ struct ObjectSet {
   /// The objects of the `training_variety` sets, for training only.
   std::vector<ObjectSpec> training_variety;
 
-  /// This set with its training variety among its objects (what its default model is trained on).
-  ObjectSet WithTrainingVariety() const;
-
   /// Distinct categories in order of first appearance.
   std::vector<std::string> Categories() const;
   /// The object called `name`. @throws std::invalid_argument naming the set and the object.

@@ -13,6 +13,7 @@
 #include "app/recognition/dataset_capture.h"
 #include "app/recognition/recognition.h"
 #include "sim/kinect_colour.h"
+#include "sim/kinect_noise.h"
 
 namespace sortcell::app {
 
@@ -25,26 +26,65 @@ std::filesystem::path DefaultDatasetDir(const ObjectSet& set) { return ModelCach
 // was trained on, so that a cached model of objects or a sensor that have changed since is trained again.
 std::filesystem::path DigestPath(const std::filesystem::path& model) { return model.string() + ".trained_on"; }
 
-// The default model's training scenes of `set` (its training variety among its objects): every
-// placement mode the cell meets, some objects lying; 150 scenes for the set's own objects and more in
-// proportion for its variety, so its own objects are seen as often as without one.
-SceneOptions DefaultTrainingScenes(const ObjectSet& set) {
+// The default model's training scenes of `count` objects: every placement mode the cell meets, some
+// objects lying, `per_object` scenes per object (150 for the set's own objects, so that its own objects
+// are seen as often with a training variety as without one).
+SceneOptions TrainingScenes(size_t count, double scenes_per_object) {
   SceneOptions scenes;
   scenes.modes = {sim::PlacementMode::kSparse, sim::PlacementMode::kDense, sim::PlacementMode::kClustered};
   scenes.placement.lying_fraction = 0.3;
-  const size_t own = std::max<size_t>(1, set.objects.size()), all = own + set.training_variety.size();
-  scenes.scenes = static_cast<int>((scenes.scenes * all + own / 2) / own);
+  scenes.scenes = static_cast<int>(std::lround(scenes_per_object * static_cast<double>(count)));
   // A set smaller than a scene's largest count: every scene holds at most all of it.
-  scenes.max_objects = std::min<int>(scenes.max_objects, static_cast<int>(all));
+  scenes.max_objects = std::min<int>(scenes.max_objects, static_cast<int>(count));
   scenes.min_objects = std::min(scenes.min_objects, scenes.max_objects);
   return scenes;
 }
 
-// The same as `sortcell dataset` options.
+// MuJoCo 2.2 draws at most 100 textures in one scene (sim::kMaxTextures): a training variety is
+// captured in scenes of its own, in groups of at most this many objects.
+constexpr size_t kVarietyGroup = 60;
+
+// The groups of objects captured apart: the set's own, then its variety in groups.
+std::vector<ObjectSet> CaptureGroups(const ObjectSet& set) {
+  std::vector<ObjectSet> groups{set};
+  groups.front().training_variety.clear();
+  for (size_t first = 0; first < set.training_variety.size(); first += kVarietyGroup) {
+    ObjectSet group;
+    group.name = set.name + "_variety" + std::to_string(groups.size());
+    group.source = set.source;
+    const size_t last = std::min(set.training_variety.size(), first + kVarietyGroup);
+    group.objects.assign(set.training_variety.begin() + first, set.training_variety.begin() + last);
+    groups.push_back(std::move(group));
+  }
+  return groups;
+}
+
+double ScenesPerObject(const ObjectSet& set) { return 150.0 / static_cast<double>(std::max<size_t>(1, set.objects.size())); }
+
+SceneOptions DefaultTrainingScenes(const ObjectSet& set) { return TrainingScenes(set.objects.size(), ScenesPerObject(set)); }
+
+// Every scene of the recipe, as `sortcell dataset` options.
 std::string DefaultTrainingSceneArguments(const ObjectSet& set) {
-  const SceneOptions scenes = DefaultTrainingScenes(set);
-  return "--scenes " + std::to_string(scenes.scenes) + " --placement " + PlacementModesText(scenes.modes) +
-         " --lying-fraction " + fmt::format("{:g}", scenes.placement.lying_fraction);
+  std::string text;
+  for (const ObjectSet& group : CaptureGroups(set)) {
+    const SceneOptions scenes = TrainingScenes(group.objects.size(), ScenesPerObject(set));
+    text += (text.empty() ? "" : "; ") + std::string("--scenes ") + std::to_string(scenes.scenes) + " --placement " +
+            PlacementModesText(scenes.modes) + " --lying-fraction " + fmt::format("{:g}", scenes.placement.lying_fraction);
+  }
+  return text;
+}
+
+// `part` (captured into `dir`/`sub`) after `whole`: ids, cloud paths and scene numbers made unique.
+void AppendDataset(Dataset& whole, Dataset part, const std::string& sub) {
+  int scenes = 0;
+  for (const Sample& s : whole.samples) scenes = std::max(scenes, s.scene + 1);
+  for (Sample& s : part.samples) {
+    s.id = static_cast<int>(whole.samples.size());
+    s.cloud = sub + "/" + s.cloud;
+    if (s.scene >= 0) s.scene += scenes;
+    whole.samples.push_back(std::move(s));
+  }
+  whole.capture["groups"].push_back(part.capture);
 }
 
 // How those scenes are segmented (the cell's convex clusters and their settings).
@@ -63,6 +103,7 @@ std::string SegmentationDigest() {
 // the scenes it is trained on and how they are segmented.
 std::string TrainedOnDigest(const ObjectSet& set) {
   return ObjectModelsDigest(set, ObjectTexturesDir()) + " colour " + sim::ToString(sim::KinectColourParams{}) +
+         " depth " + sim::DepthJitterText() +
          " scenes " + DefaultTrainingSceneArguments(set) + " segmentation " + SegmentationDigest();
 }
 
@@ -103,14 +144,20 @@ bool DefaultModelIsCurrent(const ObjectSet& set) {
 }
 
 std::string DefaultRecipeTitle() {
-  const SceneOptions scenes = DefaultTrainingScenes(ObjectSet{});
+  const SceneOptions scenes = TrainingScenes(1, 150);
   return fmt::format("{} random cell scenes, more in proportion for a training variety ({}; {:g} % lying; seed {}), {}",
                      scenes.scenes, PlacementModesText(scenes.modes), 100 * scenes.placement.lying_fraction, scenes.seed,
                      perception::DescriptorTitle(TrainRequest{}.descriptor));
 }
 
 perception::RecognitionModel TrainDefaultRecipe(const ObjectSet& set, const std::filesystem::path& dataset_dir) {
-  const Dataset dataset = CaptureScenes(set.WithTrainingVariety(), DefaultTrainingScenes(set), dataset_dir);
+  const std::vector<ObjectSet> groups = CaptureGroups(set);
+  Dataset dataset = CaptureScenes(groups.front(), DefaultTrainingScenes(set), dataset_dir);
+  for (size_t g = 1; g < groups.size(); ++g) {
+    const std::string sub = "variety" + std::to_string(g);
+    const SceneOptions scenes = TrainingScenes(groups[g].objects.size(), ScenesPerObject(set));
+    AppendDataset(dataset, CaptureScenes(groups[g], scenes, dataset_dir / sub), sub);
+  }
   SaveDataset(dataset_dir, dataset);
   return TrainModel(dataset, {}, TrainRequest{});
 }
@@ -119,10 +166,10 @@ std::filesystem::path EnsureDefaultModel(const ObjectSet& set) {
   const std::filesystem::path path = DefaultModelPath(set);
   const std::string digest = TrainedOnDigest(set);
   if (DefaultModelIsCurrent(set)) return path;
-  spdlog::info("{} trained model at {}: training one on {} random scenes of '{}'{} (about {} s)",
+  spdlog::info("{} trained model at {}: training one on random scenes of '{}'{} ({})",
                std::filesystem::exists(path) ? "the objects, the Kinect colour model or the training scenes have changed since the" : "no",
-               path.string(), DefaultTrainingScenes(set).scenes, set.name,
-               set.training_variety.empty() ? "" : " and its training variety", DefaultTrainingScenes(set).scenes / 5);
+               path.string(), set.name, set.training_variety.empty() ? "" : " and, apart, of its training variety",
+               DefaultTrainingSceneArguments(set));
   const perception::RecognitionModel model = TrainDefaultRecipe(set, DefaultDatasetDir(set));
   const std::filesystem::path temporary = path.string() + ".tmp" + std::to_string(::getpid());
   perception::SaveModel(temporary, model);

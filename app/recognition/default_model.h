@@ -28,10 +28,11 @@ std::string DefaultModelHint(const ObjectSet& set);
 /// by hand, with sortcell train, and counts as current).
 bool DefaultModelIsCurrent(const ObjectSet& set);
 
-/// The default recipe, the one every default model is made with: random cell scenes of `set` and of its
-/// training variety (150 for the set's own objects and more in proportion for the variety; seed 0;
-/// sparse, dense and clustered in turns; 30 % of the bottles and boxes lying) captured into
-/// `dataset_dir` (kept there), and Color-CVFH (normalization) trained on them.
+/// The default recipe, the one every default model is made with: random cell scenes of `set` (150; seed
+/// 0; sparse, dense and clustered in turns; 30 % of the bottles and boxes lying), and of its training
+/// variety apart (as many scenes per object, in groups of at most 60 objects: MuJoCo 2.2 draws at most
+/// 100 textures in one scene), captured into `dataset_dir` (kept there), and Color-CVFH (normalization)
+/// trained on them all.
 perception::RecognitionModel TrainDefaultRecipe(const ObjectSet& set, const std::filesystem::path& dataset_dir);
 
 /// The recipe in words, e.g. "150 random cell scenes (sparse, dense, clustered; 30 % lying; seed 0),

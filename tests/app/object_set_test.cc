@@ -98,9 +98,6 @@ TEST(ObjectSet, ATrainingVarietyAddsObjectsOfTheSetsCategoriesForTrainingOnly) {
   ASSERT_EQ(set.objects.size(), 1u);
   ASSERT_EQ(set.training_variety.size(), 2u);
   EXPECT_EQ(set.training_variety[1].name, "v2");
-  const auto all = set.WithTrainingVariety();
-  EXPECT_EQ(all.objects.size(), 3u);
-  EXPECT_TRUE(all.training_variety.empty());
   // The variety is part of what the set's model was trained on.
   const auto plain = LoadObjectSet(Write("without_variety.yaml", "name: s\nobjects:\n  - {name: a, category: ball, instance: a, " + kModel + "}\n"));
   EXPECT_NE(sortcell::app::ObjectModelsDigest(set, "none"), sortcell::app::ObjectModelsDigest(plain, "none"));

@@ -8,6 +8,7 @@
 #include <cstring>
 #include <opencv2/imgproc.hpp>
 
+#include "sim/offscreen_renderer.h"
 #include "sim/point_cloud.h"
 
 namespace {
@@ -211,6 +212,24 @@ TEST(KinectCamera, MissingCameraAndTooSmallBufferAreNamed) {
     FAIL() << "expected std::invalid_argument";
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("offwidth"), std::string::npos) << e.what();
+  }
+}
+
+TEST(KinectCamera, AScenePastTheRenderersTextureLimitIsRefusedNotDrawnWhite) {
+  // MuJoCo 2.2.2 draws 100 textures per context; the 101st and later came out white.
+  std::string textures, materials;
+  for (int i = 0; i <= kMaxTextures; ++i) {
+    textures += "<texture name=\"t" + std::to_string(i) + "\" type=\"2d\" builtin=\"flat\" width=\"4\" height=\"4\" rgb1=\"1 0 0\"/>";
+    materials += "<material name=\"m" + std::to_string(i) + "\" texture=\"t" + std::to_string(i) + "\"/>";
+  }
+  std::string scene = kWallScene;
+  scene.replace(scene.find("<worldbody>"), 0, "<asset>" + textures + materials + "</asset>");
+  const Model model = Model::FromVirtualFiles({{"textures.xml", scene}}, "textured scene");
+  try {
+    KinectCamera kinect(model);
+    FAIL() << "expected std::invalid_argument";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("101 textures, more than the 100"), std::string::npos) << e.what();
   }
 }
 
