@@ -10,6 +10,11 @@ surface as real produce does (gradients, blush, streaks, spots, speckle) through
 texture on a visual mesh; the object touches the world through a simple primitive under it
 (an ellipsoid, a cylinder for plates), so the physics stays as it was with primitives.
 
+The training variety (VARIETY): six more members of each category, <category>v<k>, for training only,
+covering each category's real colour range (scenes/objects/produce_variety.yaml, named by produce.yaml's
+training_variety; not in scenes/produce.xml). They have their own seed; the set's own instances are
+drawn exactly as before.
+
 Reproducible: everything is drawn from one seeded generator per instance. The outputs are committed;
 rerun this after editing the tables below:
     python3 models/tools/make_produce.py
@@ -80,6 +85,97 @@ CATEGORIES = {
 # Potatoes and lemons are long: `width` is the short side across, the long side is aspect x width
 # lying on the table (lemons, limes) or the footprint's length (potatoes: aspect is height/width,
 # elongation separate).
+
+# The training variety: VARIETY_INSTANCES more members of each category (<category>v<k>), for training
+# only (scenes/objects/produce_variety.yaml, the training_variety of produce.yaml), covering each
+# category's real colour range: instance k wears palette k - 1 (one of each family), jittered. Sizes
+# and proportions are a little wider than the set's own. Drawn from their own seed, so the set's own
+# instances above stay as they were.
+#   palettes: (label, pattern, base HSV, second HSV, amount range); patterns:
+#     uniform  the base colour, mottled (second unused)
+#     blush    a patch of the second colour on one side (amount: its strength)
+#     streak   Gala/Fuji: a wash of the second colour over one side (amount: its cover) with
+#              meridional streaks of it, darker
+#     ends     towards the stem (lemons, limes: both ends) the colour turns to the second one
+#     patches  irregular blotches of the second colour (amount: the share of the surface)
+#     band     plates: a band of the second colour on the rim (amount: its width), sometimes a line at
+#              the rim's edge
+#   spots: (count range, (dh, s factor, v factor)) relative to the base colour (lenticels, pores, eyes)
+VARIETY_INSTANCES = 6
+VARIETY_SEED = 71
+VARIETY = {
+    "apple": dict(width=(0.060, 0.090), aspect=(0.76, 1.00), spots=((20, 70), (8, 0.45, 1.5)), palettes=[
+        ("bright red", "uniform", (357, 0.88, 0.62), (355, 0.90, 0.50), (0, 0)),
+        ("dark red (Red Delicious)", "streak", (352, 0.90, 0.30), (345, 0.92, 0.22), (0.7, 1.0)),
+        ("red streaked over yellow (Gala, Fuji)", "streak", (45, 0.68, 0.86), (2, 0.85, 0.62), (0.55, 0.9)),
+        ("green (Granny Smith)", "uniform", (92, 0.72, 0.62), (85, 0.65, 0.70), (0, 0)),
+        ("yellow (Golden Delicious)", "blush", (52, 0.75, 0.86), (38, 0.70, 0.82), (0.2, 0.5)),
+        ("green with a red blush", "blush", (80, 0.65, 0.70), (358, 0.80, 0.52), (0.5, 0.9))]),
+    "orange": dict(width=(0.058, 0.092), aspect=(0.86, 1.02), spots=((250, 400), (0, 1.0, 0.84)), palettes=[
+        ("deep orange", "uniform", (26, 0.94, 0.92), (24, 0.95, 0.85), (0, 0)),
+        ("light orange", "uniform", (34, 0.85, 0.96), (36, 0.80, 0.92), (0, 0)),
+        ("red-orange with a red blush (blood orange)", "blush", (18, 0.90, 0.82), (4, 0.88, 0.58), (0.4, 0.8)),
+        ("orange, regreening (Valencia)", "patches", (30, 0.90, 0.90), (62, 0.70, 0.72), (0.15, 0.35)),
+        ("dark orange, shaded", "uniform", (22, 0.95, 0.70), (20, 0.95, 0.60), (0, 0)),
+        ("reddish orange (mandarin)", "ends", (20, 0.95, 0.92), (28, 0.90, 0.85), (0.3, 0.6))]),
+    "lemon": dict(width=(0.046, 0.064), aspect=(1.25, 1.70), spots=((200, 320), (-2, 1.0, 0.86)), palettes=[
+        ("bright yellow", "uniform", (54, 0.86, 0.95), (56, 0.85, 0.90), (0, 0)),
+        ("pale yellow", "uniform", (56, 0.58, 0.96), (58, 0.55, 0.90), (0, 0)),
+        ("deep yellow", "uniform", (47, 0.92, 0.88), (45, 0.92, 0.80), (0, 0)),
+        ("yellow, green ends", "ends", (55, 0.85, 0.90), (75, 0.75, 0.68), (0.6, 1.0)),
+        ("greenish, unripe", "uniform", (68, 0.78, 0.78), (75, 0.75, 0.70), (0, 0)),
+        ("yellow with brownish blotches", "patches", (52, 0.82, 0.86), (40, 0.70, 0.58), (0.08, 0.2))]),
+    "lime": dict(width=(0.040, 0.058), aspect=(1.00, 1.25), spots=((200, 320), (4, 1.0, 0.82)), palettes=[
+        ("dark green", "uniform", (105, 0.82, 0.42), (100, 0.80, 0.36), (0, 0)),
+        ("mid green", "uniform", (95, 0.76, 0.60), (90, 0.72, 0.55), (0, 0)),
+        ("light green", "uniform", (85, 0.62, 0.76), (80, 0.60, 0.72), (0, 0)),
+        ("yellow-green", "ends", (72, 0.72, 0.78), (88, 0.72, 0.60), (0.5, 0.9)),
+        ("green with yellow patches", "patches", (98, 0.76, 0.55), (62, 0.70, 0.80), (0.15, 0.35)),
+        ("very dark green", "uniform", (115, 0.78, 0.30), (110, 0.75, 0.25), (0, 0))]),
+    "peach": dict(width=(0.054, 0.080), aspect=(0.86, 1.05), spots=((20, 60), (-20, 1.1, 0.75)), palettes=[
+        ("yellow-orange with a red blush", "blush", (35, 0.66, 0.92), (2, 0.80, 0.68), (0.6, 0.95)),
+        ("mostly red (nectarine)", "blush", (40, 0.65, 0.85), (352, 0.82, 0.45), (1.0, 1.0)),
+        ("white peach: cream with a pink blush", "blush", (38, 0.25, 0.93), (350, 0.48, 0.80), (0.5, 0.9)),
+        ("dark red blush over orange", "blush", (30, 0.72, 0.86), (350, 0.85, 0.40), (0.8, 1.0)),
+        ("pale yellow, small blush", "blush", (46, 0.50, 0.90), (10, 0.62, 0.80), (0.2, 0.5)),
+        ("orange with a red blush", "blush", (28, 0.76, 0.90), (5, 0.85, 0.62), (0.4, 0.8))]),
+    "pear": dict(width=(0.056, 0.080), aspect=(1.20, 1.75), spots=((120, 260), (-5, 0.9, 0.7)), palettes=[
+        ("green (Anjou)", "uniform", (85, 0.66, 0.62), (80, 0.60, 0.66), (0, 0)),
+        ("yellow (ripe Bartlett)", "ends", (55, 0.72, 0.86), (70, 0.65, 0.72), (0.3, 0.7)),
+        ("red (Red Anjou)", "ends", (356, 0.72, 0.40), (20, 0.65, 0.35), (0.3, 0.6)),
+        ("russet brown (Bosc)", "patches", (30, 0.66, 0.48), (38, 0.55, 0.62), (0.2, 0.45)),
+        ("yellow with a red blush", "blush", (52, 0.66, 0.84), (5, 0.72, 0.58), (0.5, 0.9)),
+        ("pale green-yellow (Asian, Comice)", "uniform", (62, 0.50, 0.80), (55, 0.55, 0.75), (0, 0))]),
+    "pepper": dict(width=(0.062, 0.088), aspect=(0.80, 1.35), spots=((0, 0), (0, 1, 1)), palettes=[
+        ("red", "uniform", (358, 0.92, 0.68), (355, 0.90, 0.55), (0, 0)),
+        ("dark red", "uniform", (352, 0.92, 0.42), (350, 0.92, 0.34), (0, 0)),
+        ("yellow", "uniform", (50, 0.95, 0.92), (46, 0.95, 0.85), (0, 0)),
+        ("orange", "uniform", (30, 0.96, 0.92), (25, 0.95, 0.82), (0, 0)),
+        ("green", "uniform", (110, 0.85, 0.40), (105, 0.82, 0.32), (0, 0)),
+        ("green turning red", "patches", (105, 0.80, 0.40), (0, 0.86, 0.50), (0.25, 0.6))]),
+    "plate": dict(width=(0.17, 0.26), aspect=(0.065, 0.11), spots=((0, 0), (0, 1, 1)), palettes=[
+        ("white", "uniform", (0, 0.0, 0.96), (0, 0.0, 0.96), (0, 0)),
+        ("cream with a gold rim band", "band", (42, 0.15, 0.92), (38, 0.62, 0.66), (0.012, 0.03)),
+        ("white with a blue rim band", "band", (210, 0.03, 0.95), (218, 0.65, 0.50), (0.01, 0.035)),
+        ("blue", "uniform", (212, 0.55, 0.62), (212, 0.55, 0.62), (0, 0)),
+        ("terracotta with a cream rim band", "band", (16, 0.62, 0.66), (40, 0.20, 0.90), (0.008, 0.02)),
+        ("green", "uniform", (140, 0.45, 0.55), (140, 0.45, 0.55), (0, 0))]),
+    "potato": dict(width=(0.044, 0.072), aspect=(0.50, 0.85), elongation=(1.15, 2.0),
+                   spots=((25, 70), (-4, 1.0, 0.68)), palettes=[
+        ("russet brown, netted", "patches", (28, 0.56, 0.45), (24, 0.48, 0.34), (0.35, 0.6)),
+        ("yellow (Yukon Gold)", "uniform", (42, 0.45, 0.80), (38, 0.48, 0.70), (0, 0)),
+        ("red", "patches", (356, 0.60, 0.46), (10, 0.45, 0.62), (0.1, 0.3)),
+        ("pale tan, white", "uniform", (38, 0.28, 0.80), (35, 0.32, 0.70), (0, 0)),
+        ("dark red", "uniform", (348, 0.58, 0.34), (352, 0.50, 0.42), (0, 0)),
+        ("light brown, earthy", "patches", (34, 0.55, 0.62), (28, 0.55, 0.45), (0.2, 0.45))]),
+    "tomato": dict(width=(0.050, 0.082), aspect=(0.66, 0.95), spots=((0, 0), (0, 1, 1)), palettes=[
+        ("red", "uniform", (2, 0.88, 0.78), (6, 0.88, 0.72), (0, 0)),
+        ("dark red", "uniform", (356, 0.90, 0.48), (354, 0.90, 0.40), (0, 0)),
+        ("orange", "uniform", (20, 0.90, 0.90), (24, 0.88, 0.85), (0, 0)),
+        ("yellow", "uniform", (46, 0.86, 0.90), (42, 0.86, 0.85), (0, 0)),
+        ("green, unripe", "ends", (88, 0.62, 0.62), (80, 0.55, 0.72), (0.3, 0.6)),
+        ("red with green shoulders", "ends", (4, 0.86, 0.70), (70, 0.62, 0.52), (0.6, 1.0))]),
+}
 
 
 def hsv(h, s, v):
@@ -266,6 +362,76 @@ def make_colour(rng, category, spec):
     return colour, base
 
 
+def smooth_noise(rng, terms=6):
+    """A smooth random field over the surface, periodic in u, about unit spread: (u, t) -> float. It
+    fades out at the poles (t = 0, 1), where all longitudes meet, so that it does not swirl there."""
+    waves = [(rng.randint(1, 4), rng.uniform(0.5, 4.0), rng.uniform(0, 2 * math.pi), rng.uniform(0, 2 * math.pi))
+             for _ in range(terms)]
+    norm = math.sqrt(terms / 4.0)
+    return lambda u, t: math.sin(math.pi * t) * sum(math.sin(2 * math.pi * k * u + p) * math.cos(math.pi * m * t + q)
+                                                    for k, m, p, q in waves) / norm
+
+
+def make_variety_colour(palette):
+    """A colour maker (like make_colour) for one palette of VARIETY."""
+    label, pattern, base_hsv, second_hsv, amounts = palette
+
+    def maker(rng, category, spec):
+        b, s2 = jitter_hsv(rng, base_hsv, 5, 0.05, 0.07), jitter_hsv(rng, second_hsv, 5, 0.05, 0.07)
+        base, second = hsv(*b), hsv(*s2)
+        amount = rng.uniform(*amounts)
+        n_lo, n_hi = spec["spots"][0]
+        dh, fs, fv = spec["spots"][1]
+        spots = [(rng.random(), rng.uniform(0.05, 0.95), rng.uniform(0.008, 0.018)) for _ in range(rng.randint(n_lo, n_hi))]
+        spot_colour = hsv(b[0] + dh, b[1] * fs, b[2] * fv)
+        blotch, mottle = smooth_noise(rng), smooth_noise(rng)
+        wobble = smooth_noise(rng)
+        mottling = rng.uniform(0.03, 0.08)
+        speckle = {"orange": 0.05, "lemon": 0.05, "lime": 0.05, "potato": 0.08, "pear": 0.05}.get(category, 0.03)
+        side_u, side_t = rng.random(), rng.uniform(0.35, 0.7)
+        # How far round the blush (the streaked wash) reaches; a strong blush covers more.
+        spread = rng.uniform(0.15, 0.30) * (0.6 + amount) if pattern == "blush" else rng.uniform(0.35, 0.6)
+        n_streaks, wash = rng.randint(24, 48), rng.uniform(0.35, 0.7)
+        threshold = 0.9 - 1.8 * amount          # patches: about `amount` of the surface above it
+        ends_from = rng.uniform(0.45, 0.7)
+        band_at, edge_line = rng.uniform(0.585, 0.625), rng.random() < 0.5
+
+        def colour(u, t, noise):
+            # MuJoCo puts texcoord v = 0 at the image's top row, so the row texture_rows computes for t
+            # shows at 1 - t on the mesh: the variety turns it back (t here is the mesh's, top = 1).
+            # The set's own instances (make_colour) keep it as it was.
+            t = 1 - t
+            c = base
+            if pattern in ("blush", "streak"):
+                d = min(abs(u - side_u), 1 - abs(u - side_u))
+                w = amount * math.exp(-(d / spread) ** 2 - ((t - side_t) / 0.5) ** 2) * (1 + 0.25 * blotch(u, t))
+                if pattern == "streak":
+                    # Meridional streaks, wavy, over a lighter wash of the same colour.
+                    st = 0.5 + 0.5 * math.sin(2 * math.pi * n_streaks * u + 2.5 * wobble(u, t))
+                    w = min(1.0, 2.2 * w) * (wash + (1 - wash) * st ** 1.5)
+                c = mix(c, second, max(0.0, min(1.0, w)))
+            elif pattern == "ends":
+                ends = max(t, 1 - t) if category in ("lemon", "lime") else t
+                c = mix(c, second, amount * smoothstep(ends_from, 1.0, ends + 0.06 * blotch(u, t)))
+            elif pattern == "patches":
+                c = mix(c, second, smoothstep(threshold - 0.5, threshold + 0.5, blotch(u, t)))
+            elif pattern == "band":
+                # The rim's top lies at t 0.53 .. 0.66 (shape_plate's profile; the well beyond it).
+                if abs(t - band_at) < amount or (edge_line and 0.535 < t < 0.55):
+                    c = second
+            for su, st_, sr in spots:
+                du = min(abs(u - su), 1 - abs(u - su)) * math.sin(math.pi * max(0.05, min(0.95, t))) * 2
+                if du * du + (t - st_) ** 2 < sr * sr:
+                    c = spot_colour
+                    break
+            k = 1 + mottling * mottle(u, t) + speckle * noise
+            return tuple(max(0.0, min(1.0, x * k)) for x in c)
+
+        return colour, base
+
+    return maker
+
+
 def texture_rows(rng, colour):
     rows = []
     for row in range(TEX_H):
@@ -327,9 +493,13 @@ def details(name, category, rng, size, spec):
     return g
 
 
-def make_instance(name, category, index):
-    rng = random.Random(f"{SEED}-{name}")
-    spec = CATEGORIES[category]
+def make_instance(name, category, index, spec=None, seed=SEED, colour_maker=None, pose=None, kind=""):
+    """Writes one instance. The defaults are the set's own instances; the training variety passes its
+    own spec (sizes), seed, colour maker and pose (make_variety_instance). The draws from `rng` come in
+    the same order either way."""
+    rng = random.Random(f"{seed}-{name}")
+    spec = CATEGORIES[category] if spec is None else spec
+    colour_maker = make_colour if colour_maker is None else colour_maker
     w = rng.uniform(*spec["width"])
     aspect = rng.uniform(*spec["aspect"])
     h = w * aspect
@@ -346,14 +516,14 @@ def make_instance(name, category, index):
     elif category == "pepper":
         f = shape_pepper(rng, w, h)
     elif category == "potato":
-        f = shape_potato(rng, w, h, w * rng.uniform(1.3, 1.8))
+        f = shape_potato(rng, w, h, w * rng.uniform(*spec.get("elongation", (1.3, 1.8))))
     elif category == "tomato":
         f = shape_tomato(rng, w, h)
     else:
         f = shape_plate(rng, w, h)
     verts, uvs, faces = mesh(f)
     verts, size = place_on_table(verts)
-    colour, base = make_colour(rng, category, spec)
+    colour, base = colour_maker(rng, category, spec)
     write_png(os.path.join(TEXTURES, f"produce_{name}.png"), TEX_W, TEX_H, texture_rows(rng, colour))
 
     sx, sy, sz = size
@@ -377,8 +547,8 @@ def make_instance(name, category, index):
     geoms += details(name, category, rng, size, spec)
     body = "\n      ".join(geoms)
     dims = f"{sx:.3f} x {sy:.3f} x {sz:.3f} m"
-    x, y, z = default_pose(category, index)
-    text = f"""<!-- {name}: {category} instance ({dims}, {mass} kg). Written by models/tools/make_produce.py. -->
+    x, y, z = default_pose(category, index) if pose is None else pose
+    text = f"""<!-- {name}: {category} instance{kind} ({dims}, {mass} kg). Written by models/tools/make_produce.py. -->
 <mujoco>
   <asset>
     <!-- The path is relative to scenes/; sortcell finds the texture by its name from anywhere. -->
@@ -403,22 +573,48 @@ def make_instance(name, category, index):
     return dims, mass
 
 
-def default_pose(category, index):
+def default_pose(category, index, per_category=INSTANCES):
     """scenes/produce.xml: an 8 x 8 grid of the produce on the table between the bins, apart (the
     widest, 85 mm, 9 cm apart; lemons lie along x, 97 mm apart), plates stacked in two piles beyond
     the bins."""
     categories = [c for c in CATEGORIES if c != "plate"]
     if category == "plate":
         return 0.76, -0.6 if index % 2 == 0 else 0.6, 0.025 * (index // 2)
-    k = categories.index(category) * INSTANCES + index
+    k = categories.index(category) * per_category + index
     return 0.2 + 0.097 * (k // 8), -0.315 + 0.09 * (k % 8), 0.0
+
+
+def make_variety_instance(name, category, index):
+    """One training-variety instance: VARIETY's sizes and palette `index`, its own seed."""
+    v = VARIETY[category]
+    spec = dict(CATEGORIES[category], width=v["width"], aspect=v["aspect"], spots=v["spots"])
+    if "elongation" in v:
+        spec["elongation"] = v["elongation"]
+    palette = v["palettes"][index % len(v["palettes"])]
+    return make_instance(name, category, index, spec=spec, seed=VARIETY_SEED,
+                         colour_maker=make_variety_colour(palette),
+                         pose=default_pose(category, index, VARIETY_INSTANCES),
+                         kind=f", training variety: {palette[0]}")
+
+
+def write_variety():
+    lines = ["# Training variety of the produce set: more members of each category, for training only. "
+             "Written by models/tools/make_produce.py.", "name: produce_variety", "objects:"]
+    for category in CATEGORIES:
+        for i in range(VARIETY_INSTANCES):
+            name = f"{category}v{i + 1}"
+            make_variety_instance(name, category, i)
+            lines += [f"  - name: {name}", f"    category: {category}", f"    instance: {name}",
+                      f"    model: ../../models/objects/{name}.inc.xml"]
+    with open(os.path.join(ROOT, "scenes", "objects", "produce_variety.yaml"), "w") as out:
+        out.write("\n".join(lines) + "\n")
 
 
 def main():
     os.makedirs(TEXTURES, exist_ok=True)
     yaml_lines = ["# The produce set, after the categories of the public RGB-D dataset in the paper's",
                   "# experiments 1 and 2: seven instances per category. Written by models/tools/make_produce.py.",
-                  "name: produce", "objects:"]
+                  "name: produce", "training_variety: [produce_variety.yaml]", "objects:"]
     names = []
     for category in CATEGORIES:
         for i in range(INSTANCES):
@@ -452,6 +648,7 @@ def main():
 """
     with open(os.path.join(ROOT, "scenes", "produce.xml"), "w") as out:
         out.write(scene)
+    write_variety()
 
 
 if __name__ == "__main__":
