@@ -14,6 +14,7 @@
 #include "app/common/object_set.h"
 #include "app/common/data_dir.h"
 #include "sim/kinect_colour.h"
+#include "sim/kinect_noise.h"
 #include "app/common/output_dir.h"
 #include "app/common/progress.h"
 #include "app/recognition/recognition.h"
@@ -34,8 +35,9 @@ template <typename Capture>
 Dataset ReuseOrCapture(const std::filesystem::path& dir, const ObjectSet& set, int views, uint64_t seed,
                        nlohmann::json capture_settings, Capture capture) {
   capture_settings["object_models"] = ObjectModelsDigest(set, ObjectTexturesDir());
-  // The sensor's colour model too: data rendered through another is not this capture.
+  // The sensor's colour model and depth variation too: data rendered through others is not this capture.
   capture_settings["kinect_colour"] = sim::ToString(sim::KinectColourParams{});
+  capture_settings["kinect_depth"] = sim::DepthJitterText();
   try {
     Dataset d = LoadDataset(dir);
     if (d.object_set == set.source.string() && d.views == views && d.seed == seed &&
