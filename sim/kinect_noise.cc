@@ -94,27 +94,21 @@ cv::Mat ProjectorShadowMask(const cv::Mat& depth, const CameraIntrinsics& k, dou
   return mask;
 }
 
-namespace {
-constexpr double kTrainingNoiseScale[2] = {1.0, 2.0};
-constexpr int kTrainingWindowPx = 9;
-constexpr double kTrainingWindowShare = 0.5;
-}  // namespace
-
-KinectNoiseParams JitterDepth(const KinectNoiseParams& params, std::mt19937_64& rng) {
-  std::uniform_real_distribution<double> scale(kTrainingNoiseScale[0], kTrainingNoiseScale[1]), unit(0.0, 1.0);
-  KinectNoiseParams p = params;
-  p.noise_scale *= scale(rng);
-  if (unit(rng) < kTrainingWindowShare) p.correlation_window_px = kTrainingWindowPx;
-  return p;
-}
-
-std::string DepthJitterText() {
-  return fmt::format("noise x{:g}-{:g}, correlation window {} px in {:g} %", kTrainingNoiseScale[0], kTrainingNoiseScale[1],
-                     kTrainingWindowPx, 100 * kTrainingWindowShare);
+std::string ToString(const KinectNoiseParams& p) {
+  return fmt::format("range {:g}-{:g} m, axial {:g} {:g} {:g}, steep {:g} {:g}, lateral {:g} {:g}, quantize {:d} {:g} {:g} {:g}, "
+                     "grazing {:g}-{:g}, shadows {:d}, scale {:g}, window {} px {:g} m",
+                     p.min_range_m, p.max_range_m, p.axial_a_m, p.axial_b_per_m, p.axial_c_m, p.steep_gain, p.steep_angle_rad,
+                     p.lateral_a_px, p.lateral_b_px, p.quantize, p.ir_focal_px, p.baseline_m, p.subpixel, p.grazing_start_rad,
+                     p.grazing_end_rad, p.shadows, p.noise_scale, p.correlation_window_px, p.window_surface_m);
 }
 
 cv::Mat CorrelationWindowDepth(const cv::Mat& depth, int window, double surface_m) {
   if (window <= 1) return depth;
+  if (depth.type() != CV_32FC1) throw std::invalid_argument("correlation window: expected a CV_32FC1 depth image");
+  if (window % 2 == 0 || !(surface_m > 0)) {
+    throw std::invalid_argument(fmt::format("correlation window: expected an odd window and a surface tolerance > 0, got {} px and {} m",
+                                            window, surface_m));
+  }
   const int half = window / 2;
   const float tolerance = static_cast<float>(surface_m);
   cv::Mat out = depth.clone();

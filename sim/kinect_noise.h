@@ -44,19 +44,16 @@ struct KinectNoiseParams {
   /// window's mean disparity over the same surface (neighbours within window_surface_m in depth): small
   /// round objects come out flatter towards the camera. Measured on real views of a 6 cm ball
   /// (../shared/real/rgbd-object, ball_2): the mean of CVFH's viewpoint block was bin 114.8 of 128,
-  /// against 106 for simulated balls without the window and 113.5 with a 9 px one. 0 or 1 = off.
+  /// against 106 for simulated balls without the window and 113.5 with a 9 px one. 0 or 1 = off: off for
+  /// now (models trained with it in half of their captures lost three clutter_100 items to recognition).
   int correlation_window_px = 0;
   double window_surface_m = 0.02;
   /// The colour camera: exposure, white balance, saturation, blur and noise as measured on real views.
   KinectColourParams colour;
 };
 
-/// The per-capture variation of training captures' depth, so that a model covers the cell's simulated
-/// Kinect and real ones: noise scale x U(1, 2) (real units, rooms and surfaces are noisier than the
-/// published figures), and the correlation window (9 px) on for half of the captures.
-KinectNoiseParams JitterDepth(const KinectNoiseParams& params, std::mt19937_64& rng);
-/// JitterDepth's ranges in one line, for digests of what a model was trained on.
-std::string DepthJitterText();
+/// The parameters in one line, for records and digests of what a capture was rendered through.
+std::string ToString(const KinectNoiseParams& params);
 
 /// Axial standard deviation (m) at depth z (m) and incidence angle theta (rad).
 double AxialSigma(const KinectNoiseParams& params, double z, double theta);

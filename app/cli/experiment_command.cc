@@ -35,9 +35,9 @@ template <typename Capture>
 Dataset ReuseOrCapture(const std::filesystem::path& dir, const ObjectSet& set, int views, uint64_t seed,
                        nlohmann::json capture_settings, Capture capture) {
   capture_settings["object_models"] = ObjectModelsDigest(set, ObjectTexturesDir());
-  // The sensor's colour model and depth variation too: data rendered through others is not this capture.
+  // The sensor's colour and depth models too: data rendered through others is not this capture.
   capture_settings["kinect_colour"] = sim::ToString(sim::KinectColourParams{});
-  capture_settings["kinect_depth"] = sim::DepthJitterText();
+  capture_settings["kinect_depth"] = sim::ToString(sim::KinectNoiseParams{});
   try {
     Dataset d = LoadDataset(dir);
     if (d.object_set == set.source.string() && d.views == views && d.seed == seed &&

@@ -91,7 +91,11 @@ int EvalCommand(const perception::RecognitionModel& model, const Dataset& d, con
   }
   const auto by_instance = ClassifyByInstance(model, d);
   results["by_instance"] = InstanceJson(by_instance);
-  std::ofstream(o.out / "tables.md", std::ios::app) << "\n" << InstanceMarkdown(by_instance);
+  {
+    std::ofstream tables(o.out / "tables.md", std::ios::app);
+    tables << "\n" << InstanceMarkdown(by_instance);
+    if (!tables) throw std::runtime_error("cannot write '" + (o.out / "tables.md").string() + "'");
+  }
   results["descriptor"] = perception::DescriptorName(model.descriptor);
   results["dataset"] = o.dataset.string();
   results["model"] = o.model.string();
@@ -110,13 +114,15 @@ int EvalCommand(const perception::RecognitionModel& model, const Dataset& d, con
 
 // `sortcell train --objects SET --out MODEL`: the default recipe (the cell's default model's), its
 // scenes kept beside the model.
-int TrainFromSetCommand(const TrainOptions& o) {
+int TrainFromSetCommand(const TrainOptions& o, const std::vector<std::string>& command_line) {
   const ObjectSet set = LoadObjectSet(o.objects);
   if (o.out.has_parent_path()) PrepareOutputDir(o.out.parent_path());
   const std::filesystem::path scenes = o.out.string() + ".scenes";
   const auto start = WallClock::now();
   const perception::RecognitionModel model = TrainDefaultRecipe(set, scenes);
   perception::SaveModel(o.out, model);
+  RecordTrainedOn(set, o.out);  // Trained into the model cache, it is the current default model.
+  WriteJson(scenes / "run.json", RunRecord(command_line, 0, {{"command", "train"}, {"objects", o.objects.string()}}));
   std::cout << "Trained the default recipe for " << set.name << " (" << DefaultRecipeTitle() << "): "
             << model.classes.size() << " " << ToString(model.label_kind) << " classes, grouped-CV accuracy "
             << model.cv_accuracy << ", " << std::lround(SecondsSince(start)) << " s. Model " << o.out.string()
@@ -226,7 +232,7 @@ void AddDatasetCommand(CLI::App& app, std::function<int()>& run, const std::vect
   });
 }
 
-void AddTrainCommand(CLI::App& app, std::function<int()>& run, const std::vector<std::string>& /*command_line*/) {
+void AddTrainCommand(CLI::App& app, std::function<int()>& run, const std::vector<std::string>& command_line) {
   auto o = std::make_shared<TrainOptions>();
   CLI::App* cmd = app.add_subcommand(
       "train",
@@ -244,9 +250,9 @@ void AddTrainCommand(CLI::App& app, std::function<int()>& run, const std::vector
   CLI::Option* label = cmd->add_option("--label", o->label, "What to recognise: category | instance")->capture_default_str();
   CLI::Option* group = cmd->add_option("--group-by", o->group_by, "Cross-validation groups: sequence | instance")->capture_default_str();
   for (CLI::Option* recipe_fixed : {descriptor, label, group}) objects->excludes(recipe_fixed);
-  cmd->callback([&run, o] {
-    run = [o] {
-      if (!o->objects.empty()) return TrainFromSetCommand(*o);
+  cmd->callback([&run, o, command_line] {
+    run = [o, command_line] {
+      if (!o->objects.empty()) return TrainFromSetCommand(*o, command_line);
       if (o->dataset.empty()) throw std::invalid_argument("train: give --dataset DIR or --objects SET.yaml");
       return TrainFromDatasetCommand(*o);
     };

@@ -78,15 +78,16 @@ void LoadTrainingVariety(const YamlReader& reader, const YAML::Node& node, const
       reader.Fail("key '" + where + "': expected an object set file, found " + NodeKind(node[i]));
     }
     const std::filesystem::path file = (base / node[i].Scalar()).lexically_normal();
+    // One level only, checked before loading it: a file naming itself must not recurse.
     ObjectSet variety;
+    bool nested = false;
     try {
-      variety = LoadObjectSet(file);
+      nested = static_cast<bool>(YamlReader("object set", file).LoadMap("name and objects")["training_variety"]);
+      if (!nested) variety = LoadObjectSet(file);
     } catch (const std::invalid_argument& e) {
       reader.Fail("key '" + where + "': " + e.what());
     }
-    if (!variety.training_variety.empty()) {
-      reader.Fail("key '" + where + "': '" + file.string() + "' names a training variety of its own (one level only)");
-    }
+    if (nested) reader.Fail("key '" + where + "': '" + file.string() + "' names a training variety of its own (one level only)");
     for (const ObjectSpec& o : variety.objects) {
       if (std::find(categories.begin(), categories.end(), o.category) == categories.end()) {
         reader.Fail("key '" + where + "': object '" + o.name + "' of '" + file.string() + "' is a " + o.category +
@@ -182,8 +183,15 @@ std::string ObjectModelsDigest(const ObjectSet& set, const std::filesystem::path
     std::ifstream in(file, std::ios::binary);
     content.append(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
   };
-  for (const auto& object : set.objects) append(object.model);
-  for (const auto& object : set.training_variety) append(object.model);
+  // Labels too (they are what a model learns) and where each object belongs.
+  for (const auto& object : set.objects) {
+    content += "\nobject " + object.name + " " + object.category + " " + object.instance + "\n";
+    append(object.model);
+  }
+  for (const auto& object : set.training_variety) {
+    content += "\nvariety " + object.name + " " + object.category + " " + object.instance + "\n";
+    append(object.model);
+  }
   std::error_code ec;
   if (std::filesystem::is_directory(texture_dir, ec)) {
     std::vector<std::filesystem::path> files;

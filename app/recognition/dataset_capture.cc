@@ -95,11 +95,10 @@ class CaptureRig {
     mj_forward(model_.get(), data_.get());
     sim::KinectCamera& kinect = Camera(camera);
     kinect.SetLighting(RandomLighting(rng));
-    // Every dataset capture (turntable and scenes alike) varies the camera's colour and depth, so a model
-    // does not learn one exact sensor, and a test set is seen through varied sensors too.
+    // Every dataset capture (turntable and scenes alike) varies the camera's colour, so a model does not
+    // learn one exact exposure, and a test set is seen through varied cameras too.
     sim::KinectNoiseParams noise;
     noise.colour = sim::JitterColour(noise.colour, rng);
-    noise = sim::JitterDepth(noise, rng);
     sim::FrameTruth shown;  // Training labels: the true camera pose and label image.
     const sim::KinectFrame frame = kinect.Capture(data_, &noise, &rng, &shown);
     const auto cloud = sim::ToOrganizedCloud(frame);

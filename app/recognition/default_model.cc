@@ -22,18 +22,17 @@ namespace {
 // The scenes the default model of `set` is trained on, next to the model.
 std::filesystem::path DefaultDatasetDir(const ObjectSet& set) { return ModelCacheDir() / (set.name + "_scenes"); }
 
-// Beside the model (<model>.trained_on): the digest of the object models and the sensor's colour model it
-// was trained on, so that a cached model of objects or a sensor that have changed since is trained again.
+// Beside the model (<model>.trained_on): the digest of what it was trained on (the objects, the sensor's
+// colour and depth models, the scenes and their segmentation), so that a cached model of objects or a
+// sensor that have changed since is trained again.
 std::filesystem::path DigestPath(const std::filesystem::path& model) { return model.string() + ".trained_on"; }
 
-// The default model's training scenes of `count` objects: every placement mode the cell meets, some
-// objects lying, `per_object` scenes per object (150 for the set's own objects, so that its own objects
-// are seen as often with a training variety as without one).
-SceneOptions TrainingScenes(size_t count, double scenes_per_object) {
+// Training scenes of `count` objects: every placement mode the cell meets, some objects lying.
+SceneOptions TrainingScenes(size_t count, int scenes_count) {
   SceneOptions scenes;
   scenes.modes = {sim::PlacementMode::kSparse, sim::PlacementMode::kDense, sim::PlacementMode::kClustered};
   scenes.placement.lying_fraction = 0.3;
-  scenes.scenes = static_cast<int>(std::lround(scenes_per_object * static_cast<double>(count)));
+  scenes.scenes = scenes_count;
   // A set smaller than a scene's largest count: every scene holds at most all of it.
   scenes.max_objects = std::min<int>(scenes.max_objects, static_cast<int>(count));
   scenes.min_objects = std::min(scenes.min_objects, scenes.max_objects);
@@ -44,30 +43,39 @@ SceneOptions TrainingScenes(size_t count, double scenes_per_object) {
 // captured in scenes of its own, in groups of at most this many objects.
 constexpr size_t kVarietyGroup = 60;
 
-// The groups of objects captured apart: the set's own, then its variety in groups.
-std::vector<ObjectSet> CaptureGroups(const ObjectSet& set) {
-  std::vector<ObjectSet> groups{set};
-  groups.front().training_variety.clear();
-  for (size_t first = 0; first < set.training_variety.size(); first += kVarietyGroup) {
-    ObjectSet group;
-    group.name = set.name + "_variety" + std::to_string(groups.size());
-    group.source = set.source;
-    const size_t last = std::min(set.training_variety.size(), first + kVarietyGroup);
-    group.objects.assign(set.training_variety.begin() + first, set.training_variety.begin() + last);
-    groups.push_back(std::move(group));
+// One part of the recipe: objects captured together, and their scenes.
+struct RecipeGroup {
+  ObjectSet objects;
+  SceneOptions scenes;
+};
+
+// The recipe of `set`: 150 scenes of its own objects, then its variety in groups of equal size (at most
+// kVarietyGroup) with as many scenes per object as its own objects have.
+std::vector<RecipeGroup> Recipe(const ObjectSet& set) {
+  constexpr int kScenes = 150;
+  std::vector<RecipeGroup> recipe{{set, TrainingScenes(set.objects.size(), kScenes)}};
+  recipe.front().objects.training_variety.clear();
+  const size_t n = set.training_variety.size();
+  if (n == 0) return recipe;
+  const size_t groups = (n + kVarietyGroup - 1) / kVarietyGroup, size = (n + groups - 1) / groups;
+  const double per_object = kScenes / static_cast<double>(std::max<size_t>(1, set.objects.size()));
+  for (size_t first = 0; first < n; first += size) {
+    RecipeGroup group;
+    group.objects.name = set.name + "_variety" + std::to_string(recipe.size());
+    group.objects.source = set.source;
+    group.objects.objects.assign(set.training_variety.begin() + first, set.training_variety.begin() + std::min(n, first + size));
+    const size_t count = group.objects.objects.size();
+    group.scenes = TrainingScenes(count, static_cast<int>(std::lround(per_object * static_cast<double>(count))));
+    recipe.push_back(std::move(group));
   }
-  return groups;
+  return recipe;
 }
-
-double ScenesPerObject(const ObjectSet& set) { return 150.0 / static_cast<double>(std::max<size_t>(1, set.objects.size())); }
-
-SceneOptions DefaultTrainingScenes(const ObjectSet& set) { return TrainingScenes(set.objects.size(), ScenesPerObject(set)); }
 
 // Every scene of the recipe, as `sortcell dataset` options.
 std::string DefaultTrainingSceneArguments(const ObjectSet& set) {
   std::string text;
-  for (const ObjectSet& group : CaptureGroups(set)) {
-    const SceneOptions scenes = TrainingScenes(group.objects.size(), ScenesPerObject(set));
+  for (const RecipeGroup& group : Recipe(set)) {
+    const SceneOptions& scenes = group.scenes;
     text += (text.empty() ? "" : "; ") + std::string("--scenes ") + std::to_string(scenes.scenes) + " --placement " +
             PlacementModesText(scenes.modes) + " --lying-fraction " + fmt::format("{:g}", scenes.placement.lying_fraction);
   }
@@ -103,7 +111,7 @@ std::string SegmentationDigest() {
 // the scenes it is trained on and how they are segmented.
 std::string TrainedOnDigest(const ObjectSet& set) {
   return ObjectModelsDigest(set, ObjectTexturesDir()) + " colour " + sim::ToString(sim::KinectColourParams{}) +
-         " depth " + sim::DepthJitterText() +
+         " depth " + sim::ToString(sim::KinectNoiseParams{}) +
          " scenes " + DefaultTrainingSceneArguments(set) + " segmentation " + SegmentationDigest();
 }
 
@@ -144,30 +152,34 @@ bool DefaultModelIsCurrent(const ObjectSet& set) {
 }
 
 std::string DefaultRecipeTitle() {
-  const SceneOptions scenes = TrainingScenes(1, 150);
+  const SceneOptions scenes = Recipe(ObjectSet{}).front().scenes;
   return fmt::format("{} random cell scenes, more in proportion for a training variety ({}; {:g} % lying; seed {}), {}",
                      scenes.scenes, PlacementModesText(scenes.modes), 100 * scenes.placement.lying_fraction, scenes.seed,
                      perception::DescriptorTitle(TrainRequest{}.descriptor));
 }
 
 perception::RecognitionModel TrainDefaultRecipe(const ObjectSet& set, const std::filesystem::path& dataset_dir) {
-  const std::vector<ObjectSet> groups = CaptureGroups(set);
-  Dataset dataset = CaptureScenes(groups.front(), DefaultTrainingScenes(set), dataset_dir);
-  for (size_t g = 1; g < groups.size(); ++g) {
+  const std::vector<RecipeGroup> recipe = Recipe(set);
+  Dataset dataset = CaptureScenes(recipe.front().objects, recipe.front().scenes, dataset_dir);
+  for (size_t g = 1; g < recipe.size(); ++g) {
     const std::string sub = "variety" + std::to_string(g);
-    const SceneOptions scenes = TrainingScenes(groups[g].objects.size(), ScenesPerObject(set));
-    AppendDataset(dataset, CaptureScenes(groups[g], scenes, dataset_dir / sub), sub);
+    AppendDataset(dataset, CaptureScenes(recipe[g].objects, recipe[g].scenes, dataset_dir / sub), sub);
   }
   SaveDataset(dataset_dir, dataset);
   return TrainModel(dataset, {}, TrainRequest{});
 }
 
+void RecordTrainedOn(const ObjectSet& set, const std::filesystem::path& model) {
+  const std::string digest = TrainedOnDigest(set);
+  std::ofstream(DigestPath(model)) << digest << "\n";
+  if (ReadDigest(DigestPath(model)) != digest) throw std::runtime_error("cannot write '" + DigestPath(model).string() + "'");
+}
+
 std::filesystem::path EnsureDefaultModel(const ObjectSet& set) {
   const std::filesystem::path path = DefaultModelPath(set);
-  const std::string digest = TrainedOnDigest(set);
   if (DefaultModelIsCurrent(set)) return path;
   spdlog::info("{} trained model at {}: training one on random scenes of '{}'{} ({})",
-               std::filesystem::exists(path) ? "the objects, the Kinect colour model or the training scenes have changed since the" : "no",
+               std::filesystem::exists(path) ? "the objects, the Kinect's colour or depth model or the training recipe have changed since the" : "no",
                path.string(), set.name, set.training_variety.empty() ? "" : " and, apart, of its training variety",
                DefaultTrainingSceneArguments(set));
   const perception::RecognitionModel model = TrainDefaultRecipe(set, DefaultDatasetDir(set));
@@ -175,13 +187,9 @@ std::filesystem::path EnsureDefaultModel(const ObjectSet& set) {
   perception::SaveModel(temporary, model);
   // The model first, its digest last: a run stopped between the two leaves an old digest beside the
   // new model (trained again next time), never a current digest beside an old model.
-  const std::filesystem::path digest_temporary = temporary.string() + ".trained_on";
-  std::ofstream(digest_temporary) << digest << "\n";
-  if (ReadDigest(digest_temporary) != digest) {
-    throw std::runtime_error("cannot write '" + digest_temporary.string() + "' (model cache " + ModelCacheDir().string() + ")");
-  }
+  RecordTrainedOn(set, temporary);
   std::filesystem::rename(temporary, path);
-  std::filesystem::rename(digest_temporary, DigestPath(path));
+  std::filesystem::rename(DigestPath(temporary), DigestPath(path));
   spdlog::info("trained {} (cross-validation accuracy {:.3f}) and cached it", path.string(), model.cv_accuracy);
   return path;
 }

@@ -35,12 +35,16 @@ bool DefaultModelIsCurrent(const ObjectSet& set);
 /// trained on them all.
 perception::RecognitionModel TrainDefaultRecipe(const ObjectSet& set, const std::filesystem::path& dataset_dir);
 
-/// The recipe in words, e.g. "150 random cell scenes (sparse, dense, clustered; 30 % lying; seed 0),
-/// Color-CVFH (normalization)".
+/// The recipe in words, e.g. "150 random cell scenes, more in proportion for a training variety
+/// (sparse,dense,clustered; 30 % lying; seed 0), Color-CVFH (normalization)".
 std::string DefaultRecipeTitle();
 
-/// Trains the default model of `set` if it is not there yet, or was trained on other object models or
-/// another Kinect colour model (TrainDefaultRecipe; about 30 s for 150 scenes;
+/// Writes beside `model` (<model>.trained_on) what a model of `set` made with TrainDefaultRecipe was
+/// trained on, so that the model cache takes it as current. @throws std::runtime_error if it cannot.
+void RecordTrainedOn(const ObjectSet& set, const std::filesystem::path& model);
+
+/// Trains the default model of `set` if it is not there yet, or was trained on other objects, another
+/// Kinect colour or depth model or another recipe (TrainDefaultRecipe; about 30 s for 150 scenes;
 /// the scenes' dataset is kept next to it) and returns its path. Written to a temporary file and
 /// renamed, so concurrent runs never read a half-written model.
 std::filesystem::path EnsureDefaultModel(const ObjectSet& set);

@@ -40,6 +40,16 @@ std::string CalledText(const std::map<std::string, int>& called) {
   return text;
 }
 
+// A Markdown table's head: `columns` and `rule` followed by a column per threshold.
+std::string TableHead(const std::string& columns, const std::string& rule) {
+  std::string head = columns, line = rule;
+  for (double t : kThresholds) {
+    head += fmt::format(" rejected below {:.1f} |", t);
+    line += "---:|";
+  }
+  return head + "\n" + line + "\n";
+}
+
 // Counts over ten bins of 0.1 (a confidence of 1 in the last).
 std::vector<int> Histogram(const std::vector<double>& confidences) {
   std::vector<int> bins(10, 0);
@@ -87,12 +97,8 @@ nlohmann::json OutOfSetJson(const OutOfSetReport& report) {
 }
 
 std::string OutOfSetMarkdown(const OutOfSetReport& report) {
-  std::string md = "## Samples of categories the model does not know\n\n"
-                   "| category | samples | called | confidence mean / median / p90 / max |";
-  for (double t : kThresholds) md += fmt::format(" rejected below {:.1f} |", t);
-  md += "\n|---|---:|---|---:|";
-  for (size_t i = 0; i < std::size(kThresholds); ++i) md += "---:|";
-  md += "\n";
+  std::string md = "## Samples of categories the model does not know\n\n" +
+                   TableHead("| category | samples | called | confidence mean / median / p90 / max |", "|---|---:|---|---:|");
   for (const auto& [name, c] : report) {
     const std::string called = CalledText(c.called);
     const double mean = std::accumulate(c.confidences.begin(), c.confidences.end(), 0.0) / std::max<size_t>(1, c.confidences.size());
@@ -141,12 +147,9 @@ nlohmann::json InstanceJson(const std::map<std::string, InstanceResults>& report
 std::string InstanceMarkdown(const std::map<std::string, InstanceResults>& report) {
   std::string md = "## By instance\n\nKnown instances: the share called their category, and the share each threshold would "
                    "reject wrongly; unknown ones (a category the model has no class for): the share it would rightly reject. "
-                   "Confidence histogram: samples per tenth, 0-0.1 first.\n\n"
-                   "| instance | category | samples | called right | called | confidence median | histogram |";
-  for (double t : kThresholds) md += fmt::format(" rejected below {:.1f} |", t);
-  md += "\n|---|---|---:|---:|---|---:|---|";
-  for (size_t i = 0; i < std::size(kThresholds); ++i) md += "---:|";
-  md += "\n";
+                   "Confidence histogram: samples per tenth, 0-0.1 first.\n\n" +
+                   TableHead("| instance | category | samples | called right | called | confidence median | histogram |",
+                             "|---|---|---:|---:|---|---:|---|");
   for (const auto& [name, r] : report) {
     const std::vector<int> bins = Histogram(r.confidences);
     std::string histogram;

@@ -101,6 +101,9 @@ TEST(ObjectSet, ATrainingVarietyAddsObjectsOfTheSetsCategoriesForTrainingOnly) {
   // The variety is part of what the set's model was trained on.
   const auto plain = LoadObjectSet(Write("without_variety.yaml", "name: s\nobjects:\n  - {name: a, category: ball, instance: a, " + kModel + "}\n"));
   EXPECT_NE(sortcell::app::ObjectModelsDigest(set, "none"), sortcell::app::ObjectModelsDigest(plain, "none"));
+  // So are the labels (what a model learns), though the model files are the same.
+  const auto relabelled = LoadObjectSet(Write("relabelled.yaml", "name: s\nobjects:\n  - {name: a, category: cup, instance: a, " + kModel + "}\n"));
+  EXPECT_NE(sortcell::app::ObjectModelsDigest(relabelled, "none"), sortcell::app::ObjectModelsDigest(plain, "none"));
 }
 
 TEST(ObjectSet, ATrainingVarietyOfAnotherCategoryATakenNameOrItsOwnVarietyIsRefused) {
@@ -117,6 +120,9 @@ TEST(ObjectSet, ATrainingVarietyOfAnotherCategoryATakenNameOrItsOwnVarietyIsRefu
   e = ErrorOf(with("tv2.yaml", "[" + taken + "]"));
   EXPECT_NE(e.find("object name 'a' of '" + taken + "' is taken"), std::string::npos) << e;
   e = ErrorOf(with("tv3.yaml", "[" + nested + "]"));
+  EXPECT_NE(e.find("names a training variety of its own"), std::string::npos) << e;
+  const std::string self = sortcell_test::TestTempDir() + "tv_self.yaml";
+  e = ErrorOf(Write("tv_self.yaml", "name: s\ntraining_variety: [" + self + "]\nobjects:\n  - {name: a, category: ball, instance: a, " + kModel + "}\n"));
   EXPECT_NE(e.find("names a training variety of its own"), std::string::npos) << e;
   e = ErrorOf(with("tv4.yaml", "[/nonexistent/balls.yaml]"));
   EXPECT_NE(e.find("tv4.yaml': key 'training_variety[0]': object set '/nonexistent/balls.yaml'"), std::string::npos) << e;

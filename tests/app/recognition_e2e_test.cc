@@ -77,11 +77,14 @@ TEST(RecognitionE2e, DatasetTrainEvalOnTwoColoursOfOneShape) {
 }
 
 // `train --objects`: the default recipe (random cell scenes of the set) on a tiny set of two bottles of
-// one shape: the model knows the set's two categories, tells them apart in its own cross-validation,
-// and its scenes are kept beside it.
+// one shape and a training variety of one more: the model knows the set's two categories, tells them
+// apart in its own cross-validation, and its scenes are kept beside it, the variety's among them.
 TEST(RecognitionE2e, TrainFromATinySetWithTheDefaultRecipe) {
-  const std::string set = Dir("tiny_set.yaml");
-  std::ofstream(set) << "name: tiny\nobjects:\n"
+  const std::string set = Dir("tiny_set.yaml"), variety = Dir("tiny_variety.yaml");
+  std::ofstream(variety) << "name: tiny_variety\nobjects:\n"
+                         << "  - {name: bottle3, category: green, instance: bottle3, model: "
+                         << (kRoot / "models/objects/bottle3.inc.xml").string() << "}\n";
+  std::ofstream(set) << "name: tiny\ntraining_variety: [" << variety << "]\nobjects:\n"
                      << "  - {name: bottle1, category: green, instance: bottle1, model: "
                      << (kRoot / "models/objects/bottle1.inc.xml").string() << "}\n"
                      << "  - {name: bottle2, category: blue, instance: bottle2, model: "
@@ -98,7 +101,23 @@ TEST(RecognitionE2e, TrainFromATinySetWithTheDefaultRecipe) {
   EXPECT_GE(m["training"]["cv_accuracy"].get<double>(), 0.95);
   const nlohmann::json scenes = ReadJson(model + ".scenes/manifest.json");
   EXPECT_EQ(scenes["capture"]["scenes"], 150);
-  EXPECT_GE(scenes["samples"].size(), 150u) << "every scene holds both bottles, most of them seen";
+  EXPECT_EQ(scenes["capture"]["groups"][0]["scenes"], 75) << "as many scenes per object as the set's own";
+  // One dataset: ids in order, every cloud where its path says, the variety's scenes after the set's own.
+  int own_scenes = 0, variety_samples = 0;
+  for (size_t i = 0; i < scenes["samples"].size(); ++i) {
+    const auto& s = scenes["samples"][i];
+    EXPECT_EQ(s["id"], static_cast<int>(i));
+    EXPECT_TRUE(std::filesystem::exists(model + ".scenes/" + s["cloud"].get<std::string>())) << s["cloud"];
+    if (s["instance"] == "bottle3") {
+      ++variety_samples;
+      EXPECT_GE(s["scene"].get<int>(), own_scenes) << "a variety scene numbered among the set's own";
+    } else {
+      own_scenes = std::max(own_scenes, s["scene"].get<int>() + 1);
+    }
+  }
+  EXPECT_GE(variety_samples, 60);
+  EXPECT_GE(scenes["samples"].size(), 150u + variety_samples) << "every scene holds both bottles, most of them seen";
+  EXPECT_TRUE(std::filesystem::exists(model + ".trained_on")) << "trained like the cache's, it counts as current there";
 }
 
 }  // namespace

@@ -108,7 +108,9 @@ TEST(ModelFiles, EveryFragmentIsIncludedOrListedInAnObjectSet) {
   const auto named = [&referencing](const std::string& name) {
     for (size_t at = referencing.find(name); at != std::string::npos; at = referencing.find(name, at + 1)) {
       const size_t end = at + name.size();
-      if (end == referencing.size() || std::string("\"'\n\r,} ").find(referencing[end]) != std::string::npos) return true;
+      const bool starts = at == 0 || std::string("\"'/ ").find(referencing[at - 1]) != std::string::npos;
+      const bool ends = end == referencing.size() || std::string("\"'\n\r,} ").find(referencing[end]) != std::string::npos;
+      if (starts && ends) return true;
     }
     return false;
   };

@@ -193,19 +193,11 @@ TEST(KinectNoise, TheWindowKeepsToOneSurface) {
   EXPECT_NEAR(windowed.at<float>(240, 320), 1.05, 1e-6);
 }
 
-TEST(KinectNoise, TrainingCapturesVaryTheNoiseAndTheWindow) {
-  std::mt19937_64 rng(5);
-  int windowed = 0;
-  for (int i = 0; i < 200; ++i) {
-    const KinectNoiseParams p = JitterDepth({}, rng);
-    EXPECT_GE(p.noise_scale, 1.0);
-    EXPECT_LE(p.noise_scale, 2.0);
-    EXPECT_TRUE(p.correlation_window_px == 0 || p.correlation_window_px == 9);
-    windowed += p.correlation_window_px == 9 ? 1 : 0;
-  }
-  EXPECT_GT(windowed, 70);
-  EXPECT_LT(windowed, 130);
-  EXPECT_NE(DepthJitterText().find("9 px"), std::string::npos);
+TEST(KinectNoise, TheWindowRefusesAnEvenWindowAToleranceOfZeroAndAnotherImageType) {
+  EXPECT_THROW(CorrelationWindowDepth(FlatDepth(1.0), 8, 0.02), std::invalid_argument);
+  EXPECT_THROW(CorrelationWindowDepth(FlatDepth(1.0), 9, 0.0), std::invalid_argument);
+  EXPECT_THROW(CorrelationWindowDepth(cv::Mat(480, 640, CV_16UC1, cv::Scalar(1000)), 9, 0.02), std::invalid_argument);
+  EXPECT_NE(ToString(KinectNoiseParams{}).find("window 0 px"), std::string::npos);
 }
 
 }  // namespace
