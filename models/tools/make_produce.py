@@ -11,8 +11,8 @@ texture on a visual mesh; the object touches the world through a simple primitiv
 (an ellipsoid, a cylinder for plates), so the physics stays as it was with primitives.
 
 The training variety (VARIETY): six more members of each category, <category>v<k>, for training only,
-covering each category's real colour range (scenes/objects/produce_variety.yaml, named by produce.yaml's
-training_variety; not in scenes/produce.xml). They have their own seed; the set's own instances are
+covering each category's real colour range (scenes/objects/produce_variety.yaml, for a set's
+training_variety; produce.yaml does not name it yet, see the README; not in scenes/produce.xml). They have their own seed; the set's own instances are
 drawn exactly as before.
 
 Reproducible: everything is drawn from one seeded generator per instance. The outputs are committed;
@@ -86,7 +86,8 @@ CATEGORIES = {
 # elongation separate).
 
 # The training variety: VARIETY_INSTANCES more members of each category (<category>v<k>), for training
-# only (scenes/objects/produce_variety.yaml, the training_variety of produce.yaml), covering each
+# only (scenes/objects/produce_variety.yaml, for a set's training_variety; produce.yaml does not name it
+# yet: the produce model trained with it did worse on real apples and in its own cross-validation), covering each
 # category's real colour range: instance k wears palette k - 1 (one of each family), jittered. Sizes
 # and proportions are a little wider than the set's own. Drawn from their own seed, so the set's own
 # instances above stay as they were.
@@ -584,7 +585,7 @@ def main():
     os.makedirs(TEXTURES, exist_ok=True)
     yaml_lines = ["# The produce set, after the categories of the public RGB-D dataset in the paper's",
                   "# experiments 1 and 2: seven instances per category. Written by models/tools/make_produce.py.",
-                  "name: produce", "training_variety: [produce_variety.yaml]", "objects:"]
+                  "name: produce", "objects:"]
     names = []
     for category in CATEGORIES:
         for i in range(INSTANCES):
