@@ -19,9 +19,12 @@ double RejectedShare(const std::vector<double>& confidences, double threshold) {
   return confidences.empty() ? 0.0 : static_cast<double>(below) / confidences.size();
 }
 
+double Mean(const std::vector<double>& values) {
+  return values.empty() ? 0.0 : std::accumulate(values.begin(), values.end(), 0.0) / values.size();
+}
+
 nlohmann::json ConfidenceJson(const std::vector<double>& sorted) {
-  const double mean = sorted.empty() ? 0.0 : std::accumulate(sorted.begin(), sorted.end(), 0.0) / sorted.size();
-  return {{"mean", mean},
+  return {{"mean", Mean(sorted)},
           {"median", Quantile(sorted, 0.5)},
           {"p10", Quantile(sorted, 0.1)},
           {"p90", Quantile(sorted, 0.9)},
@@ -101,8 +104,7 @@ std::string OutOfSetMarkdown(const OutOfSetReport& report) {
                    TableHead("| category | samples | called | confidence mean / median / p90 / max |", "|---|---:|---|---:|");
   for (const auto& [name, c] : report) {
     const std::string called = CalledText(c.called);
-    const double mean = std::accumulate(c.confidences.begin(), c.confidences.end(), 0.0) / std::max<size_t>(1, c.confidences.size());
-    md += fmt::format("| {} | {} | {} | {:.2f} / {:.2f} / {:.2f} / {:.2f} |", name, c.samples, called, mean,
+    md += fmt::format("| {} | {} | {} | {:.2f} / {:.2f} / {:.2f} / {:.2f} |", name, c.samples, called, Mean(c.confidences),
                       Quantile(c.confidences, 0.5), Quantile(c.confidences, 0.9),
                       c.confidences.empty() ? 0.0 : c.confidences.back());
     for (double t : kThresholds) md += fmt::format(" {:.0f} % |", 100 * RejectedShare(c.confidences, t));
