@@ -184,6 +184,34 @@ SvmClassifier::Arrays ReadSvmArrays(const Reader& r) {
   return a;
 }
 
+void WriteFamiliarity(cv::FileStorage& fs, const Familiarity& f) {
+  cv::Mat reference, scale;
+  cv::eigen2cv(f.reference, reference);
+  cv::eigen2cv(f.block_scale, scale);
+  fs << "familiarity" << "{" << "reference" << reference << "block_scale" << scale << "held_out"
+     << cv::Mat(f.held_out, true).reshape(1, 1) << "}";
+}
+
+// Optional: a model file of before has none (every view is then familiar).
+Familiarity ReadFamiliarity(const Reader& r) {
+  const cv::FileNode node = r.root["familiarity"];
+  Familiarity f;
+  if (node.empty() || node.isNone()) return f;
+  const cv::Mat reference = r.Matrix(node, "reference"), scale = r.Matrix(node, "block_scale");
+  if (reference.type() != CV_32F || scale.type() != CV_32F || scale.cols != 1) {
+    r.Fail("familiarity arrays have the wrong type or shape");
+  }
+  cv::cv2eigen(reference, f.reference);
+  cv::cv2eigen(scale, f.block_scale);
+  f.held_out = r.Row<float>(node, "held_out", CV_32F);
+  try {
+    f.Check();
+  } catch (const std::invalid_argument& e) {
+    r.Fail(e.what());
+  }
+  return f;
+}
+
 }  // namespace
 
 const char* ToString(LabelKind kind) {
@@ -203,7 +231,12 @@ LabelKind ParseLabelKind(const std::string& name) {
 
 RecognitionModel::Result RecognitionModel::Classify(const DescriptorParts& parts) const {
   const Prediction p = classifier.Predict(AssembleDescriptor(parts, descriptor));
-  Result result{classes.at(p.label), p.confidence, p.label, {}};
+  Result result;
+  result.name = classes.at(p.label);
+  result.label = p.label;
+  result.probability = p.confidence;
+  result.familiarity = familiarity.Of(RawParts(parts));
+  result.confidence = result.probability * result.familiarity;
   for (size_t c = 0; c < p.probabilities.size(); ++c) result.ranked.push_back({classes.at(c), p.probabilities[c]});
   std::stable_sort(result.ranked.begin(), result.ranked.end(),
                    [](const Ranked& a, const Ranked& b) { return a.probability > b.probability; });
@@ -230,6 +263,7 @@ void SaveModel(const std::filesystem::path& file, const RecognitionModel& model)
     fs << "svm" << "{" << "C" << a.C << "gamma" << a.gamma << "label" << IntOrDoubleRow(a.label) << "nSV"
        << IntOrDoubleRow(a.nSV) << "rho" << IntOrDoubleRow(a.rho) << "probA" << IntOrDoubleRow(a.probA) << "probB"
        << IntOrDoubleRow(a.probB) << "sv_coef" << sv_coef << "sv" << sv << "}";
+    if (!model.familiarity.empty()) WriteFamiliarity(fs, model.familiarity);
     text = fs.releaseAndGetString();
   } catch (const cv::Exception& e) {
     throw std::runtime_error("cannot write model '" + file.string() + "': " + e.err);
@@ -257,6 +291,7 @@ RecognitionModel LoadModel(const std::filesystem::path& file, std::optional<Desc
     model.cv_accuracy = r.Number(training, "cv_accuracy");
     FeatureScaling scaling = ReadScaling(r, model.descriptor);
     const SvmClassifier::Arrays arrays = ReadSvmArrays(r);
+    model.familiarity = ReadFamiliarity(r);
     try {
       model.classifier =
           SvmClassifier::FromArrays(arrays, std::move(scaling), static_cast<int>(model.classes.size()));

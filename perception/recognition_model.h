@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "perception/descriptor.h"
+#include "perception/familiarity.h"
 #include "perception/svm_classifier.h"
 
 namespace sortcell::perception {
@@ -29,6 +30,8 @@ struct RecognitionModel {
   LabelKind label_kind = LabelKind::kCategory;  ///< What the classes are.
   std::vector<std::string> classes;
   SvmClassifier classifier;
+  /// How like its training views a view is (empty in a model file of before: every view familiar).
+  Familiarity familiarity;
   int train_samples = 0;     ///< Rows it was trained on.
   double cv_accuracy = 0;    ///< Grouped cross-validation accuracy of the chosen (C, gamma).
 
@@ -38,7 +41,12 @@ struct RecognitionModel {
   };
   struct Result {
     std::string name;
+    /// The calibrated confidence: probability x familiarity. For views like the training ones it is
+    /// about uniform below the class probability, so a reject threshold of 0.05 rejects about 5 % of
+    /// them; an object unlike every training view gets a small one whatever the SVM says.
     double confidence = 0;
+    double probability = 0;   ///< The SVM's probability of the class (Platt, pairwise coupling).
+    double familiarity = 1;   ///< Familiarity::Of the view.
     int label = -1;
     std::vector<Ranked> ranked;  ///< Every class, most probable first.
   };
@@ -51,7 +59,7 @@ struct RecognitionModel {
 /// classes as far as it can tell (an unknown object, for the reject bin).
 inline constexpr const char* kUnknownClass = "unknown";
 
-/// Whether a result is rejected at `reject_below` (a probability in [0, 1]; 0 rejects nothing).
+/// Whether a result is rejected at `reject_below` (a calibrated confidence in [0, 1]; 0 rejects nothing).
 inline bool Rejected(const RecognitionModel::Result& result, double reject_below) {
   return result.confidence < reject_below;
 }

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "robot/gripper_geometry.h"
+#include "robot/joint_trajectory.h"
 #include "robot/ur5_ik.h"
 
 namespace sortcell::robot {
@@ -76,42 +77,64 @@ GraspPlan PlanTopDownGrasp(const ObjectFootprint& object, const Joints& q_curren
   return plan;
 }
 
-PlacePlan PlanPlacement(const Eigen::Vector3d& p_W_floor, double grasp_height, const Joints& q_current,
-                        const GraspOptions& options) {
-  PlacePlan plan;
-  for (double clearance = options.lift_clearance; clearance >= options.min_lift_clearance - 1e-9; clearance -= 0.02) {
-    const Eigen::Vector3d p_above = p_W_floor + Eigen::Vector3d(0, 0, clearance + grasp_height);
-    if (!NearestTopDownPose(p_above, q_current, options.selection, plan.X_WT_above, plan.q_above, options.place_yaw_step,
-                            options.place_yaw_offset)) {
-      continue;
-    }
-    plan.X_WT_release = plan.X_WT_above;
-    plan.X_WT_release.translation().z() = p_W_floor.z() + options.release_clearance + grasp_height;
-    const auto q_release = SelectNearest(SolveTcpIk(plan.X_WT_release, plan.q_above[5]), plan.q_above, options.selection);
-    if (!q_release) continue;
-    plan.ok = true;
-    return plan;
-  }
-  return plan;
-}
+namespace {
 
-bool NearestTopDownPose(const Eigen::Vector3d& p_W, const Joints& q_current, const SelectionOptions& selection,
-                        Eigen::Isometry3d& X_WT, Joints& q, double yaw_step, double yaw_offset) {
-  bool found = false;
-  double best_distance = 0;
+struct TopDownCandidate {
+  double distance;
+  Eigen::Isometry3d X_WT;
+  Joints q;
+};
+
+// Every reachable top-down pose at p_W (yaws yaw_offset + k yaw_step), nearest IK to q_current first.
+std::vector<TopDownCandidate> TopDownPosesByDistance(const Eigen::Vector3d& p_W, const Joints& q_current,
+                                                     const SelectionOptions& selection, double yaw_step,
+                                                     double yaw_offset) {
+  std::vector<TopDownCandidate> candidates;
   const int steps = std::max(1, static_cast<int>(std::lround(2 * M_PI / yaw_step)));
   for (int k = 0; k < steps; ++k) {
     const Eigen::Isometry3d X = TopDownTcpPose(p_W, yaw_offset + k * 2 * M_PI / steps);
     const auto chosen = SelectNearest(SolveTcpIk(X, q_current[5]), q_current, selection);
-    if (!chosen) continue;
-    const double distance = (chosen->q - q_current).norm();
-    if (found && distance >= best_distance) continue;
-    found = true;
-    best_distance = distance;
-    X_WT = X;
-    q = chosen->q;
+    if (chosen) candidates.push_back({(chosen->q - q_current).norm(), X, chosen->q});
   }
-  return found;
+  std::stable_sort(candidates.begin(), candidates.end(),
+                   [](const TopDownCandidate& a, const TopDownCandidate& b) { return a.distance < b.distance; });
+  return candidates;
+}
+
+}  // namespace
+
+PlacePlan PlanPlacement(const Eigen::Vector3d& p_W_floor, double grasp_height, const Joints& q_current,
+                        const GraspOptions& options) {
+  PlacePlan first;  // The nearest reachable placement, taken when no line down is smooth.
+  for (double clearance = options.lift_clearance; clearance >= options.min_lift_clearance - 1e-9; clearance -= 0.02) {
+    const Eigen::Vector3d p_above = p_W_floor + Eigen::Vector3d(0, 0, clearance + grasp_height);
+    for (const TopDownCandidate& c :
+         TopDownPosesByDistance(p_above, q_current, options.selection, options.place_yaw_step, options.place_yaw_offset)) {
+      PlacePlan plan;
+      plan.X_WT_above = plan.X_WT_release = c.X_WT;
+      plan.q_above = c.q;
+      plan.X_WT_release.translation().z() = p_W_floor.z() + options.release_clearance + grasp_height;
+      if (!SelectNearest(SolveTcpIk(plan.X_WT_release, plan.q_above[5]), plan.q_above, options.selection)) continue;
+      plan.ok = true;
+      // Straight down from above the bin must not pass a branch change of the IK (a joint faster than
+      // pi rad/s at any speed): with some yaws the line into a bin behind the robot does.
+      if (PlanCartesianLine(plan.q_above, plan.X_WT_release, kMovelSpeed, kMovelAcceleration, 0.002, options.selection)
+              .status == CartesianPlanStatus::kOk) {
+        return plan;
+      }
+      if (!first.ok) first = plan;
+    }
+  }
+  return first;
+}
+
+bool NearestTopDownPose(const Eigen::Vector3d& p_W, const Joints& q_current, const SelectionOptions& selection,
+                        Eigen::Isometry3d& X_WT, Joints& q, double yaw_step, double yaw_offset) {
+  const std::vector<TopDownCandidate> candidates = TopDownPosesByDistance(p_W, q_current, selection, yaw_step, yaw_offset);
+  if (candidates.empty()) return false;
+  X_WT = candidates.front().X_WT;
+  q = candidates.front().q;
+  return true;
 }
 
 }  // namespace sortcell::robot

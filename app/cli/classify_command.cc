@@ -32,6 +32,8 @@ nlohmann::json ClassifyObject(const perception::RecognitionModel& model, const p
   }
   return {{"category", rejected ? perception::kUnknownClass : result.name},
           {"confidence", result.confidence},
+          {"probability", result.probability},
+          {"familiarity", result.familiarity},
           {"rejected", rejected},
           {"points", object_C.size()},
           {"top", ranked}};

@@ -17,8 +17,9 @@
 
 namespace sortcell::app {
 
-/// What a model says of one object cloud: {"category", "confidence", "rejected", "top": [{"name",
-/// "probability"}, ...]}. Below `reject_below` the category is perception::kUnknownClass (the
+/// What a model says of one object cloud: {"category", "confidence" (calibrated: probability x
+/// familiarity), "probability" (the SVM's), "familiarity", "rejected", "top": [{"name", "probability"},
+/// ...]}. Below `reject_below` (on the confidence) the category is perception::kUnknownClass (the
 /// model's best guess stays first in "top").
 /// @throws std::invalid_argument "<what>: <why>" if the cloud cannot be described (e.g. too few points).
 nlohmann::json ClassifyObject(const perception::RecognitionModel& model, const perception::Cloud& object_C,

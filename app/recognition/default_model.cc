@@ -108,9 +108,10 @@ std::string SegmentationDigest() {
 }
 
 // What the default model of `set` depends on: its objects' models, the sensor it sees them through, and
-// the scenes it is trained on and how they are segmented.
+// the scenes it is trained on and how they are segmented, and what a model holds (a model of before the
+// familiarity was fitted cannot reject unknown objects: it is trained again).
 std::string TrainedOnDigest(const ObjectSet& set) {
-  return ObjectModelsDigest(set, ObjectTexturesDir()) + " colour " + sim::ToString(sim::KinectColourParams{}) +
+  return "model familiarity-1 " + ObjectModelsDigest(set, ObjectTexturesDir()) + " colour " + sim::ToString(sim::KinectColourParams{}) +
          " depth " + sim::ToString(sim::KinectNoiseParams{}) +
          " scenes " + DefaultTrainingSceneArguments(set) + " segmentation " + SegmentationDigest();
 }

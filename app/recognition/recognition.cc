@@ -230,16 +230,19 @@ perception::RecognitionModel TrainModel(const Dataset& dataset, std::vector<int>
   }
   const int dim = perception::DescriptorSize(request.descriptor);
   Eigen::MatrixXf samples(static_cast<Eigen::Index>(rows.size()), dim);
+  Eigen::MatrixXf raw_parts(static_cast<Eigen::Index>(rows.size()), perception::DescriptorSize(perception::DescriptorKind::kColorCvfh));
   std::vector<int> labels, groups;
   std::map<std::string, int> group_ids;
   for (size_t i = 0; i < rows.size(); ++i) {
     const Sample& s = dataset.samples.at(rows[i]);
     samples.row(static_cast<Eigen::Index>(i)) = perception::AssembleDescriptor(s.parts, request.descriptor).transpose();
+    raw_parts.row(static_cast<Eigen::Index>(i)) = perception::RawParts(s.parts).transpose();
     labels.push_back(ClassIndex(model.classes, Dataset::Label(s, request.label_kind)));
     groups.push_back(group_ids.emplace(GroupKey(s, request.group_by, dataset.views), group_ids.size()).first->second);
   }
   model.classifier = perception::SvmClassifier::Train(samples, labels, groups, static_cast<int>(model.classes.size()),
                                                       request.grid);
+  model.familiarity = perception::Familiarity::Fit(raw_parts, groups);
   model.train_samples = static_cast<int>(rows.size());
   for (const auto& score : model.classifier.cv_scores()) model.cv_accuracy = std::max(model.cv_accuracy, score.accuracy);
   return model;
