@@ -250,7 +250,8 @@ void SaveModel(const std::filesystem::path& file, const RecognitionModel& model)
   cv::eigen2cv(Eigen::MatrixXd(a.sv_coef), sv_coef);
   std::string text;
   try {  // Into memory first: OpenCV does not check its own file writes.
-    cv::FileStorage fs(".json", cv::FileStorage::WRITE | cv::FileStorage::MEMORY | cv::FileStorage::FORMAT_JSON);
+    cv::FileStorage fs(".json", cv::FileStorage::WRITE | cv::FileStorage::MEMORY | cv::FileStorage::FORMAT_JSON |
+                       cv::FileStorage::WRITE_BASE64);
     fs << "format" << kFormat << "version" << kModelFormatVersion;
     fs << "descriptor" << DescriptorName(model.descriptor) << "label_kind" << ToString(model.label_kind);
     fs << "classes" << "[";
