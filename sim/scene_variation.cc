@@ -103,12 +103,19 @@ void ApplyVariation(Model& model, const SceneVariation& variation, std::mt19937_
     std::seed_seq seq{static_cast<uint32_t>(a), static_cast<uint32_t>(a >> 32), static_cast<uint32_t>(b),
                       static_cast<uint32_t>(b >> 32), 0xC0102u};
     std::mt19937_64 colours(seq);
-    JitterColours(m, variation.colour_jitter, colours);
+    JitterObjectColours(model, variation.colour_jitter, colours);
   }
   // Derived quantities that depend on masses (subtree masses, armature-free inertias at qpos0).
   mjData* d = mj_makeData(m);
   mj_setConst(m, d);
   mj_deleteData(d);
+}
+
+void JitterObjectColours(Model& model, double jitter, std::mt19937_64& rng) {
+  if (!(jitter >= 0 && jitter <= 1)) {
+    throw std::invalid_argument("scene '" + model.source() + "': colour jitter must be in [0, 1]");
+  }
+  JitterColours(model.mutable_get(), jitter, rng);
 }
 
 }  // namespace sortcell::sim

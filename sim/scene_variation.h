@@ -31,4 +31,10 @@ struct SceneVariation {
 ///         jitter outside [0, 1] or an unknown camera.
 void ApplyVariation(Model& model, const SceneVariation& variation, std::mt19937_64& rng);
 
+/// Every object's colours varied by one draw per object from `rng`, as ApplyVariation does for
+/// colour_jitter (hue up to +-25 deg, saturation and value up to +-30 %, times `jitter`; a textured
+/// material's brightness only). Changes the model's materials and geom colours in place.
+/// @throws std::invalid_argument for a jitter outside [0, 1].
+void JitterObjectColours(Model& model, double jitter, std::mt19937_64& rng);
+
 }  // namespace sortcell::sim

@@ -27,6 +27,7 @@ struct DatasetOptions {
   uint64_t seed = 0;
   std::vector<std::string> placement{"sparse"};
   double lying_fraction = 0;
+  double colour_jitter = 0;
 };
 
 struct TrainOptions {
@@ -189,8 +190,13 @@ void AddDatasetCommand(CLI::App& app, std::function<int()>& run, const std::vect
                                        "Scenes: chance (0-1) that a bottle or box lies on its side")
                            ->check(CLI::Range(0.0, 1.0))
                            ->capture_default_str();
-  for (CLI::Option* scene_only : {placement, lying}) scene_only->needs(scenes);
-  for (CLI::Option* simulated : {views, scenes, seed, occluded, placement, lying}) rgbd->excludes(simulated);
+  CLI::Option* jitter = cmd->add_option("--colour-jitter", o->colour_jitter,
+                                        "Scenes: each scene's objects' colours varied at a level drawn from [0, J], as "
+                                        "the episodes' colour_jitter varies them (0-1)")
+                            ->check(CLI::Range(0.0, 1.0))
+                            ->capture_default_str();
+  for (CLI::Option* scene_only : {placement, lying, jitter}) scene_only->needs(scenes);
+  for (CLI::Option* simulated : {views, scenes, seed, occluded, placement, lying, jitter}) rgbd->excludes(simulated);
   cmd->callback([&run, o, command_line] {
     run = [o, command_line] {
       if (!o->rgbd_objects.empty()) return ImportRgbdObjectsCommand(*o, command_line);
@@ -209,6 +215,7 @@ void AddDatasetCommand(CLI::App& app, std::function<int()>& run, const std::vect
         options.modes.clear();
         for (const auto& mode : o->placement) options.modes.push_back(*sim::ParsePlacementMode(mode));  // Checked.
         options.placement.lying_fraction = o->lying_fraction;
+        options.colour_jitter = o->colour_jitter;
         d = CaptureScenes(set, options, o->out);
       } else {
         TurntableOptions options;

@@ -24,6 +24,7 @@
 #include "sim/object_placement.h"
 #include "sim/point_cloud.h"
 #include "sim/scene_composer.h"
+#include "sim/scene_variation.h"
 
 namespace sortcell::app {
 namespace {
@@ -60,6 +61,9 @@ class CaptureRig {
     arm.SetArmPosition(data_, cell::CellLayout().q_observe);
     arm.SetGripperPosition(data_, cell::CellLayout().observe_half_gap);
     names_ = sim::FreeBodyNames(model_);
+    const mjModel* m = model_.get();
+    mat_rgba_.assign(m->mat_rgba, m->mat_rgba + 4 * m->nmat);
+    geom_rgba_.assign(m->geom_rgba, m->geom_rgba + 4 * m->ngeom);
     for (const auto& spec : set.objects) body_[spec.name] = model_.Id(mjOBJ_BODY, spec.name);
     ParkAll();
   }
@@ -73,6 +77,14 @@ class CaptureRig {
     int slot = 0;
     for (const auto& [name, body] : body_) sim::ParkObject(model_, data_, body, slot++);
     mj_forward(model_.get(), data_.get());
+  }
+
+  // The objects' own colours, then varied at `jitter` (0: left as they are).
+  void JitterColours(double jitter, std::mt19937_64& rng) {
+    mjModel* m = model_.mutable_get();
+    std::copy(mat_rgba_.begin(), mat_rgba_.end(), m->mat_rgba);
+    std::copy(geom_rgba_.begin(), geom_rgba_.end(), m->geom_rgba);
+    if (jitter > 0) sim::JitterObjectColours(model_, jitter, rng);
   }
 
   sim::KinectCamera& Camera(const std::string& name) {
@@ -131,6 +143,7 @@ class CaptureRig {
   std::map<std::string, int> body_;
   std::map<std::string, std::unique_ptr<sim::KinectCamera>> cameras_;
   std::map<std::string, perception::Cloud::Ptr> background_;
+  std::vector<float> mat_rgba_, geom_rgba_;  // The objects' own colours, for JitterColours.
 };
 
 // Describes a labelled segment and writes its cloud; false (with the reason) when it cannot be described.
@@ -310,6 +323,11 @@ Dataset CaptureScenes(const ObjectSet& set, const SceneOptions& options, const s
       sim::PlaceObject(rig.model(), rig.data(), rig.Body(set.objects[order[k]].name), (*poses)[k], chosen_shapes[k]);
     }
     placed += count;
+    if (options.colour_jitter > 0) {
+      // A stream of its own: the scene's objects, poses and camera are what they are without jitter.
+      std::mt19937_64 colours = EpisodeRng(options.seed, 0xC0100000ull + static_cast<uint64_t>(scene));
+      rig.JitterColours(std::uniform_real_distribution<double>(0.0, options.colour_jitter)(colours), colours);
+    }
     perception::SegmentationParams segmentation;
     segmentation.clustering = options.clustering;
     const auto segments = rig.CaptureSegments("kinect", rng, nullptr, segmentation);
@@ -349,7 +367,8 @@ Dataset CaptureScenes(const ObjectSet& set, const SceneOptions& options, const s
                      {"segments_not_described", undescribed}, {"samples", dataset.samples.size()},
                      {"objects_per_scene", {options.min_objects, options.max_objects}},
                      {"placement", PlacementModesText(options.modes)},
-                     {"lying_fraction", options.placement.lying_fraction}};
+                     {"lying_fraction", options.placement.lying_fraction},
+                     {"colour_jitter", options.colour_jitter}};
   return dataset;
 }
 

@@ -48,6 +48,9 @@ struct SceneOptions {
   /// modes[k % modes.size()] (placement.mode is not used).
   std::vector<sim::PlacementMode> modes{sim::PlacementMode::kSparse};
   sim::PlacementOptions placement;
+  /// Each scene's objects' colours varied as the episodes' colour_jitter axis varies them, at a level
+  /// drawn per scene from [0, colour_jitter] (0: the objects' own colours).
+  double colour_jitter = 0;
   /// How scenes are segmented: as the cell segments them, so touching objects come apart.
   perception::SegmentationParams::Clustering clustering = perception::SegmentationParams::Clustering::kConvex;
 };
