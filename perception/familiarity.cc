@@ -73,9 +73,20 @@ Familiarity Familiarity::Fit(const Eigen::MatrixXf& raw_parts, const std::vector
     throw std::invalid_argument("familiarity: needs training views of at least two groups");
   }
   const Eigen::MatrixXf rooted = SquareRooted(raw_parts);
-  const std::vector<int> reference_rows = Spread(n, kMaxReference), calibration_rows = Spread(n, kMaxCalibration);
+  const std::vector<int> reference_rows = Spread(n, kMaxReference);
+  std::vector<int> calibration_rows = Spread(n, kMaxCalibration);
   Familiarity f;
   f.reference = rooted(reference_rows, Eigen::all);
+  // A calibration view is used where the reference holds a view of another group (with more than
+  // kMaxReference views, a small group may be left out of the reference and another may have no rival).
+  std::vector<int> usable;
+  for (int row : calibration_rows) {
+    if (std::any_of(reference_rows.begin(), reference_rows.end(), [&](int r) { return groups[r] != groups[row]; })) {
+      usable.push_back(row);
+    }
+  }
+  if (usable.empty()) throw std::invalid_argument("familiarity: no training view has one of another group to compare with");
+  calibration_rows = usable;
   const Eigen::MatrixXf calibration = rooted(calibration_rows, Eigen::all);
 
   // Per block, each calibration view's distance to the nearest reference view of another group.

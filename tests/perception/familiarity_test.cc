@@ -97,6 +97,13 @@ TEST(Familiarity, RefusesBadInput) {
   Eigen::MatrixXf negative = x;
   negative(3, 3) = -1;
   EXPECT_NE(ErrorOf([&] { Familiarity::Fit(negative, groups); }).find("negative or non-finite"), std::string::npos);
+  // Past kMaxReference views the reference is a spread of them: a lone view of a second group left out of
+  // it leaves no view a rival of another group (refused, not a scale of infinity).
+  std::vector<int> lone(Familiarity::kMaxReference + 1, 0);
+  lone.back() = 1;
+  EXPECT_NE(ErrorOf([&] { Familiarity::Fit(Eigen::MatrixXf::Ones(static_cast<Eigen::Index>(lone.size()), 500), lone); })
+                .find("another group"),
+            std::string::npos);
   const Familiarity f = Familiarity::Fit(x, groups);
   EXPECT_NE(ErrorOf([&] { f.Of(Eigen::VectorXf::Zero(308)); }).find("expected 500 raw parts"), std::string::npos);
   EXPECT_DOUBLE_EQ(Familiarity{}.Of(x.row(0).transpose()), 1.0);  // Unfitted: everything familiar.
