@@ -77,9 +77,11 @@ struct PlacePlan {
 };
 
 /// Placing a held object (grasped `grasp_height` above its bottom) into a bin whose floor centre is
-/// p_W_floor: the highest reachable top-down pose above it between the lift clearances (yaws in steps of place_yaw_step,
-/// nearest IK to q_current), then straight down until the object's bottom is release_clearance above
-/// the floor.
+/// p_W_floor: the highest reachable top-down pose above it between the lift clearances (yaws in steps of
+/// place_yaw_step, nearest IK to q_current first) from which the straight line down, until the object's
+/// bottom is release_clearance above the floor, is reachable and smooth (no joint faster than pi rad/s
+/// at the default line speed: no change of IK branch on the way); the nearest reachable one if no line
+/// is smooth.
 PlacePlan PlanPlacement(const Eigen::Vector3d& p_W_floor, double grasp_height, const Joints& q_current,
                         const GraspOptions& options = {});
 

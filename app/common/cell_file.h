@@ -6,7 +6,7 @@
 ///     - {name: cans, at: [0.45, -0.50], size: [0.26, 0.26], colour: [0.45, 0.45, 0.48]}
 ///   rules: {bottle: bottles, can: cans, "*": others}
 ///   reject: others          # optional: where objects the model is unsure of go
-///   reject_below: 0.6       # optional: below this confidence (0-1; 0: never)
+///   reject_below: 0.05      # optional: below this calibrated confidence (0-1; 0: never; RecognitionModel::Result)
 /// `at` is the centre of a bin's floor on the table (world x, y, m), `size` its inside (x, y, m);
 /// walls are the cell's (cell::CellLayout). The simulated cell's bins are written from the same file
 /// (BinsXml), so the robot's layout and the scene cannot disagree.

@@ -83,16 +83,12 @@ PALETTES = {
 }
 
 
-
-
 def pick(rng, palette, **jitter):
     return hsv(*jitter_hsv(rng, rng.choice(palette), **jitter))
 
 
-
 def scale(c, k):
     return tuple(max(0.0, min(1.0, x * k)) for x in c)
-
 
 
 def dot(a, b):
@@ -111,7 +107,6 @@ def normalize(v):
 def line(dist, half_width):
     """1 on a painted line of `half_width` (rad) about dist = 0, 0 away from it, soft edges."""
     return 1 - smoothstep(half_width - AA, half_width + AA, abs(dist))
-
 
 
 # ---------------------------------------------------------------------------------------------------

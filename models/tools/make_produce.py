@@ -178,11 +178,6 @@ VARIETY = {
 }
 
 
-
-
-
-
-
 # ---------------------------------------------------------------------------------------------------
 # Shapes: a profile (rho, z) from the bottom pole (t = 0) to the top pole (t = 1), swept about z and
 # modulated around it (phi). Each returns a function (t, phi) -> (x, y, z) in the object's frame.
