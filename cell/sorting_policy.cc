@@ -41,31 +41,35 @@ double HeldReach(const Detection& d) {
   return reach;
 }
 
-// Everything seen but detection `target`, as the fingers' obstacles.
+// Everything seen but detection `target`, as obstacles of the fingers and the gripper's body; the bins' walls
+// (fixed_xy) reach wall_top_z.
 robot::Neighbours NeighboursOf(const std::vector<Detection>& detections, size_t target,
-                                const std::vector<Eigen::Vector2d>& fixed_xy) {
+                                const std::vector<Eigen::Vector2d>& fixed_xy, double wall_top_z) {
   robot::Neighbours neighbours;
   neighbours.p_xy = fixed_xy;
+  neighbours.p_top_z.assign(fixed_xy.size(), wall_top_z);
   for (size_t j = 0; j < detections.size(); ++j) {
     if (j == target) continue;
     const Detection& d = detections[j];
     neighbours.p_xy.insert(neighbours.p_xy.end(), d.p_W_xy.begin(), d.p_W_xy.end());
+    neighbours.p_top_z.insert(neighbours.p_top_z.end(), d.p_W_xy.size(), d.footprint.top_z);
     neighbours.discs.emplace_back(d.footprint.centre_xy, 0.5 * d.footprint.width);
+    neighbours.disc_top_z.push_back(d.footprint.top_z);
   }
   return neighbours;
 }
 
 // The ways detection `i` may be pinched (round: from any side; a prism: across either pair of sides;
-// lying: across its axis), the one whose open fingers clear the neighbours.
+// lying: across its axis), the one whose open fingers and body clear the neighbours.
 robot::ClearGrasp ClearestGraspOf(const std::vector<Detection>& detections, size_t i,
-                                  const std::vector<Eigen::Vector2d>& fixed_xy) {
+                                  const std::vector<Eigen::Vector2d>& fixed_xy, double wall_top_z) {
   const Detection& d = detections[i];
   std::vector<robot::ObjectFootprint> ways{d.footprint};
   if (d.round) ways = robot::RoundWays(d.footprint);
   if (d.turned) ways.push_back(*d.turned);
   std::vector<double> side_clearances;  // As the grasp will open for each (GraspOptionsFor).
   for (const auto& way : ways) side_clearances.push_back(GraspOptionsFor(way, d.lying).finger_clearance);
-  return robot::ClearestGrasp(ways, side_clearances, NeighboursOf(detections, i, fixed_xy));
+  return robot::ClearestGrasp(ways, side_clearances, NeighboursOf(detections, i, fixed_xy, wall_top_z));
 }
 
 }  // namespace
@@ -136,7 +140,7 @@ int SortingPolicy::Choose(const std::vector<Detection>& detections, robot::PickM
     if (i < 0) i = robot::ChooseNextPick(footprints, free_hidden);
     robot::ClearGrasp grasp;
     if (i >= 0) {
-      grasp = ClearestGraspOf(detections, i, bin_walls_xy_);
+      grasp = ClearestGraspOf(detections, i, bin_walls_xy_, layout_.bin_wall_height);
       if (grasp.clearance < kFreeFingers) {
         for (robot::PickMemory* m : {&free, &free_hidden}) m->Skip(footprints[i].centre_xy, robot::SkipReason::kUnreachable);
         blocked.emplace_back(i, grasp);
@@ -152,7 +156,9 @@ int SortingPolicy::Choose(const std::vector<Detection>& detections, robot::PickM
       if (view.Skipped(footprints[i].centre_xy) != robot::SkipReason::kNone) continue;  // Given up meanwhile.
     }
     // The IK branch nearest to the observe pose (the natural one for picking), wherever the arm is now.
-    plan = robot::PlanTopDownGrasp(grasp.footprint, layout_.q_observe, GraspOptionsFor(grasp.footprint, detections[i].lying));
+    robot::GraspOptions options = GraspOptionsFor(grasp.footprint, detections[i].lying);
+    options.min_tcp_z = grasp.min_tcp_z;
+    plan = robot::PlanTopDownGrasp(grasp.footprint, layout_.q_observe, options);
     if (plan.status == robot::GraspStatus::kOk) return i;
     for (robot::PickMemory* m : {&memory, &view, &unhidden, &free, &free_hidden}) {
       m->Skip(footprints[i].centre_xy, robot::SkipReason::kUnreachable);

@@ -30,6 +30,13 @@ Eigen::Isometry3d TopDownTcpPose(const Eigen::Vector3d& p_W, double pinch_yaw) {
   return X;
 }
 
+double GraspHeight(const ObjectFootprint& object, const GraspOptions& options) {
+  const double height = object.top_z - object.base_z;
+  const double lowest = kFingerTipBeyondTcp + options.table_clearance - object.base_z;
+  const double over_neighbours = std::fmin(options.min_tcp_z - object.base_z, height - options.min_pad_overlap);
+  return std::max({0.5 * height, height - kPalmBeforeTcp + options.palm_clearance, over_neighbours, lowest});
+}
+
 GraspPlan PlanTopDownGrasp(const ObjectFootprint& object, const Joints& q_current, const GraspOptions& options) {
   GraspPlan plan;
   const double height = object.top_z - object.base_z;
@@ -38,10 +45,7 @@ GraspPlan PlanTopDownGrasp(const ObjectFootprint& object, const Joints& q_curren
     plan.status = GraspStatus::kTooWide;
     return plan;
   }
-  // The middle of the object, raised until the palm clears its top; the pads must still overlap it
-  // and the finger tips must stay above the table.
-  const double lowest = kFingerTipBeyondTcp + options.table_clearance - object.base_z;
-  plan.grasp_height = std::max({0.5 * height, height - kPalmBeforeTcp + options.palm_clearance, lowest});
+  plan.grasp_height = GraspHeight(object, options);
   if (plan.grasp_height > height - 0.005) {
     plan.status = GraspStatus::kTooLow;
     return plan;

@@ -24,6 +24,11 @@ struct ObjectFootprint {
 struct GraspOptions {
   double finger_clearance = 0.0045;  ///< Per side, between open pads and the object (m).
   double palm_clearance = 0.015;     ///< Between the object's top and the palm (m).
+  /// The lowest TCP height the neighbours leave the gripper's body (world z, m; a taller neighbour
+  /// under the palm or the housing): the grasp rises to it, but the TCP stays min_pad_overlap (m) below
+  /// the object's top.
+  double min_tcp_z = -INFINITY;
+  double min_pad_overlap = 0.02;
   double table_clearance = 0.010;    ///< Between finger tips and the table (m).
   double approach_height = 0.03;     ///< Finger tips above the object's top where the slow descent starts (m).
   /// Lift the object's bottom this high above the table before carrying it anywhere (m): above the
@@ -59,14 +64,19 @@ struct GraspPlan {
   double grasp_height = 0;             ///< TCP height above the object's base (m).
 };
 
+/// The TCP's height above the object's base for a top-down grasp of `object` (PlanTopDownGrasp's):
+/// its middle, raised until the palm clears its top and to options.min_tcp_z (as far as the pads still
+/// overlap it), the finger tips above the table.
+double GraspHeight(const ObjectFootprint& object, const GraspOptions& options);
+
 /// A top-down TCP pose (z_T pointing down) at p_W whose fingers close along `pinch_yaw`.
 Eigen::Isometry3d TopDownTcpPose(const Eigen::Vector3d& p_W, double pinch_yaw);
 
 /// Plans lift, pre-grasp and grasp poses for `object` (approach: lift -> pre-grasp -> grasp in
 /// straight lines; retreat: back to lift). Of the two equivalent yaws (pinch_yaw and pinch_yaw + pi),
-/// takes the one whose lift-pose IK lies nearer to `q_current`. The grasp height is
-/// the object's middle, raised if needed so the palm clears its top. Expected failures are statuses:
-/// too wide for the stroke, too flat to hold, or no valid IK for a pose on the way.
+/// takes the one whose lift-pose IK lies nearer to `q_current`. The grasp height is the object's middle,
+/// raised if needed so the palm clears its top (and to min_tcp_z). Expected failures are statuses: too
+/// wide for the stroke, too flat to hold, or no valid IK for a pose on the way.
 GraspPlan PlanTopDownGrasp(const ObjectFootprint& object, const Joints& q_current, const GraspOptions& options = {});
 
 struct PlacePlan {

@@ -15,6 +15,14 @@ inline constexpr double kFingerTipBeyondTcp = 0.018;
 /// The palm's lowest point lies this far before the TCP along z_F (m): an object may reach this far
 /// up between the fingers.
 inline constexpr double kPalmBeforeTcp = 0.082;
+/// The palm seen from above: it reaches this far to either side of the TCP along the closing
+/// direction and this far across it (m). Lower than a neighbour's top, it pushes the neighbour over.
+inline constexpr double kPalmHalfLength = 0.088;
+inline constexpr double kPalmHalfWidth = 0.018;
+/// Above the palm, the housing (and the narrower wrist above it): a column this wide around the TCP's
+/// axis, its lowest point this far before the TCP along z_F (m).
+inline constexpr double kHousingRadius = 0.042;
+inline constexpr double kHousingBeforeTcp = 0.113;
 /// Each finger seen from above: from its pad's face it reaches this far outwards along the closing
 /// direction (the stem behind the pad) and this far to either side across it (m).
 inline constexpr double kFingerDepth = 0.030;

@@ -66,6 +66,10 @@ SkipReason PickMemory::Skipped(const Eigen::Vector2d& xy) const {
 
 namespace {
 
+// The gripper body's outline widened by this (m) when looking for a neighbour under it: the Kinect's
+// noise and what the camera does not see of the neighbour's sides.
+constexpr double kBodyMargin = 0.01;
+
 // Distance (m) from a point, in the grasp's frame (u along the closing direction, v across), to the
 // finger on the +u side; the other finger is its mirror image.
 double DistanceToFinger(double u, double v, double open_gap) {
@@ -77,16 +81,55 @@ double DistanceToFinger(double u, double v, double open_gap) {
 
 }  // namespace
 
-double FingerClearance(const Eigen::Vector2d& centre_xy, double yaw, double open_gap, const Neighbours& neighbours) {
+double FingerClearance(const Eigen::Vector2d& centre_xy, double yaw, double open_gap, const Neighbours& neighbours,
+                       double tips_z) {
   const Eigen::Vector2d along(std::cos(yaw), std::sin(yaw)), across(-along.y(), along.x());
   double clearance = INFINITY;
   const auto distance = [&](const Eigen::Vector2d& p) {
     const Eigen::Vector2d r = p - centre_xy;
     return DistanceToFinger(r.dot(along), r.dot(across), open_gap);
   };
-  for (const Eigen::Vector2d& p : neighbours.p_xy) clearance = std::fmin(clearance, distance(p));
-  for (const auto& [centre, radius] : neighbours.discs) clearance = std::fmin(clearance, distance(centre) - radius);
+  // Below the finger tips (tops known): not in the fingers' way.
+  const auto below = [&](const std::vector<double>& tops, size_t k, size_t count) {
+    return tops.size() == count && tops[k] + kBodyMargin < tips_z;
+  };
+  for (size_t k = 0; k < neighbours.p_xy.size(); ++k) {
+    if (!below(neighbours.p_top_z, k, neighbours.p_xy.size())) clearance = std::fmin(clearance, distance(neighbours.p_xy[k]));
+  }
+  for (size_t k = 0; k < neighbours.discs.size(); ++k) {
+    const auto& [centre, radius] = neighbours.discs[k];
+    if (!below(neighbours.disc_top_z, k, neighbours.discs.size())) clearance = std::fmin(clearance, distance(centre) - radius);
+  }
   return clearance;
+}
+
+double LowestTcpAboveNeighbours(const Eigen::Vector2d& centre_xy, double yaw, const Neighbours& neighbours,
+                                double margin, double clearance) {
+  const Eigen::Vector2d along(std::cos(yaw), std::sin(yaw)), across(-along.y(), along.x());
+  // The lowest TCP height that keeps the body `clearance` above a neighbour's point `distance` (m,
+  // beyond what the camera saw of it) from the TCP's axis and `top` high.
+  const auto lowest_tcp = [&](const Eigen::Vector2d& p, double beyond, double top) {
+    const Eigen::Vector2d r = p - centre_xy;
+    const double to_palm = std::hypot(std::fmax(0.0, std::abs(r.dot(along)) - kPalmHalfLength),
+                                      std::fmax(0.0, std::abs(r.dot(across)) - kPalmHalfWidth));
+    double z = -INFINITY;
+    if (to_palm <= beyond + margin) z = top + clearance - kPalmBeforeTcp;
+    if (r.norm() - kHousingRadius <= beyond + margin) z = std::fmax(z, top + clearance - kHousingBeforeTcp);
+    return z;
+  };
+  double lowest = -INFINITY;
+  if (neighbours.p_top_z.size() == neighbours.p_xy.size()) {
+    for (size_t k = 0; k < neighbours.p_xy.size(); ++k) {
+      lowest = std::fmax(lowest, lowest_tcp(neighbours.p_xy[k], 0.0, neighbours.p_top_z[k]));
+    }
+  }
+  if (neighbours.disc_top_z.size() == neighbours.discs.size()) {
+    for (size_t k = 0; k < neighbours.discs.size(); ++k) {
+      const auto& [centre, radius] = neighbours.discs[k];
+      lowest = std::fmax(lowest, lowest_tcp(centre, radius, neighbours.disc_top_z[k]));
+    }
+  }
+  return lowest;
 }
 
 std::vector<ObjectFootprint> RoundWays(const ObjectFootprint& object, int directions) {
@@ -110,10 +153,18 @@ ClearGrasp ClearestGrasp(const std::vector<ObjectFootprint>& ways, const std::ve
   ClearGrasp best{ways.front(), -INFINITY};
   for (size_t k = 0; k < ways.size(); ++k) {
     const ObjectFootprint& way = ways[k];
-    const double clearance =
-        FingerClearance(way.centre_xy, way.pinch_yaw, way.width + 2 * side_clearances[k], neighbours);
-    if (k == 0 && clearance >= enough) return {way, clearance};
-    if (clearance > best.clearance + 1e-4) best = {way, clearance};
+    GraspOptions options;
+    options.min_tcp_z =
+        LowestTcpAboveNeighbours(way.centre_xy, way.pinch_yaw, neighbours, kBodyMargin, options.palm_clearance);
+    const double min_tcp_z = options.min_tcp_z;
+    // How far the grasp would have to rise beyond where the pads still hold the object (> 0: in the way).
+    const double too_high = min_tcp_z - (way.top_z - options.min_pad_overlap);
+    const double tips_z = way.base_z + GraspHeight(way, options) - kFingerTipBeyondTcp;
+    const double clearance = std::fmin(
+        FingerClearance(way.centre_xy, way.pinch_yaw, way.width + 2 * side_clearances[k], neighbours, tips_z),
+        too_high > 0 ? -too_high : INFINITY);
+    if (k == 0 && clearance >= enough) return {way, clearance, min_tcp_z};
+    if (clearance > best.clearance + 1e-4) best = {way, clearance, min_tcp_z};
   }
   return best;
 }

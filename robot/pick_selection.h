@@ -6,6 +6,8 @@
 
 #include <Eigen/Core>
 
+#include <cmath>
+
 #include <utility>
 #include <vector>
 
@@ -48,30 +50,47 @@ class PickMemory {
 };
 
 /// What stands around the object to pick, seen from above: the other objects' points, and their
-/// footprints as discs (centre, half their width) for the backs the camera does not see.
+/// footprints as discs (centre, half their width) for the backs the camera does not see; with how
+/// high each reaches (world z of its object's top, m), in the same order, for the gripper's body above
+/// the fingers (empty: not known, only the fingers are checked).
 struct Neighbours {
   std::vector<Eigen::Vector2d> p_xy;
   std::vector<std::pair<Eigen::Vector2d, double>> discs;
+  std::vector<double> p_top_z;
+  std::vector<double> disc_top_z;
 };
 
 /// How far the open fingers of a top-down grasp at centre_xy, closing along `yaw` and opened to
 /// `open_gap`, stay from the neighbours (m): 0 where a neighbour's point is in a finger's way, negative
-/// where a finger reaches into a neighbour's footprint disc.
-double FingerClearance(const Eigen::Vector2d& centre_xy, double yaw, double open_gap, const Neighbours& neighbours);
+/// where a finger reaches into a neighbour's footprint disc. Where the neighbours' tops are known, those
+/// lower than the finger tips come down to (`tips_z`, world z, m; by a margin) are not in the way.
+double FingerClearance(const Eigen::Vector2d& centre_xy, double yaw, double open_gap, const Neighbours& neighbours,
+                       double tips_z = -INFINITY);
+
+/// The lowest TCP height (world z, m) at which the gripper's body above the fingers (the palm, the
+/// housing), seen from above as outlines widened by `margin` (m), stays `clearance` (m) above the top of
+/// every neighbour under it, for a top-down grasp at centre_xy closing along `yaw`; -infinity where no
+/// neighbour is under it or the tops are unknown.
+double LowestTcpAboveNeighbours(const Eigen::Vector2d& centre_xy, double yaw, const Neighbours& neighbours,
+                                double margin, double clearance);
 
 /// A round object (the fingers may close on it from any side) pinched from `directions` directions
 /// over half a turn (the other half is the same pair of fingers), its own pinch_yaw first.
 std::vector<ObjectFootprint> RoundWays(const ObjectFootprint& object, int directions = 12);
 
-/// One way to grasp an object and how far its open fingers stay from the neighbours (m).
+/// One way to grasp an object, how far its open fingers stay from the neighbours (m), and the lowest
+/// TCP height the neighbours leave the gripper's body there (world z, m; LowestTcpAboveNeighbours).
 struct ClearGrasp {
   ObjectFootprint footprint;
   double clearance = 0;
+  double min_tcp_z = -INFINITY;
 };
 
 /// Of the ways to pinch one object (`ways`: the same object, other pinch directions; the first is the
 /// preferred one), the preferred one while its open fingers (its width plus `side_clearance` per side)
-/// clear the neighbours by `enough`, else the one that clears them most.
+/// clear the neighbours by `enough`, else the one that clears them most. A neighbour under the gripper's
+/// body taller than the grasp can rise above (GraspOptions: palm_clearance above it, the TCP still
+/// min_pad_overlap below the object's top) counts as in the way by the height it is too tall.
 /// @throws std::invalid_argument if `ways` is empty.
 ClearGrasp ClearestGrasp(const std::vector<ObjectFootprint>& ways, double side_clearance, const Neighbours& neighbours,
                          double enough = 0.015);

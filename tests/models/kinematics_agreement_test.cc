@@ -81,6 +81,18 @@ TEST(KinematicsAgreement, TcpOfTheGripperModelMatchesTheRobotLayer) {
   Eigen::Isometry3d X_WF = sim::BodyPose(data, flange);
   const Eigen::Vector3d p_WT = Eigen::Map<const Eigen::Vector3d>(data.get()->site_xpos + 3 * tcp);
   EXPECT_TRUE((X_WF.inverse() * p_WT).isApprox(robot::TcpInFlange().translation(), 1e-12));
+  // The palm (a capsule across the closing direction, y_F): its lowest point and its extent from above.
+  const int palm = model.Id(mjOBJ_GEOM, "gripper_palm");
+  const double palm_radius = model.get()->geom_size[3 * palm], palm_half_length = model.get()->geom_size[3 * palm + 1];
+  EXPECT_NEAR(robot::TcpInFlange().translation().z() - (model.get()->geom_pos[3 * palm + 2] + palm_radius),
+              robot::kPalmBeforeTcp, 1e-12);
+  EXPECT_NEAR(palm_half_length + palm_radius, robot::kPalmHalfLength, 1e-12);
+  EXPECT_NEAR(palm_radius, robot::kPalmHalfWidth, 1e-12);
+  const int housing = model.Id(mjOBJ_GEOM, "gripper_housing");  // A cylinder along z_F.
+  EXPECT_NEAR(model.get()->geom_size[3 * housing], robot::kHousingRadius, 1e-12);
+  EXPECT_NEAR(robot::TcpInFlange().translation().z() -
+                  (model.get()->geom_pos[3 * housing + 2] + model.get()->geom_size[3 * housing + 1]),
+              robot::kHousingBeforeTcp, 1e-12);
   // Finger stroke: the joint range is the half-gap.
   const int joint = model.Id(mjOBJ_JOINT, "finger_left_joint");
   EXPECT_DOUBLE_EQ(2 * model.get()->jnt_range[2 * joint + 1], robot::kMaxGap);

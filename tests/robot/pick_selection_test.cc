@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include "error_of.h"
+#include "robot/gripper_geometry.h"
 #include "robot/pick_selection.h"
 
 namespace sortcell::robot {
@@ -101,6 +102,87 @@ TEST(PickSelection, ABlockedPrismIsPinchedTheOtherWay) {
 TEST(PickSelection, RejectsBadMemoryParameters) {
   EXPECT_NE(sortcell_test::ErrorOf([] { PickMemory(0.0, 3); }).find("radius > 0"), std::string::npos);
   EXPECT_NE(sortcell_test::ErrorOf([] { PickMemory(0.04, 0); }).find("max_attempts >= 1"), std::string::npos);
+}
+
+// A tall box (0.21 m, 6 cm thick, seen as a disc) beside a can (0.10 m): 12 cm away, under the palm
+// when the fingers close towards it, not when they close across; touching the can, under the housing
+// whichever way they close, higher than the grasp may rise (blocked by how much); beside a bottle
+// (0.19 m), the grasp rises until the palm clears it.
+TEST(PickSelection, TheGrippersBodyKeepsClearOfATallerNeighbour) {
+  ObjectFootprint can = At(0.5, 0.0, 0.066);
+  can.pinch_yaw = 0.0;
+  const auto box_at = [](double x) {
+    Neighbours n;
+    n.discs.emplace_back(Eigen::Vector2d(x, 0.0), 0.03);
+    n.disc_top_z.push_back(0.21);
+    return n;
+  };
+  const double clearance = GraspOptions().palm_clearance;
+  const Neighbours apart = box_at(0.62);
+  EXPECT_NEAR(LowestTcpAboveNeighbours(can.centre_xy, 0.0, apart, 0.01, clearance), 0.21 + clearance - kPalmBeforeTcp,
+              1e-12);
+  EXPECT_EQ(LowestTcpAboveNeighbours(can.centre_xy, M_PI / 2, apart, 0.01, clearance), -INFINITY);
+  Neighbours unknown_height = apart;
+  unknown_height.disc_top_z.clear();
+  EXPECT_EQ(LowestTcpAboveNeighbours(can.centre_xy, 0.0, unknown_height, 0.01, clearance), -INFINITY);
+
+  const ClearGrasp across = ClearestGrasp(RoundWays(can), 0.008, apart);
+  EXPECT_GT(std::abs(std::sin(across.footprint.pinch_yaw)), 0.5) << across.footprint.pinch_yaw;
+  EXPECT_EQ(across.min_tcp_z, -INFINITY);
+  EXPECT_GT(across.clearance, 0.0);
+
+  // Touching: the housing needs the TCP at 0.21 + 0.015 - 0.113 = 0.112 m, the pads allow 0.08 m.
+  const ClearGrasp blocked = ClearestGrasp(RoundWays(can), 0.008, box_at(0.57));
+  EXPECT_NEAR(blocked.clearance, -(0.21 + clearance - kHousingBeforeTcp - 0.08), 1e-9);
+  EXPECT_NEAR(blocked.min_tcp_z, 0.21 + clearance - kHousingBeforeTcp, 1e-12);
+
+  ObjectFootprint bottle = can;
+  bottle.top_z = 0.19;
+  const ClearGrasp raised = ClearestGrasp({bottle}, 0.008, apart);
+  EXPECT_GT(raised.clearance, 0.0);
+  EXPECT_NEAR(raised.min_tcp_z, 0.21 + clearance - kPalmBeforeTcp, 1e-12);
+}
+
+// A can (0.10 m) against the face of a tall box (0.21 m): the box's grasp is high enough for its
+// fingers to pass above the can, which does not block it; a can as tall as the finger tips does.
+TEST(PickSelection, FingersPassAboveAShorterNeighbour) {
+  ObjectFootprint box = At(0.5, 0.0, 0.06);
+  box.top_z = 0.21;
+  box.pinch_yaw = 0.0;
+  const auto can_of = [](double top) {
+    Neighbours n;
+    n.discs.emplace_back(Eigen::Vector2d(0.565, 0.0), 0.033);
+    n.disc_top_z.push_back(top);
+    for (int k = 0; k < 12; ++k) {
+      n.p_xy.push_back(Eigen::Vector2d(0.565, 0.0) + 0.033 * Eigen::Vector2d(std::cos(k * M_PI / 6), std::sin(k * M_PI / 6)));
+      n.p_top_z.push_back(top);
+    }
+    return n;
+  };
+  const double tips_z = GraspHeight(box, GraspOptions()) - kFingerTipBeyondTcp;  // 0.125 m.
+  EXPECT_LT(FingerClearance(box.centre_xy, 0.0, 0.076, can_of(0.10)), 0.0);
+  EXPECT_EQ(FingerClearance(box.centre_xy, 0.0, 0.076, can_of(0.10), tips_z), INFINITY);
+  EXPECT_GE(ClearestGrasp({box}, 0.008, can_of(0.10)).clearance, 0.015);
+  EXPECT_LT(ClearestGrasp({box}, 0.008, can_of(tips_z)).clearance, 0.0);
+}
+
+// The planner raises the grasp to the lowest TCP height the neighbours leave, as far as the pads allow.
+TEST(PickSelection, TheGraspRisesAboveATallerNeighbour) {
+  ObjectFootprint bottle = At(0.5, 0.0, 0.06);
+  bottle.top_z = 0.19;
+  const Joints q_observe = (Joints() << 0, -1.9, 1.9, -1.57, -1.57, 0).finished();
+  GraspOptions options;
+  const GraspPlan free = PlanTopDownGrasp(bottle, q_observe, options);
+  ASSERT_EQ(free.status, GraspStatus::kOk);
+  EXPECT_NEAR(free.grasp_height, 0.19 - kPalmBeforeTcp + options.palm_clearance, 1e-12);
+  options.min_tcp_z = 0.143;
+  const GraspPlan raised = PlanTopDownGrasp(bottle, q_observe, options);
+  ASSERT_EQ(raised.status, GraspStatus::kOk);
+  EXPECT_NEAR(raised.grasp_height, 0.143, 1e-12);
+  EXPECT_NEAR(raised.X_WT_grasp.translation().z(), 0.143, 1e-9);
+  options.min_tcp_z = 0.40;  // Out of the pads' reach: as high as they allow.
+  EXPECT_NEAR(GraspHeight(bottle, options), 0.19 - options.min_pad_overlap, 1e-12);
+  EXPECT_NEAR(PlanTopDownGrasp(bottle, q_observe, options).grasp_height, 0.19 - options.min_pad_overlap, 1e-12);
 }
 
 }  // namespace
