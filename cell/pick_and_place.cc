@@ -11,8 +11,6 @@ namespace {
 
 // The last part of lowering an object into its bin, slowly (m).
 constexpr double kSlowPlacing = 0.05;
-// The first centimetres of a lift, at the slow speed (m).
-constexpr double kSlowLift = 0.05;
 // A held object's middle farther than this off the TCP's axis is grasped again over it (m): beyond
 // the Kinect's noise in the footprint and the fingers' own play.
 constexpr double kOffCentre = 0.006;
@@ -163,12 +161,7 @@ PickReport PickAndPlace(MotionSequencer& run, const PickRequest& request, const 
 
   // Lift, carry and lower as one motion; the placement is planned from where the lift ends.
   MotionChain transfer(run.io().CommandedJoints(), MotionChain::Load::kHolding);
-  // The first centimetres slowly: an object held above its centre of mass turns in the fingers as it
-  // leaves the table, and a fast pull swung it into its neighbours and out of the fingers.
-  Eigen::Isometry3d X_WT_breakaway = plan.X_WT_grasp;
-  X_WT_breakaway.translation().z() += kSlowLift;
-  if (!transfer.Line("lift", X_WT_breakaway, lines.slow, lines.slow_acceleration) ||
-      !transfer.Line("lift", plan.X_WT_lift, lines.transit, lines.transit_acceleration)) {
+  if (!transfer.Line("lift", plan.X_WT_lift, lines.transit, lines.transit_acceleration)) {
     return Fail(run, request, report);
   }
   robot::GraspOptions place_options;

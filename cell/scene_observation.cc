@@ -57,13 +57,18 @@ Observation ObserveScene(const perception::Cloud& cloud, const CameraCalibration
     const double table_z = TableHeightAt(segment.centroid, segmented.plane_C, X_WC);
     const robot::FootprintEstimate estimate = robot::EstimateFootprint(p_W, X_WC.translation(), table_z);
     d.footprint = estimate.footprint;
+    d.footprint.full_width_top_z = robot::FullWidthTop(p_W, d.footprint);
     // One pinched along its narrowest direction (too wide across the view) keeps it: turned, the
     // fingers would close on its width.
     d.round = !estimate.prism && estimate.across_view;
     d.lying = estimate.lying;
     d.turned = estimate.turned;
+    if (d.turned) d.turned->full_width_top_z = d.footprint.full_width_top_z;
     d.occluded = occluded_edge[s] >= kOccludedEdgePixels;
-    for (size_t k = 0; k < p_W.size(); k += kOutlineStride) d.p_W_xy.push_back(p_W[k].head<2>());
+    for (size_t k = 0; k < p_W.size(); k += kOutlineStride) {
+      d.p_W_xy.push_back(p_W[k].head<2>());
+      d.p_W_z.push_back(p_W[k].z());
+    }
     const perception::DescriptorParts parts = perception::ComputeDescriptorParts(*segment.cloud_C, model.params);
     if (parts.status == perception::DescriptorStatus::kOk) {
       const auto result = model.Classify(parts);

@@ -38,9 +38,10 @@ struct Detection {
   /// Partly hidden behind something nearer the camera: what shows is less than the object, and its
   /// footprint is not to be trusted (perception::OccludedEdgePixels).
   bool occluded = false;
-  /// Where its points are, seen from above (world xy, m; every few points): what a neighbour's
-  /// fingers must keep clear of.
+  /// Where its points are, seen from above (world xy, m; every few points), and how high each is
+  /// (world z, m; same order): what a neighbour's fingers and gripper body must keep clear of.
   std::vector<Eigen::Vector2d> p_W_xy;
+  std::vector<double> p_W_z;
   std::optional<std::string> category;  ///< Empty when it could not be described (a fragment).
   double confidence = 0;
   /// The bin the cell's rules send it to (SortingPolicy; empty until then or when undescribed).

@@ -47,12 +47,12 @@ robot::Neighbours NeighboursOf(const std::vector<Detection>& detections, size_t 
                                 const std::vector<Eigen::Vector2d>& fixed_xy, double wall_top_z) {
   robot::Neighbours neighbours;
   neighbours.p_xy = fixed_xy;
-  neighbours.p_top_z.assign(fixed_xy.size(), wall_top_z);
+  neighbours.p_z.assign(fixed_xy.size(), wall_top_z);
   for (size_t j = 0; j < detections.size(); ++j) {
     if (j == target) continue;
     const Detection& d = detections[j];
     neighbours.p_xy.insert(neighbours.p_xy.end(), d.p_W_xy.begin(), d.p_W_xy.end());
-    neighbours.p_top_z.insert(neighbours.p_top_z.end(), d.p_W_xy.size(), d.footprint.top_z);
+    neighbours.p_z.insert(neighbours.p_z.end(), d.p_W_z.begin(), d.p_W_z.end());
     neighbours.discs.emplace_back(d.footprint.centre_xy, 0.5 * d.footprint.width);
     neighbours.disc_top_z.push_back(d.footprint.top_z);
   }

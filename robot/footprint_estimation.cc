@@ -110,6 +110,22 @@ std::optional<ObjectFootprint> LyingFootprint(const std::vector<Eigen::Vector3d>
 
 }  // namespace
 
+double FullWidthTop(const std::vector<Eigen::Vector3d>& p_W, const ObjectFootprint& object, double fraction) {
+  constexpr double kBand = 0.01;
+  const int bands = static_cast<int>(std::ceil((object.top_z - object.base_z) / kBand));
+  if (bands <= 0) return -INFINITY;
+  std::vector<double> reach(bands, 0.0);  // The farthest point from the centre in each band, bottom up.
+  for (const Eigen::Vector3d& p : p_W) {
+    const int band = static_cast<int>(std::floor((p.z() - object.base_z) / kBand));
+    if (band < 0 || band >= bands) continue;
+    reach[band] = std::fmax(reach[band], (p.head<2>() - object.centre_xy).norm());
+  }
+  for (int band = bands - 1; band >= 0; --band) {
+    if (reach[band] >= fraction * 0.5 * object.width) return object.base_z + band * kBand;
+  }
+  return -INFINITY;
+}
+
 FootprintEstimate EstimateFootprint(const std::vector<Eigen::Vector3d>& p_W, const Eigen::Vector3d& p_W_camera,
                                     double table_z, const FootprintOptions& options) {
   if (p_W.size() < 10) {

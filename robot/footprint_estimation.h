@@ -56,6 +56,11 @@ struct FootprintEstimate {
   std::optional<ObjectFootprint> turned;
 };
 
+/// The highest height (world z, m) below which `object` is still nearly as wide as its footprint: the
+/// lower edge of the highest 1 cm band of its points `p_W` (world) reaching `fraction` of its half-width
+/// from its centre; -infinity if none does.
+double FullWidthTop(const std::vector<Eigen::Vector3d>& p_W, const ObjectFootprint& object, double fraction = 0.85);
+
 /// @param p_W        The object's points in the world frame (z up, table at `table_z`).
 /// @param p_W_camera The camera's position in the world.
 /// @throws std::invalid_argument if fewer than 10 points are given or the camera stands above the object.

@@ -33,7 +33,8 @@ Eigen::Isometry3d TopDownTcpPose(const Eigen::Vector3d& p_W, double pinch_yaw) {
 double GraspHeight(const ObjectFootprint& object, const GraspOptions& options) {
   const double height = object.top_z - object.base_z;
   const double lowest = kFingerTipBeyondTcp + options.table_clearance - object.base_z;
-  const double over_neighbours = std::fmin(options.min_tcp_z - object.base_z, height - options.min_pad_overlap);
+  const double over_neighbours = std::min({options.min_tcp_z - object.base_z, height - options.min_pad_overlap,
+                                            object.full_width_top_z - object.base_z});
   return std::max({0.5 * height, height - kPalmBeforeTcp + options.palm_clearance, over_neighbours, lowest});
 }
 

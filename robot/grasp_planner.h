@@ -7,6 +7,8 @@
 
 #include <Eigen/Geometry>
 
+#include <cmath>
+
 #include "robot/ik_selection.h"
 #include "robot/ur5_kinematics.h"
 
@@ -19,6 +21,9 @@ struct ObjectFootprint {
   double top_z = 0;           ///< Height of its highest point (m).
   double pinch_yaw = 0;       ///< Horizontal direction across which it is narrowest (rad).
   double width = 0;           ///< Its extent along pinch_yaw (m): what the fingers close on.
+  /// Up to this height it is nearly as wide as `width` (world z, m): a grasp raised above a neighbour
+  /// goes no higher (a bottle's shoulder, not its neck; a ball's middle, not its top).
+  double full_width_top_z = INFINITY;
 };
 
 struct GraspOptions {
@@ -26,7 +31,7 @@ struct GraspOptions {
   double palm_clearance = 0.015;     ///< Between the object's top and the palm (m).
   /// The lowest TCP height the neighbours leave the gripper's body (world z, m; a taller neighbour
   /// under the palm or the housing): the grasp rises to it, but the TCP stays min_pad_overlap (m) below
-  /// the object's top.
+  /// the object's top and no higher than its full_width_top_z.
   double min_tcp_z = -INFINITY;
   double min_pad_overlap = 0.02;
   double table_clearance = 0.010;    ///< Between finger tips and the table (m).
@@ -66,7 +71,7 @@ struct GraspPlan {
 
 /// The TCP's height above the object's base for a top-down grasp of `object` (PlanTopDownGrasp's):
 /// its middle, raised until the palm clears its top and to options.min_tcp_z (as far as the pads still
-/// overlap it), the finger tips above the table.
+/// overlap it and it is still full width), the finger tips above the table.
 double GraspHeight(const ObjectFootprint& object, const GraspOptions& options);
 
 /// A top-down TCP pose (z_T pointing down) at p_W whose fingers close along `pinch_yaw`.

@@ -66,9 +66,9 @@ SkipReason PickMemory::Skipped(const Eigen::Vector2d& xy) const {
 
 namespace {
 
-// The gripper body's outline widened by this (m) when looking for a neighbour under it: the Kinect's
-// noise and what the camera does not see of the neighbour's sides.
-constexpr double kBodyMargin = 0.01;
+// The gripper body's outline widened by this (m) when looking for a neighbour's points under it, and
+// the margin by which a neighbour must be lower than the finger tips to let them pass: the Kinect's noise.
+constexpr double kBodyMargin = 0.005;
 
 // Distance (m) from a point, in the grasp's frame (u along the closing direction, v across), to the
 // finger on the +u side; the other finger is its mirror image.
@@ -94,7 +94,7 @@ double FingerClearance(const Eigen::Vector2d& centre_xy, double yaw, double open
     return tops.size() == count && tops[k] + kBodyMargin < tips_z;
   };
   for (size_t k = 0; k < neighbours.p_xy.size(); ++k) {
-    if (!below(neighbours.p_top_z, k, neighbours.p_xy.size())) clearance = std::fmin(clearance, distance(neighbours.p_xy[k]));
+    if (!below(neighbours.p_z, k, neighbours.p_xy.size())) clearance = std::fmin(clearance, distance(neighbours.p_xy[k]));
   }
   for (size_t k = 0; k < neighbours.discs.size(); ++k) {
     const auto& [centre, radius] = neighbours.discs[k];
@@ -106,28 +106,15 @@ double FingerClearance(const Eigen::Vector2d& centre_xy, double yaw, double open
 double LowestTcpAboveNeighbours(const Eigen::Vector2d& centre_xy, double yaw, const Neighbours& neighbours,
                                 double margin, double clearance) {
   const Eigen::Vector2d along(std::cos(yaw), std::sin(yaw)), across(-along.y(), along.x());
-  // The lowest TCP height that keeps the body `clearance` above a neighbour's point `distance` (m,
-  // beyond what the camera saw of it) from the TCP's axis and `top` high.
-  const auto lowest_tcp = [&](const Eigen::Vector2d& p, double beyond, double top) {
-    const Eigen::Vector2d r = p - centre_xy;
+  if (neighbours.p_z.size() != neighbours.p_xy.size()) return -INFINITY;
+  double lowest = -INFINITY;
+  for (size_t k = 0; k < neighbours.p_xy.size(); ++k) {
+    const Eigen::Vector2d r = neighbours.p_xy[k] - centre_xy;
     const double to_palm = std::hypot(std::fmax(0.0, std::abs(r.dot(along)) - kPalmHalfLength),
                                       std::fmax(0.0, std::abs(r.dot(across)) - kPalmHalfWidth));
-    double z = -INFINITY;
-    if (to_palm <= beyond + margin) z = top + clearance - kPalmBeforeTcp;
-    if (r.norm() - kHousingRadius <= beyond + margin) z = std::fmax(z, top + clearance - kHousingBeforeTcp);
-    return z;
-  };
-  double lowest = -INFINITY;
-  if (neighbours.p_top_z.size() == neighbours.p_xy.size()) {
-    for (size_t k = 0; k < neighbours.p_xy.size(); ++k) {
-      lowest = std::fmax(lowest, lowest_tcp(neighbours.p_xy[k], 0.0, neighbours.p_top_z[k]));
-    }
-  }
-  if (neighbours.disc_top_z.size() == neighbours.discs.size()) {
-    for (size_t k = 0; k < neighbours.discs.size(); ++k) {
-      const auto& [centre, radius] = neighbours.discs[k];
-      lowest = std::fmax(lowest, lowest_tcp(centre, radius, neighbours.disc_top_z[k]));
-    }
+    const double z = neighbours.p_z[k] + clearance;
+    if (to_palm <= margin) lowest = std::fmax(lowest, z - kPalmBeforeTcp);
+    if (r.norm() - kHousingRadius <= margin) lowest = std::fmax(lowest, z - kHousingBeforeTcp);
   }
   return lowest;
 }
@@ -156,15 +143,11 @@ ClearGrasp ClearestGrasp(const std::vector<ObjectFootprint>& ways, const std::ve
     GraspOptions options;
     options.min_tcp_z =
         LowestTcpAboveNeighbours(way.centre_xy, way.pinch_yaw, neighbours, kBodyMargin, options.palm_clearance);
-    const double min_tcp_z = options.min_tcp_z;
-    // How far the grasp would have to rise beyond where the pads still hold the object (> 0: in the way).
-    const double too_high = min_tcp_z - (way.top_z - options.min_pad_overlap);
     const double tips_z = way.base_z + GraspHeight(way, options) - kFingerTipBeyondTcp;
-    const double clearance = std::fmin(
-        FingerClearance(way.centre_xy, way.pinch_yaw, way.width + 2 * side_clearances[k], neighbours, tips_z),
-        too_high > 0 ? -too_high : INFINITY);
-    if (k == 0 && clearance >= enough) return {way, clearance, min_tcp_z};
-    if (clearance > best.clearance + 1e-4) best = {way, clearance, min_tcp_z};
+    const double clearance =
+        FingerClearance(way.centre_xy, way.pinch_yaw, way.width + 2 * side_clearances[k], neighbours, tips_z);
+    if (k == 0 && clearance >= enough) return {way, clearance, options.min_tcp_z};
+    if (clearance > best.clearance + 1e-4) best = {way, clearance, options.min_tcp_z};
   }
   return best;
 }

@@ -50,13 +50,12 @@ class PickMemory {
 };
 
 /// What stands around the object to pick, seen from above: the other objects' points, and their
-/// footprints as discs (centre, half their width) for the backs the camera does not see; with how
-/// high each reaches (world z of its object's top, m), in the same order, for the gripper's body above
-/// the fingers (empty: not known, only the fingers are checked).
+/// footprints as discs (centre, half their width) for the backs the camera does not see; with how high
+/// each point is and each disc's object reaches (world z, m), in the same order (empty: not known).
 struct Neighbours {
   std::vector<Eigen::Vector2d> p_xy;
   std::vector<std::pair<Eigen::Vector2d, double>> discs;
-  std::vector<double> p_top_z;
+  std::vector<double> p_z;
   std::vector<double> disc_top_z;
 };
 
@@ -68,9 +67,10 @@ double FingerClearance(const Eigen::Vector2d& centre_xy, double yaw, double open
                        double tips_z = -INFINITY);
 
 /// The lowest TCP height (world z, m) at which the gripper's body above the fingers (the palm, the
-/// housing), seen from above as outlines widened by `margin` (m), stays `clearance` (m) above the top of
-/// every neighbour under it, for a top-down grasp at centre_xy closing along `yaw`; -infinity where no
-/// neighbour is under it or the tops are unknown.
+/// housing), seen from above as outlines widened by `margin` (m), stays `clearance` (m) above every
+/// neighbour point under it, for a top-down grasp at centre_xy closing along `yaw`; -infinity where no
+/// point is under it or their heights are unknown. The points only, at their own heights: a neighbour's
+/// top is what the camera above sees best, and a bottle's neck leaves room its footprint disc does not.
 double LowestTcpAboveNeighbours(const Eigen::Vector2d& centre_xy, double yaw, const Neighbours& neighbours,
                                 double margin, double clearance);
 
@@ -88,9 +88,11 @@ struct ClearGrasp {
 
 /// Of the ways to pinch one object (`ways`: the same object, other pinch directions; the first is the
 /// preferred one), the preferred one while its open fingers (its width plus `side_clearance` per side)
-/// clear the neighbours by `enough`, else the one that clears them most. A neighbour under the gripper's
-/// body taller than the grasp can rise above (GraspOptions: palm_clearance above it, the TCP still
-/// min_pad_overlap below the object's top) counts as in the way by the height it is too tall.
+/// clear the neighbours by `enough` (those lower than where the finger tips come down do not count),
+/// else the one that clears them most; with the lowest TCP height each leaves the gripper's body, to
+/// which the grasp rises as far as the object allows (GraspHeight). A neighbour under the body that
+/// the grasp cannot rise above does not block the pick: waiting for such picks sent the cell to the
+/// partly hidden objects first, whose footprints are the least sure (clutter_100 97.8 % against 98.8 %).
 /// @throws std::invalid_argument if `ways` is empty.
 ClearGrasp ClearestGrasp(const std::vector<ObjectFootprint>& ways, double side_clearance, const Neighbours& neighbours,
                          double enough = 0.015);

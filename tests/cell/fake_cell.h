@@ -28,8 +28,6 @@ class FakeCell : public sortcell::cell::CellIo {
   int captures = 0;
   std::vector<std::string> motions;  // Phase of every Follow, in order (a phase's parts as one).
   std::vector<sortcell::robot::Joints> motion_ends;  // Where each of them left the arm.
-  // Every trajectory followed, with its phase, in order.
-  std::vector<std::pair<std::string, sortcell::robot::JointTrajectory>> followed;
   std::string fault_on;  // The cell stops under the first motion of this phase.
 
   // The clock starts at `start_s`, not 0: budgets count from the policy's start.
@@ -47,7 +45,6 @@ class FakeCell : public sortcell::cell::CellIo {
 
   sortcell::cell::MotionResult Follow(std::string_view phase, const sortcell::robot::JointTrajectory& t) override {
     // A phase followed in parts (the policy watching between them) is one motion here.
-    followed.emplace_back(std::string(phase), t);
     const bool continues = !motions.empty() && motions.back() == phase;
     if (!continues) motions.emplace_back(phase);
     if (!fault_on.empty() && phase == fault_on) return {sortcell::cell::MotionStatus::kFault, "diverged (scripted)"};

@@ -128,7 +128,6 @@ struct SortRun {
   int captures = 0;
   std::vector<std::string> motions;
   std::vector<robot::Joints> motion_ends;
-  std::vector<std::pair<std::string, robot::JointTrajectory>> followed;
 };
 
 SortRun Sort(const std::vector<Cylinder>& objects, std::deque<bool> grasps, PolicyOptions options = {},
@@ -148,7 +147,6 @@ SortRun Sort(const std::vector<Cylinder>& objects, std::deque<bool> grasps, Poli
   run.captures = cell.captures;
   run.motions = cell.motions;
   run.motion_ends = cell.motion_ends;
-  run.followed = cell.followed;
   return run;
 }
 
@@ -185,32 +183,8 @@ TEST(SortingPolicy, SortsAnObjectItHoldsAndMovesThroughThePhases) {
   EXPECT_EQ(run.captures, 2);
   // The attempt's phases, gripper ones included, account for all of its time.
   EXPECT_TRUE(run.seen.phase_sums_match);
-  EXPECT_EQ(run.seen.last_phases, (std::vector<std::string>{"approach", "descend", "reach", "grasp", "lift", "lift",
-                                                            "carry", "carry", "lower", "place", "release"}));
-}
-
-// The lift leaves the table slowly (the first 5 cm at the slow line speed), then rises at the transit speed.
-TEST(SortingPolicy, TheLiftLeavesTheTableSlowly) {
-  PolicyOptions options;
-  options.max_attempts = 1;
-  const SortRun run = Sort({kBottle}, {true}, options);
-  std::vector<Eigen::Vector3d> p_WT;  // The TCP along the lift, every sample.
-  for (const auto& [phase, trajectory] : run.followed) {
-    if (phase != "lift") continue;
-    for (const robot::Joints& q : trajectory.q) p_WT.push_back(robot::TcpPose(q).translation());
-  }
-  ASSERT_GT(p_WT.size(), 2u);
-  const double dt = run.followed.front().second.dt, start_z = p_WT.front().z();
-  const ArmSpeeds speeds;
-  double fastest_near = 0, fastest = 0;
-  for (size_t k = 1; k < p_WT.size(); ++k) {
-    const double speed = (p_WT[k] - p_WT[k - 1]).norm() / dt;
-    fastest = std::max(fastest, speed);
-    if (p_WT[k].z() < start_z + 0.045) fastest_near = std::max(fastest_near, speed);
-  }
-  EXPECT_LE(fastest_near, speeds.slow * 1.01);
-  EXPECT_GT(fastest, 2 * speeds.slow) << "above the first centimetres the lift is fast";
-  EXPECT_GT(p_WT.back().z() - start_z, 0.2);
+  EXPECT_EQ(run.seen.last_phases, (std::vector<std::string>{"approach", "descend", "reach", "grasp", "lift", "carry",
+                                                            "carry", "lower", "place", "release"}));
 }
 
 TEST(SortingPolicy, ReleasesIntoThePredictedBinSlotBySlot) {

@@ -139,5 +139,31 @@ TEST(FootprintEstimation, RejectsTooFewPointsAndACameraAbove) {
             std::string::npos);
 }
 
+// A bottle's visible side: a 3.3 cm body to 0.16 m, a shoulder narrowing to the 1.35 cm neck at 0.19 m,
+// neck and cap to 0.224 m. It is full width up to its shoulder (the band from 0.17 m reaches 0.85 of
+// its radius, the next does not); a straight can up to its top band; points of nothing: -infinity.
+TEST(FootprintEstimation, AFullWidthTopIsBelowABottlesShoulder) {
+  const Eigen::Vector2d c(0.5, 0.1);
+  const Eigen::Vector2d to_camera = (kCamera.head<2>() - c).normalized();
+  std::vector<Eigen::Vector3d> bottle;
+  for (double z = 0.0005; z < 0.224; z += 0.002) {
+    const double shoulder = (z - 0.16) / 0.035;
+    const double r = z < 0.16 ? 0.033 : z < 0.19 ? std::fmax(0.0135, 0.033 * std::sqrt(std::fmax(0.0, 1 - shoulder * shoulder))) : 0.0135;
+    for (int i = 0; i < 90; ++i) {
+      const Eigen::Vector2d n(std::cos(2 * M_PI * i / 90), std::sin(2 * M_PI * i / 90));
+      if (n.dot(to_camera) > 0) bottle.emplace_back(c.x() + r * n.x(), c.y() + r * n.y(), z);
+    }
+  }
+  ObjectFootprint f;
+  f.centre_xy = c;
+  f.top_z = 0.224;
+  f.width = 0.066;
+  EXPECT_NEAR(FullWidthTop(bottle, f), 0.17, 1e-9);
+  const auto can = VisibleCylinder(c, 0.033, 0.10, 0.03);
+  f.top_z = 0.12;
+  EXPECT_NEAR(FullWidthTop(can, f), 0.09, 1e-9);
+  EXPECT_EQ(FullWidthTop({}, f), -INFINITY);
+}
+
 }  // namespace
 }  // namespace sortcell::robot

@@ -104,37 +104,45 @@ TEST(PickSelection, RejectsBadMemoryParameters) {
   EXPECT_NE(sortcell_test::ErrorOf([] { PickMemory(0.04, 0); }).find("max_attempts >= 1"), std::string::npos);
 }
 
-// A tall box (0.21 m, 6 cm thick, seen as a disc) beside a can (0.10 m): 12 cm away, under the palm
+// A tall box (0.21 m, 6 x 16 cm, its top seen) beside a can (0.10 m): 9 cm away, under the palm
 // when the fingers close towards it, not when they close across; touching the can, under the housing
-// whichever way they close, higher than the grasp may rise (blocked by how much); beside a bottle
-// (0.19 m), the grasp rises until the palm clears it.
+// whichever way they close, higher than the can's grasp may rise (the pick is not blocked by it: the
+// fingers decide); beside a bottle (0.19 m), the grasp rises until the palm clears it.
 TEST(PickSelection, TheGrippersBodyKeepsClearOfATallerNeighbour) {
   ObjectFootprint can = At(0.5, 0.0, 0.066);
   can.pinch_yaw = 0.0;
-  const auto box_at = [](double x) {
+  const auto box_at = [](double x) {  // Its top's points, every centimetre.
     Neighbours n;
-    n.discs.emplace_back(Eigen::Vector2d(x, 0.0), 0.03);
-    n.disc_top_z.push_back(0.21);
+    for (int i = -3; i <= 3; ++i) {
+      for (int j = -8; j <= 8; ++j) {
+        n.p_xy.emplace_back(x + 0.01 * i, 0.01 * j);
+        n.p_z.push_back(0.21);
+      }
+    }
     return n;
   };
   const double clearance = GraspOptions().palm_clearance;
-  const Neighbours apart = box_at(0.62);
+  const Neighbours apart = box_at(0.62);  // Its near side 9 cm from the can's axis.
   EXPECT_NEAR(LowestTcpAboveNeighbours(can.centre_xy, 0.0, apart, 0.01, clearance), 0.21 + clearance - kPalmBeforeTcp,
               1e-12);
   EXPECT_EQ(LowestTcpAboveNeighbours(can.centre_xy, M_PI / 2, apart, 0.01, clearance), -INFINITY);
   Neighbours unknown_height = apart;
-  unknown_height.disc_top_z.clear();
+  unknown_height.p_z.clear();
   EXPECT_EQ(LowestTcpAboveNeighbours(can.centre_xy, 0.0, unknown_height, 0.01, clearance), -INFINITY);
 
-  const ClearGrasp across = ClearestGrasp(RoundWays(can), 0.008, apart);
-  EXPECT_GT(std::abs(std::sin(across.footprint.pinch_yaw)), 0.5) << across.footprint.pinch_yaw;
-  EXPECT_EQ(across.min_tcp_z, -INFINITY);
-  EXPECT_GT(across.clearance, 0.0);
+  // The fingers clear the box (1.9 cm) the way preferred: kept, with the palm's height.
+  const ClearGrasp towards = ClearestGrasp(RoundWays(can), 0.008, apart);
+  EXPECT_DOUBLE_EQ(towards.footprint.pinch_yaw, 0.0);
+  EXPECT_NEAR(towards.clearance, 0.09 - (0.033 + 0.008) - kFingerDepth, 1e-9);
+  EXPECT_NEAR(towards.min_tcp_z, 0.21 + clearance - kPalmBeforeTcp, 1e-12);
 
-  // Touching: the housing needs the TCP at 0.21 + 0.015 - 0.113 = 0.112 m, the pads allow 0.08 m.
-  const ClearGrasp blocked = ClearestGrasp(RoundWays(can), 0.008, box_at(0.57));
-  EXPECT_NEAR(blocked.clearance, -(0.21 + clearance - kHousingBeforeTcp - 0.08), 1e-9);
-  EXPECT_NEAR(blocked.min_tcp_z, 0.21 + clearance - kHousingBeforeTcp, 1e-12);
+  // Touching: the housing needs the TCP at 0.21 + 0.015 - 0.113 = 0.112 m, the pads allow 0.08 m, as
+  // high as the can's grasp goes.
+  const ClearGrasp touching = ClearestGrasp(RoundWays(can), 0.008, box_at(0.57));
+  EXPECT_NEAR(touching.min_tcp_z, 0.21 + clearance - kHousingBeforeTcp, 1e-12);
+  GraspOptions options;
+  options.min_tcp_z = touching.min_tcp_z;
+  EXPECT_NEAR(GraspHeight(touching.footprint, options), 0.10 - options.min_pad_overlap, 1e-12);
 
   ObjectFootprint bottle = can;
   bottle.top_z = 0.19;
@@ -155,7 +163,7 @@ TEST(PickSelection, FingersPassAboveAShorterNeighbour) {
     n.disc_top_z.push_back(top);
     for (int k = 0; k < 12; ++k) {
       n.p_xy.push_back(Eigen::Vector2d(0.565, 0.0) + 0.033 * Eigen::Vector2d(std::cos(k * M_PI / 6), std::sin(k * M_PI / 6)));
-      n.p_top_z.push_back(top);
+      n.p_z.push_back(top);
     }
     return n;
   };
@@ -183,6 +191,10 @@ TEST(PickSelection, TheGraspRisesAboveATallerNeighbour) {
   options.min_tcp_z = 0.40;  // Out of the pads' reach: as high as they allow.
   EXPECT_NEAR(GraspHeight(bottle, options), 0.19 - options.min_pad_overlap, 1e-12);
   EXPECT_NEAR(PlanTopDownGrasp(bottle, q_observe, options).grasp_height, 0.19 - options.min_pad_overlap, 1e-12);
+  bottle.full_width_top_z = 0.15;  // Its shoulder: no higher.
+  EXPECT_NEAR(GraspHeight(bottle, options), 0.15, 1e-12);
+  bottle.full_width_top_z = 0.10;  // Below the grasp without neighbours: that one.
+  EXPECT_NEAR(GraspHeight(bottle, options), free.grasp_height, 1e-12);
 }
 
 }  // namespace
