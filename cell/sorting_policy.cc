@@ -41,8 +41,8 @@ double HeldReach(const Detection& d) {
   return reach;
 }
 
-// Everything seen but detection `target`, as obstacles of the fingers and the gripper's body; the bins' walls
-// (fixed_xy) reach wall_top_z.
+// Everything seen but detection `target`, as obstacles of the fingers and the gripper's body; the
+// bins' walls (fixed_xy) reach wall_top_z.
 robot::Neighbours NeighboursOf(const std::vector<Detection>& detections, size_t target,
                                 const std::vector<Eigen::Vector2d>& fixed_xy, double wall_top_z) {
   robot::Neighbours neighbours;
@@ -60,7 +60,7 @@ robot::Neighbours NeighboursOf(const std::vector<Detection>& detections, size_t 
 }
 
 // The ways detection `i` may be pinched (round: from any side; a prism: across either pair of sides;
-// lying: across its axis), the one whose open fingers and body clear the neighbours.
+// lying: across its axis), the one whose open fingers clear the neighbours, with the height its body needs.
 robot::ClearGrasp ClearestGraspOf(const std::vector<Detection>& detections, size_t i,
                                   const std::vector<Eigen::Vector2d>& fixed_xy, double wall_top_z) {
   const Detection& d = detections[i];

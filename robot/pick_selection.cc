@@ -94,11 +94,13 @@ double FingerClearance(const Eigen::Vector2d& centre_xy, double yaw, double open
     return tops.size() == count && tops[k] + kBodyMargin < tips_z;
   };
   for (size_t k = 0; k < neighbours.p_xy.size(); ++k) {
-    if (!below(neighbours.p_z, k, neighbours.p_xy.size())) clearance = std::fmin(clearance, distance(neighbours.p_xy[k]));
+    if (below(neighbours.p_z, k, neighbours.p_xy.size())) continue;
+    clearance = std::fmin(clearance, distance(neighbours.p_xy[k]));
   }
   for (size_t k = 0; k < neighbours.discs.size(); ++k) {
+    if (below(neighbours.disc_top_z, k, neighbours.discs.size())) continue;
     const auto& [centre, radius] = neighbours.discs[k];
-    if (!below(neighbours.disc_top_z, k, neighbours.discs.size())) clearance = std::fmin(clearance, distance(centre) - radius);
+    clearance = std::fmin(clearance, distance(centre) - radius);
   }
   return clearance;
 }
