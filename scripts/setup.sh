@@ -13,7 +13,7 @@ packages=(
   nlohmann-json3-dev libcli11-dev libyaml-cpp-dev libspdlog-dev libsvm-dev
   libassimp-dev libqhull-dev
   libgtest-dev libgmock-dev libbenchmark-dev
-  ffmpeg gnuplot-nox
+  ffmpeg gnuplot-nox python3-yaml
   parallel slurm-wlm munge
   clang valgrind
 )

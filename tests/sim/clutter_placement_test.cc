@@ -66,6 +66,18 @@ TEST_F(PaperCell, ShapesRestUprightOrOnTheirLongSide) {
   EXPECT_NEAR(ball.upright.origin_z, 0.0, 1e-9);
 }
 
+// An imported object collides as mesh pieces: its disc is what its vertices reach across the table,
+// not MuJoCo's bounding sphere (which counts the height and the corners of the mesh's box).
+TEST(ObjectShape, AMeshDiscIsWhatItsVerticesReachAcross) {
+  const Model model = Model::FromVirtualFiles(
+      {{"plate.xml",
+        R"(<mujoco><asset><mesh name="octagon" vertex="0.1 0 0  0.0707 0.0707 0  0 0.1 0  -0.0707 0.0707 0  -0.1 0 0
+            -0.0707 -0.0707 0  0 -0.1 0  0.0707 -0.0707 0  0 0 0.016"/></asset>
+            <worldbody><body name="plate"><freejoint/><geom type="mesh" mesh="octagon"/></body></worldbody></mujoco>)"}},
+      "plate");
+  EXPECT_NEAR(ObjectShapeOf(model, model.Id(mjOBJ_BODY, "plate")).disc_radius, 0.1, 1e-6);
+}
+
 TEST(Separation, IsTheGapAlongTheBestAxis) {
   const std::vector<Eigen::Vector2d> square{{0, 0}, {1, 0}, {1, 1}, {0, 1}};
   EXPECT_NEAR(Separation(square, PlacedOutline(square, {1.5, 0}, 0)), 0.5, 1e-12);
