@@ -2,7 +2,6 @@
 
 #include <Eigen/Eigenvalues>
 #include <nlohmann/json.hpp>
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include <algorithm>
@@ -16,6 +15,7 @@
 #include <stdexcept>
 #include <unistd.h>
 
+#include "assets/image_file.h"
 #include "assets/mass_properties.h"
 #include "assets/object_geometry.h"
 #include "assets/object_xml.h"
@@ -105,14 +105,14 @@ void ConvertTexture(const std::filesystem::path& from, const std::filesystem::pa
   if (!std::filesystem::is_regular_file(from, ec)) {
     throw std::invalid_argument("texture '" + from.string() + "': file not found (named by the mesh's material)");
   }
-  cv::Mat image = cv::imread(from.string(), cv::IMREAD_COLOR);
+  cv::Mat image = ReadImage(from, PixelFormat::kBgr8);
   if (image.empty()) throw std::invalid_argument("texture '" + from.string() + "': does not decode as an image");
   const int side = std::max(image.cols, image.rows);
   if (side > kMaxTextureSide) {
     const double f = static_cast<double>(kMaxTextureSide) / side;
     cv::resize(image, image, cv::Size(), f, f, cv::INTER_AREA);
   }
-  if (!cv::imwrite(to.string(), image)) throw std::runtime_error("cannot write '" + to.string() + "'");
+  if (!WritePng(to, image)) throw std::runtime_error("cannot write '" + to.string() + "'");
 }
 
 ImportReport MakeReport(const ObjectSource& source, const ObjectGeometry& g, const MassProperties& m,

@@ -11,7 +11,6 @@
 //    views), and the blur that gives the render the same;
 //  - noise: the robust spread of what a 3x3 median takes away inside the object (real against rendered).
 #include <opencv2/core.hpp>
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include <algorithm>
@@ -25,6 +24,7 @@
 #include "bench_args.h"
 #include "app/common/data_dir.h"
 #include "app/recognition/rgbd_objects.h"
+#include "assets/image_file.h"
 #include "sim/kinect_camera.h"
 #include "sim/model.h"
 
@@ -144,9 +144,9 @@ void AddObject(const cv::Mat& rgb, const cv::Mat& mask, Measured& m) {
 Measured MeasureReal(const fs::path& dir) {
   Measured m;
   for (const auto& view : sortcell::app::FindRgbdObjectsViews(dir)) {
-    cv::Mat bgr = cv::imread(view.crop.string(), cv::IMREAD_COLOR);
-    cv::Mat mask = cv::imread(sortcell::app::Partner(view, "maskcrop.png").string(), cv::IMREAD_GRAYSCALE);
-    cv::Mat depth = cv::imread(sortcell::app::Partner(view, "depthcrop.png").string(), cv::IMREAD_UNCHANGED);
+    cv::Mat bgr = sortcell::assets::ReadImage(view.crop, sortcell::assets::PixelFormat::kBgr8);
+    cv::Mat mask = sortcell::assets::ReadImage(sortcell::app::Partner(view, "maskcrop.png"), sortcell::assets::PixelFormat::kGrey8);
+    cv::Mat depth = sortcell::assets::ReadImage(sortcell::app::Partner(view, "depthcrop.png"), sortcell::assets::PixelFormat::kGrey16);
     if (bgr.empty() || mask.empty() || depth.empty() || mask.size() != bgr.size()) continue;
     cv::Mat rgb;
     cv::cvtColor(bgr, rgb, cv::COLOR_BGR2RGB);

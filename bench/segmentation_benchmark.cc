@@ -21,9 +21,9 @@
 #include <string>
 #include <vector>
 
-#include <opencv2/imgcodecs.hpp>
 
 #include "bench_args.h"
+#include "assets/image_file.h"
 #include "cell/scene_observation.h"
 #include "perception/pcd_io.h"
 #include "perception/segment_overlay.h"
@@ -154,7 +154,7 @@ void RunSim(const sim::Model& model, int scenes, bool verbose, const fs::path& o
         if (!overlays.empty() && clustering == Clustering::kConvex && scores.back().found < scores.back().objects) {
           const std::string name = sim::ToString(mode) + std::to_string(&f - frames.data()) + ".png";
           const fs::path file = overlays / name;
-          if (!cv::imwrite(file.string(), perception::SegmentOverlay(*f.cloud, result.segments))) {
+          if (!sortcell::assets::WritePng(file, perception::SegmentOverlay(*f.cloud, result.segments))) {
             std::fprintf(stderr, "segmentation_benchmark: cannot write '%s'\n", file.c_str());
           }
         }

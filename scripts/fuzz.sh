@@ -16,7 +16,7 @@ cd "$(dirname "$0")/.."
 seconds=${1:-600}
 shift || true
 readers=("$@")
-[ ${#readers[@]} -eq 0 ] && readers=(pcd object_set sweep_spec model dataset camera results scene mesh urdf cell)
+[ ${#readers[@]} -eq 0 ] && readers=(pcd object_set sweep_spec model dataset camera results scene mesh urdf cell image)
 case "$seconds" in ''|*[!0-9]*) echo "fuzz.sh: seconds per reader must be a whole number, got '$seconds'" >&2; exit 2 ;; esac
 for reader in "${readers[@]}"; do
   [ -f "fuzz/${reader}_fuzz.cc" ] || { echo "fuzz.sh: no reader '$reader' (fuzz/*_fuzz.cc)" >&2; exit 2; }

@@ -11,7 +11,7 @@ packages=(
   libmujoco-dev libmujoco-samples libosmesa6-dev
   libpcl-dev libopencv-dev libeigen3-dev liburdfdom-dev
   nlohmann-json3-dev libcli11-dev libyaml-cpp-dev libspdlog-dev libsvm-dev
-  libassimp-dev libqhull-dev
+  libassimp-dev libqhull-dev liblodepng-dev libturbojpeg0-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   ffmpeg gnuplot-nox python3-yaml
   parallel slurm-wlm munge

@@ -26,10 +26,7 @@ VideoRecorder::VideoRecorder(const Model& model, const std::filesystem::path& pa
   if (!(options.fps > 0)) throw std::invalid_argument("video: frames per second must be > 0");
   view_ = {model.Id(mjOBJ_CAMERA, options.camera), options.width, options.height, options.shadows, options.shadows};
   renderer_.CheckViewSize(options.width, options.height);
-  // H.264 in MP4 through OpenCV's FFmpeg backend ("avc1" selects libx264 there).
-  writer_.open(path.string(), cv::CAP_FFMPEG, cv::VideoWriter::fourcc('a', 'v', 'c', '1'), options.fps,
-               cv::Size(options.width, options.height));
-  if (!writer_.isOpened()) throw std::runtime_error("video '" + path.string() + "': cannot open for H.264 writing");
+  encoder_pipe_ = std::make_unique<FfmpegPipe>(path, options.width, options.height, options.fps);
   encoder_ = std::thread([this] { Encode(); });
 }
 
@@ -92,8 +89,13 @@ void VideoRecorder::Encode() {
       queue_.pop_front();
     }
     changed_.notify_all();
+    if (!encoder_error_.empty()) continue;  // Failed: the frames are let go so the simulation goes on.
     Compose(frame);
-    writer_.write(bgr_);
+    try {
+      encoder_pipe_->Write(bgr_.data);
+    } catch (const std::exception& e) {
+      encoder_error_ = e.what();
+    }
   }
 }
 
@@ -105,7 +107,13 @@ void VideoRecorder::Close() {
   }
   changed_.notify_all();
   if (encoder_.joinable()) encoder_.join();
-  if (writer_.isOpened()) writer_.release();
+  // ffmpeg's own end first: when it stopped taking frames, its status says why.
+  try {
+    encoder_pipe_->Close();
+  } catch (const std::exception& e) {
+    throw std::runtime_error(encoder_error_.empty() ? e.what() : encoder_error_ + "; " + e.what());
+  }
+  if (!encoder_error_.empty()) throw std::runtime_error(encoder_error_);
 }
 
 }  // namespace sortcell::sim

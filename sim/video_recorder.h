@@ -16,8 +16,8 @@
 #include <vector>
 
 #include <opencv2/core/mat.hpp>
-#include <opencv2/videoio.hpp>
 
+#include "sim/ffmpeg_pipe.h"
 #include "sim/model.h"
 #include "sim/offscreen_renderer.h"
 
@@ -50,6 +50,7 @@ class VideoRecorder {
   /// frame's width (empty: none), e.g. the robot's latest camera view.
   void SetInset(const cv::Mat& bgr) { inset_ = bgr.clone(); }
   /// Finishes the file, once the frames queued are written. Also done by the destructor.
+  /// @throws std::runtime_error naming the file if the encoder failed.
   void Close();
   ~VideoRecorder();
   VideoRecorder(const VideoRecorder&) = delete;
@@ -77,7 +78,8 @@ class VideoRecorder {
   VideoOptions options_;
   OffscreenRenderer renderer_;
   RenderView view_;
-  cv::VideoWriter writer_;
+  std::unique_ptr<FfmpegPipe> encoder_pipe_;
+  std::string encoder_error_;  // The encoder thread's failure, reported by Close().
   cv::Mat bgr_, inset_scaled_;  // The encoder thread's.
   std::string caption_;
   std::vector<std::string> overlay_;

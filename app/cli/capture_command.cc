@@ -1,6 +1,5 @@
 #include "app/cli/capture_command.h"
 
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include <chrono>
@@ -14,6 +13,7 @@
 #include "app/cli/cli_validators.h"
 #include "app/common/output_dir.h"
 #include "app/common/seeding.h"
+#include "assets/image_file.h"
 #include "perception/pcd_io.h"
 #include "sim/kinect_camera.h"
 #include "sim/model.h"
@@ -26,7 +26,7 @@ using Clock = std::chrono::steady_clock;
 double Seconds(Clock::time_point since) { return std::chrono::duration<double>(Clock::now() - since).count(); }
 
 void WriteImage(const std::filesystem::path& path, const cv::Mat& image) {
-  if (!cv::imwrite(path.string(), image)) throw std::runtime_error("cannot write '" + path.string() + "'");
+  if (!assets::WritePng(path, image)) throw std::runtime_error("cannot write '" + path.string() + "'");
 }
 
 cv::Mat DepthMillimetres(const cv::Mat& depth) {

@@ -1,6 +1,5 @@
 #include "app/cli/segment_command.h"
 
-#include <opencv2/imgcodecs.hpp>
 #include <spdlog/fmt/fmt.h>
 
 #include <chrono>
@@ -9,6 +8,7 @@
 #include "app/cli/classify_command.h"
 #include "app/common/camera_file.h"
 #include "app/common/output_dir.h"
+#include "assets/image_file.h"
 #include "perception/pcd_io.h"
 #include "perception/segment_overlay.h"
 #include "perception/segmentation.h"
@@ -84,7 +84,7 @@ int RunSegment(const SegmentOptions& options, const std::vector<std::string>& co
   if (!cloud->isOrganized()) std::filesystem::remove(options.out / "overlay.png");
   if (cloud->isOrganized()) {
     const cv::Mat overlay = perception::SegmentOverlay(*cloud, result.segments, labels);
-    if (!cv::imwrite((options.out / "overlay.png").string(), overlay)) {
+    if (!assets::WritePng(options.out / "overlay.png", overlay)) {
       throw std::runtime_error("cannot write '" + (options.out / "overlay.png").string() + "'");
     }
   }

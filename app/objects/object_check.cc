@@ -1,6 +1,5 @@
 #include "app/objects/object_check.h"
 
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include <algorithm>
@@ -12,6 +11,7 @@
 
 #include "app/common/data_dir.h"
 #include "app/common/output_dir.h"
+#include "assets/image_file.h"
 #include "assets/mass_properties.h"
 #include "cell/cell_layout.h"
 #include "robot/gripper_geometry.h"
@@ -209,7 +209,7 @@ void WriteStill(Rig& rig, const std::filesystem::path& file) {
   cv::Mat rgb, bgr;
   rig.renderer.RenderRgb(rig.data, view, rgb);
   cv::cvtColor(rgb, bgr, cv::COLOR_RGB2BGR);
-  if (!cv::imwrite(file.string(), bgr)) throw std::runtime_error("cannot write '" + file.string() + "'");
+  if (!assets::WritePng(file, bgr)) throw std::runtime_error("cannot write '" + file.string() + "'");
 }
 
 nlohmann::json ResultJson(const ObjectCheckResult& r) {

@@ -1,6 +1,5 @@
 #include "app/recognition/recognition.h"
 
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include <spdlog/fmt/fmt.h>
@@ -13,6 +12,7 @@
 #include <utility>
 
 #include "app/common/output_dir.h"
+#include "assets/image_file.h"
 
 namespace sortcell::app {
 namespace {
@@ -349,7 +349,7 @@ std::string WriteRecognitionReport(const std::filesystem::path& dir, const std::
     metrics_csv += MetricsCsvRows(e);
     WriteTextFile(dir / ("confusion_" + name + ".csv"), ConfusionCsv(e));
     const std::filesystem::path png = dir / ("confusion_" + name + ".png");
-    if (!cv::imwrite(png.string(), HeatMap(e))) throw std::runtime_error("cannot write '" + png.string() + "'");
+    if (!assets::WritePng(png, HeatMap(e))) throw std::runtime_error("cannot write '" + png.string() + "'");
   }
   WriteTextFile(dir / "metrics.csv", metrics_csv);
   WriteTextFile(dir / "tables.md", markdown);

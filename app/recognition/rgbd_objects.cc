@@ -11,11 +11,11 @@
 #include <sstream>
 #include <stdexcept>
 
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include "app/common/output_dir.h"
 #include "app/common/progress.h"
+#include "assets/image_file.h"
 #include "perception/pcd_io.h"
 
 namespace sortcell::app {
@@ -29,9 +29,13 @@ constexpr double kElevationsDeg[] = {30, 45, 60};
   throw std::invalid_argument("'" + file.string() + "': " + what);
 }
 
-cv::Mat ReadImage(const std::filesystem::path& file, int flags, int type, const char* expected) {
+cv::Mat ReadImage(const std::filesystem::path& file, assets::PixelFormat format, int type, const char* expected) {
   if (!std::filesystem::is_regular_file(file)) Refuse(file, "missing");
-  const cv::Mat image = cv::imread(file.string(), flags);
+  const cv::Mat image = assets::ReadImage(file, format);
+  // An 8-bit file where 16-bit depth is asked for reads as empty: say which it is.
+  if (image.empty() && format == assets::PixelFormat::kGrey16 && !assets::ReadImage(file, assets::PixelFormat::kGrey8).empty()) {
+    Refuse(file, std::string("expected ") + expected);
+  }
   if (image.empty()) Refuse(file, "not a readable image");
   if (image.type() != type) Refuse(file, std::string("expected ") + expected);
   return image;
@@ -153,10 +157,10 @@ cv::Mat ObjectPixels(const cv::Mat& depth, const cv::Mat& mask, const RgbdObject
 }  // namespace
 
 perception::Cloud::Ptr ReadRgbdObjectsView(const RgbdObjectsView& view, const RgbdObjectsCamera& camera) {
-  const cv::Mat colour = ReadImage(view.crop, cv::IMREAD_COLOR, CV_8UC3, "8-bit colour");
+  const cv::Mat colour = ReadImage(view.crop, assets::PixelFormat::kBgr8, CV_8UC3, "8-bit colour");
   const std::filesystem::path depth_file = Partner(view, "depthcrop.png"), mask_file = Partner(view, "maskcrop.png");
-  const cv::Mat depth = ReadImage(depth_file, cv::IMREAD_ANYDEPTH, CV_16UC1, "16-bit depth in millimetres");
-  const cv::Mat mask = ReadImage(mask_file, cv::IMREAD_GRAYSCALE, CV_8UC1, "a grey-level mask");
+  const cv::Mat depth = ReadImage(depth_file, assets::PixelFormat::kGrey16, CV_16UC1, "16-bit depth in millimetres");
+  const cv::Mat mask = ReadImage(mask_file, assets::PixelFormat::kGrey8, CV_8UC1, "a grey-level mask");
   for (const auto& [file, image] : {std::pair{depth_file, depth}, std::pair{mask_file, mask}}) {
     if (image.size() != colour.size()) {
       Refuse(file, fmt::format("{}x{}, but the colour crop is {}x{}", image.cols, image.rows, colour.cols, colour.rows));

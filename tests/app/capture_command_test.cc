@@ -7,12 +7,13 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <opencv2/core.hpp>
-#include <opencv2/imgcodecs.hpp>
 
+#include "assets/image_file.h"
 #include "tests/app/run_sortcell.h"
 #include "source_tree.h"
 
 namespace fs = std::filesystem;
+namespace assets = sortcell::assets;
 
 namespace {
 
@@ -28,7 +29,7 @@ TEST(CliCapture, WritesEveryFile) {
   for (const char* f : {"rgb.png", "depth.png", "cloud.pcd", "labels.png", "labels.json", "camera.json", "run.json"}) {
     EXPECT_TRUE(fs::is_regular_file(out / f)) << f;
   }
-  const cv::Mat depth = cv::imread((out / "depth.png").string(), cv::IMREAD_UNCHANGED);
+  const cv::Mat depth = assets::ReadImage(out / "depth.png", assets::PixelFormat::kGrey16);
   EXPECT_EQ(depth.type(), CV_16UC1);
   EXPECT_EQ(depth.cols, 640);
   double lo, hi;
@@ -36,9 +37,9 @@ TEST(CliCapture, WritesEveryFile) {
   EXPECT_EQ(lo, 0);  // Some invalid pixels (shadows, edges).
   EXPECT_GT(hi, 900);  // Millimetres: the table is about a metre away.
   EXPECT_LT(hi, 4001);
-  const cv::Mat rgb = cv::imread((out / "rgb.png").string(), cv::IMREAD_COLOR);
+  const cv::Mat rgb = assets::ReadImage(out / "rgb.png", assets::PixelFormat::kBgr8);
   EXPECT_EQ(rgb.rows, 480);
-  const cv::Mat labels = cv::imread((out / "labels.png").string(), cv::IMREAD_UNCHANGED);
+  const cv::Mat labels = assets::ReadImage(out / "labels.png", assets::PixelFormat::kGrey16);
   EXPECT_EQ(labels.type(), CV_16UC1);
 
   std::ifstream pcd(out / "cloud.pcd");

@@ -8,16 +8,17 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <opencv2/core.hpp>
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include "app/recognition/dataset.h"
+#include "assets/image_file.h"
 #include "app/recognition/rgbd_objects.h"
 #include "tests/app/run_sortcell.h"
 
 namespace fs = std::filesystem;
 namespace app = sortcell::app;
 namespace perception = sortcell::perception;
+namespace assets = sortcell::assets;
 
 namespace {
 
@@ -45,9 +46,9 @@ void WriteView(const fs::path& folder, const std::string& instance, int video, i
     }
   }
   const std::string stem = (folder / (instance + "_" + std::to_string(video) + "_" + std::to_string(frame) + "_")).string();
-  cv::imwrite(stem + "crop.png", colour);
-  cv::imwrite(stem + "depthcrop.png", depth);
-  cv::imwrite(stem + "maskcrop.png", mask);
+  assets::WritePng(stem + "crop.png", colour);
+  assets::WritePng(stem + "depthcrop.png", depth);
+  assets::WritePng(stem + "maskcrop.png", mask);
   std::ofstream(stem + "loc.txt") << x0 << "," << y0 << "\n";
 }
 
@@ -61,7 +62,7 @@ TEST(RgbdObjects, BackProjectsTheMaskedPixelsWithTheDatasetsCamera) {
   EXPECT_EQ(views[0].video, 1);
   EXPECT_EQ(views[0].frame, 7);
   const perception::Cloud::Ptr cloud = app::ReadRgbdObjectsView(views[0]);
-  const cv::Mat mask = cv::imread((root / "ball/ball_1/ball_1_1_7_maskcrop.png").string(), cv::IMREAD_GRAYSCALE);
+  const cv::Mat mask = assets::ReadImage(root / "ball/ball_1/ball_1_1_7_maskcrop.png", assets::PixelFormat::kGrey8);
   EXPECT_EQ(static_cast<int>(cloud->size()), cv::countNonZero(mask));
   // Every point lies on the ray of a frame pixel inside the crop (columns 100-163, rows 50-113); the
   // crop's centre pixel (32, 32) is frame pixel (132, 82), in front of the sphere's centre, 0.77 m away.
@@ -90,13 +91,13 @@ TEST(RgbdObjects, MaskPixelsPastTheDepthEdgeAreLeftOut) {
   const fs::path root = fs::path(sortcell_test::TestTempDir()) / "rgbd_edge";
   WriteView(root / "ball" / "ball_1", "ball_1", 1, 1, Shape::kSphere, 0.03, {10, 20, 200});
   const std::string stem = (root / "ball/ball_1/ball_1_1_1_").string();
-  cv::Mat depth = cv::imread(stem + "depthcrop.png", cv::IMREAD_ANYDEPTH);
-  cv::Mat mask = cv::imread(stem + "maskcrop.png", cv::IMREAD_GRAYSCALE);
+  cv::Mat depth = assets::ReadImage(stem + "depthcrop.png", assets::PixelFormat::kGrey16);
+  cv::Mat mask = assets::ReadImage(stem + "maskcrop.png", assets::PixelFormat::kGrey8);
   const int sphere = cv::countNonZero(mask);
   depth.setTo(1100, depth == 0);
   cv::dilate(mask, mask, cv::Mat(), cv::Point(-1, -1), 2);
-  cv::imwrite(stem + "depthcrop.png", depth);
-  cv::imwrite(stem + "maskcrop.png", mask);
+  assets::WritePng(stem + "depthcrop.png", depth);
+  assets::WritePng(stem + "maskcrop.png", mask);
   const perception::Cloud::Ptr cloud = app::ReadRgbdObjectsView(app::FindRgbdObjectsViews(root).at(0));
   for (const auto& p : cloud->points) EXPECT_LT(p.z, 0.80) << "a wall point at " << p.z;
   EXPECT_GT(static_cast<int>(cloud->size()), sphere * 8 / 10);  // The rim's mixed pixels only are lost.
@@ -109,13 +110,13 @@ TEST(RgbdObjects, ATablePatchTheMaskCoversBehindTheObjectIsLeftOut) {
   const fs::path root = fs::path(sortcell_test::TestTempDir()) / "rgbd_patch";
   WriteView(root / "ball" / "ball_1", "ball_1", 1, 1, Shape::kSphere, 0.03, {10, 20, 200});
   const std::string stem = (root / "ball/ball_1/ball_1_1_1_").string();
-  cv::Mat depth = cv::imread(stem + "depthcrop.png", cv::IMREAD_ANYDEPTH);
-  cv::Mat mask = cv::imread(stem + "maskcrop.png", cv::IMREAD_GRAYSCALE);
+  cv::Mat depth = assets::ReadImage(stem + "depthcrop.png", assets::PixelFormat::kGrey16);
+  cv::Mat mask = assets::ReadImage(stem + "maskcrop.png", assets::PixelFormat::kGrey8);
   const int sphere = cv::countNonZero(mask);
   depth.setTo(880, depth == 0);
   cv::dilate(mask, mask, cv::Mat(), cv::Point(-1, -1), 5);
-  cv::imwrite(stem + "depthcrop.png", depth);
-  cv::imwrite(stem + "maskcrop.png", mask);
+  assets::WritePng(stem + "depthcrop.png", depth);
+  assets::WritePng(stem + "maskcrop.png", mask);
   const perception::Cloud::Ptr cloud = app::ReadRgbdObjectsView(app::FindRgbdObjectsViews(root).at(0));
   for (const auto& p : cloud->points) EXPECT_LT(p.z, 0.80) << "a table point at " << p.z;
   EXPECT_GT(static_cast<int>(cloud->size()), sphere * 8 / 10);
@@ -138,7 +139,7 @@ TEST(RgbdObjects, BadFilesAreNamed) {
   EXPECT_NE(error().find("cup_1_1_1_loc.txt': expected \"X,Y\""), std::string::npos) << error();
   std::ofstream(folder / "cup_1_1_1_loc.txt") << "600,10";
   EXPECT_NE(error().find("does not fit the 640x480 frame"), std::string::npos) << error();
-  cv::imwrite((folder / "cup_1_1_1_maskcrop.png").string(), cv::Mat(10, 10, CV_8UC1, cv::Scalar(255)));
+  assets::WritePng((folder / "cup_1_1_1_maskcrop.png"), cv::Mat(10, 10, CV_8UC1, cv::Scalar(255)));
   EXPECT_NE(error().find("cup_1_1_1_maskcrop.png': 10x10, but the colour crop is 64x64"), std::string::npos) << error();
   fs::remove(folder / "cup_1_1_1_depthcrop.png");
   EXPECT_NE(error().find("cup_1_1_1_depthcrop.png': missing"), std::string::npos) << error();

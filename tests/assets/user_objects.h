@@ -4,10 +4,11 @@
 // and a one-link URDF naming both with an origin and a mass (the cube stands inside the body box, as
 // a scan's visual and collision meshes share their frame).
 #include <opencv2/core.hpp>
-#include <opencv2/imgcodecs.hpp>
+#include <turbojpeg.h>
 
 #include <filesystem>
 #include <fstream>
+#include <stdexcept>
 #include <string>
 
 #include <Eigen/Core>
@@ -53,6 +54,20 @@ struct UserObject {
   std::filesystem::path urdf, visual, collision, texture;
 };
 
+// A JPEG of a continuous BGR or grey image, as scanned objects' textures come (the product only reads them).
+inline void WriteJpeg(const std::filesystem::path& file, const cv::Mat& bgr) {
+  tjhandle encoder = tjInitCompress();
+  unsigned char* jpeg = nullptr;
+  unsigned long size = 0;
+  const bool grey = bgr.channels() == 1;
+  const int status = tjCompress2(encoder, bgr.data, bgr.cols, static_cast<int>(bgr.step), bgr.rows,
+                                 grey ? TJPF_GRAY : TJPF_BGR, &jpeg, &size, grey ? TJSAMP_GRAY : TJSAMP_420, 90, 0);
+  tjDestroy(encoder);
+  if (status != 0) throw std::runtime_error("cannot encode " + file.string());
+  std::ofstream(file, std::ios::binary).write(reinterpret_cast<const char*>(jpeg), static_cast<std::streamsize>(size));
+  tjFree(jpeg);
+}
+
 // Writes the object into `dir`: collision boxes 0.06 x 0.04 x 0.10 m (body) and 0.02 x 0.02 x 0.04 m
 // (handle, 1 cm beside it), mass `mass` (text, so tests can write bad values).
 inline UserObject WriteUserObject(const std::filesystem::path& dir, const std::string& mass = "0.3") {
@@ -61,8 +76,7 @@ inline UserObject WriteUserObject(const std::filesystem::path& dir, const std::s
                dir / "meshes" / "skin.jpg"};
   std::ofstream(o.visual) << ObjCube(0.05);
   std::ofstream(dir / "meshes" / "cube.mtl") << "newmtl skin\nmap_Kd skin.jpg \n";
-  cv::Mat skin(64, 64, CV_8UC3, cv::Scalar(40, 60, 200));
-  cv::imwrite(o.texture.string(), skin);
+  WriteJpeg(o.texture, cv::Mat(64, 64, CV_8UC3, cv::Scalar(40, 60, 200)));
   std::ofstream(o.collision) << "solid pieces\n" << StlBox({-0.03, -0.02, 0}, {0.03, 0.02, 0.10})
                              << StlBox({0.04, -0.01, 0.03}, {0.06, 0.01, 0.07}) << "endsolid pieces\n";
   std::ofstream(o.urdf) << "<robot name=\"thing\"><link name=\"base_link\">\n"
