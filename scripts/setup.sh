@@ -3,6 +3,7 @@
 # Idempotent: a second run installs nothing and rebuilds only what changed.
 #   scripts/setup.sh            install + configure + build (Release) into build/
 #   SORTCELL_BUILD_DIR=dir      build somewhere else
+#   SORTCELL_BUILD_TARGET=t     build target t only (scripts/test.sh: sortcell_release_tests)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -34,4 +35,4 @@ fi
 build_dir=${SORTCELL_BUILD_DIR:-build}
 cmake -S . -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
 # Two parallel jobs: PCL translation units take ~1 GiB each; 2 cores is the machine.
-cmake --build "$build_dir" -j "$(nproc)"
+cmake --build "$build_dir" -j "$(nproc)" --target "${SORTCELL_BUILD_TARGET:-all}"
