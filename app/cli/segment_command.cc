@@ -112,8 +112,8 @@ void AddSegmentCommand(CLI::App& app, std::function<int()>& run, const std::vect
   CLI::App* cmd = app.add_subcommand(
       "segment",
       "Segment the objects of an organized cloud (paper 2.1): invalid points out, workspace box (with --camera) "
-      "and background subtraction (with --background), RANSAC supporting plane, 5 mm voxels, Euclidean "
-      "(or, with --clustering convex, convex) clusters. Writes segment_NN.pcd (camera frame, full resolution), segments.json (world frame with "
+      "and background subtraction (with --background), RANSAC supporting plane, 5 mm voxels, convex clusters "
+      "(as the cell segments; --clustering euclidean: Euclidean clusters, which merge touching objects). Writes segment_NN.pcd (camera frame, full resolution), segments.json (world frame with "
       "--camera, else camera frame) and overlay.png. Works on real Kinect v1 PCDs (organized 640x480 "
       "XYZRGBA, any encoding) without --camera: the dominant plane is found and objects standing on it kept. "
       "Unorganized clouds are segmented too, without --background and without overlay.png.");

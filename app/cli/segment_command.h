@@ -19,7 +19,9 @@ struct SegmentOptions {
   std::filesystem::path background;  ///< Organized PCD of the empty scene; empty: none.
   std::filesystem::path model;       ///< Recognition model: every segment classified; empty: none.
   double reject_below = 0;           ///< With a model: below this confidence a segment is "unknown".
-  std::string clustering = "euclidean";  ///< "euclidean" or "convex" (SegmentationParams::Clustering).
+  /// "convex" or "euclidean" (SegmentationParams::Clustering). Convex by default: it separates touching
+  /// objects (the segmentation benchmark's real mosd-hard captures: overlap F 86.3 against 62.0).
+  std::string clustering = "convex";
   std::filesystem::path out;
 };
 

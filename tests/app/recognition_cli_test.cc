@@ -2,6 +2,7 @@
 // and experiment: one line naming the culprit, exit 2.
 #include <gtest/gtest.h>
 
+#include <nlohmann/json.hpp>
 #include <pcl/io/pcd_io.h>
 #include <pcl/point_types.h>
 
@@ -49,10 +50,13 @@ TEST(RecognitionCli, SegmentsAnUnorganizedRealCaptureWithoutAnOverlay) {
   }
   ASSERT_EQ(row.height, 1u);
   pcl::io::savePCDFileBinaryCompressed(Dir() + "/row.pcd", row);
-  for (const char* clustering : {"euclidean", "convex"}) {
+  for (const std::string clustering : {"euclidean", "convex", ""}) {  // "": the default, convex.
     const std::string out = Dir() + "/row_" + clustering;
-    const auto r = RunSortcell("segment --pcd " + Dir() + "/row.pcd --clustering " + clustering + " --out " + out);
+    const auto r = RunSortcell("segment --pcd " + Dir() + "/row.pcd" +
+                               (clustering.empty() ? "" : " --clustering " + clustering) + " --out " + out);
     ASSERT_EQ(r.exit_code, 0) << r.err;
+    const auto run = nlohmann::json::parse(std::ifstream(out + "/run.json"));
+    EXPECT_EQ(run.at("clustering"), clustering.empty() ? "convex" : clustering);
     EXPECT_NE(r.out.find(": 2 objects."), std::string::npos) << r.out;  // Two boxes, side by side.
     EXPECT_NE(r.out.find("no overlay.png"), std::string::npos) << r.out;
     EXPECT_FALSE(std::filesystem::exists(out + "/overlay.png"));
