@@ -5,18 +5,10 @@
 
 #include <opencv2/imgproc.hpp>
 
-#include <fstream>
-#include <iterator>
 #include <vector>
 
 namespace sortcell::assets {
 namespace {
-
-std::vector<unsigned char> ImageFileBytes(const std::filesystem::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in) return {};
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
 
 // Larger images are refused as OpenCV's imread refuses them (CV_IO_MAX_IMAGE_PIXELS): a file of a few
 // bytes can declare a size that would take gigabytes. 8192 x 8192 is more than any texture or crop.
@@ -78,8 +70,8 @@ cv::Mat DecodePng(const std::vector<unsigned char>& bytes, PixelFormat format) {
 }  // namespace
 
 cv::Mat ReadImage(const std::filesystem::path& file, PixelFormat format) {
-  const std::vector<unsigned char> bytes = ImageFileBytes(file);
-  if (bytes.empty()) return {};
+  std::vector<unsigned char> bytes;
+  if (lodepng::load_file(bytes, file.string()) != 0 || bytes.empty()) return {};
   return IsJpeg(bytes) ? DecodeJpeg(bytes, format) : DecodePng(bytes, format);
 }
 

@@ -77,6 +77,7 @@ TEST(ImageFile, WhatDoesNotDecodeIsEmpty) {
   std::ofstream(dir.path() / "cut.jpg", std::ios::binary) << "\xFF\xD8\xFF\xE0";
   EXPECT_TRUE(ReadImage(dir.path() / "cut.jpg", PixelFormat::kBgr8).empty());
   EXPECT_TRUE(ReadImage(dir.path() / "missing.png", PixelFormat::kBgr8).empty());
+  EXPECT_TRUE(ReadImage(dir.path(), PixelFormat::kBgr8).empty());  // A folder.
   EXPECT_FALSE(WritePng(dir.path() / "no_folder" / "x.png", Gradient(CV_8UC3)));
   EXPECT_FALSE(WritePng(dir.path() / "float.png", cv::Mat(2, 2, CV_32FC1, cv::Scalar(1))));
 }
