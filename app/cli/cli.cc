@@ -15,11 +15,13 @@
 #include "app/cli/capture_command.h"
 #include "app/cli/objects_command.h"
 #include "app/cli/classify_command.h"
+#include "app/cli/compare_command.h"
 #include "app/cli/episode_command.h"
 #include "app/cli/experiment_command.h"
 #include "app/cli/kinematics_commands.h"
 #include "app/cli/pick_command.h"
 #include "app/cli/recognition_commands.h"
+#include "app/cli/replay_command.h"
 #include "app/cli/segment_command.h"
 #include "app/cli/sweep_command.h"
 
@@ -56,6 +58,8 @@ int RunCli(int argc, char** argv) {
   AddEpisodeCommand(app, run, command_line);
   AddCalibrateCommand(app, run, command_line);
   AddSweepCommand(app, run, command_line);
+  AddCompareCommand(app, run, command_line);
+  AddReplayCommand(app, run);
   AddKinematicsCommands(app, run);
   AddObjectsCommand(app, run, command_line);
   AddCellCommand(app, run, command_line);

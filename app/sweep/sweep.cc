@@ -20,6 +20,7 @@
 #include <stdexcept>
 #include <thread>
 
+#include "app/common/build_identity.h"
 #include "app/common/cell_file.h"
 #include "app/common/data_dir.h"
 #include "app/common/object_set.h"
@@ -145,6 +146,8 @@ struct Worker {
   std::filesystem::path dir;
   WallClock::time_point started;
   long peak_memory_kb = 0;  ///< The largest VmHWM seen while it ran.
+  std::vector<std::string> arguments;  ///< Its `sortcell episode` command line.
+  std::string model_digest;
 };
 
 // The worker's peak resident memory so far (VmHWM of /proc/<pid>/status), 0 once it is gone. Read
@@ -197,7 +200,19 @@ struct SweepSetup {
   const SweepSpec& spec;
   const SweepOptions& options;
   std::filesystem::path model;
+  std::string build;                                   ///< BuildDigest(), for replays.
+  std::map<std::string, std::string> model_digests;    ///< By model file, for replays.
 };
+
+// The digest of every model a worker may sort with.
+std::map<std::string, std::string> ModelDigests(const SweepSpec& spec, const std::filesystem::path& model) {
+  std::map<std::string, std::string> digests{{model.string(), FileDigest(model)}};
+  for (const auto& axis : spec.axes) {
+    if (axis.name != "model") continue;
+    for (const auto& v : axis.values) digests[v.get<std::string>()] = FileDigest(v.get<std::string>());
+  }
+  return digests;
+}
 
 // Starts `sortcell episode` with `args`; its output goes to `log`.
 pid_t Spawn(const std::vector<std::string>& args, const std::filesystem::path& log) {
@@ -224,6 +239,10 @@ pid_t Spawn(const std::vector<std::string>& args, const std::filesystem::path& l
   return pid;
 }
 
+std::string ModelOf(const SweepSetup& s, const Worker& w) {
+  return w.axes.contains("model") ? w.axes["model"].get<std::string>() : s.model.string();
+}
+
 // The `sortcell episode` command line of worker `w`.
 std::vector<std::string> EpisodeArguments(const SweepSetup& s, const Worker& w) {
   std::vector<std::string> args{"sortcell",      "episode",
@@ -231,7 +250,7 @@ std::vector<std::string> EpisodeArguments(const SweepSetup& s, const Worker& w) 
                                 "--object-set",  s.spec.object_set.string(),
                                 "--seed",        std::to_string(w.seed),
                                 "--out",         w.dir.string(),
-                                "--model",       w.axes.contains("model") ? w.axes["model"].get<std::string>() : s.model.string()};
+                                "--model",       ModelOf(s, w)};
   if (!s.spec.cell.empty()) args.insert(args.end(), {"--cell", s.spec.cell.string()});
   if (!s.spec.unknown_set.empty()) args.insert(args.end(), {"--unknown-set", s.spec.unknown_set.string()});
   static const std::map<std::string, std::string> kAxisOptions{
@@ -258,8 +277,10 @@ Worker StartEpisode(const SweepSetup& s, int episode) {
   std::filesystem::create_directories(w.dir);
   RemoveStalePartialFiles(w.dir);  // A worker killed mid-write in an earlier, killed run.
   std::filesystem::remove(w.dir / "metrics.json");
+  w.arguments = EpisodeArguments(s, w);
+  w.model_digest = s.model_digests.at(ModelOf(s, w));
   w.started = WallClock::now();
-  w.pid = Spawn(EpisodeArguments(s, w), w.dir / "log.txt");
+  w.pid = Spawn(w.arguments, w.dir / "log.txt");
   return w;
 }
 
@@ -280,13 +301,22 @@ std::string LastLine(const std::filesystem::path& file) {
 
 // The record of a worker that ended with wait status `status`: its metrics.json if it exited 0 and
 // left a readable one, else what is known of the failure.
-SweepRecord FinishedRecord(const Worker& w, int status, bool timed_out) {
+SweepRecord FinishedRecord(const Worker& w, const std::string& build, int status, bool timed_out) {
   SweepRecord record;
   record.episode = w.episode;
   record.seed = w.seed;
   record.axes = w.axes;
   record.wall_time_s = SecondsSince(w.started);
   if (w.peak_memory_kb > 0) record.peak_memory_mb = w.peak_memory_kb / 1024.0;
+  for (size_t i = 1; i < w.arguments.size(); ++i) {  // Without argv[0] and the worker's own --out.
+    if (w.arguments[i] == "--out") {
+      ++i;
+    } else {
+      record.worker_arguments.push_back(w.arguments[i]);
+    }
+  }
+  record.build = build;
+  record.model_digest = w.model_digest;
   const std::filesystem::path metrics_file = w.dir / "metrics.json";
   std::string problem;
   if (!timed_out && WIFEXITED(status) && WEXITSTATUS(status) == 0 && std::filesystem::exists(metrics_file)) {
@@ -368,7 +398,7 @@ class EpisodeRunner {
   }
 
   void Finish(const Worker& w, int status, bool timed_out, Progress& progress) {
-    SweepRecord record = FinishedRecord(w, status, timed_out);
+    SweepRecord record = FinishedRecord(w, setup_.build, status, timed_out);
     if (!record.ok()) {
       ++run_.crashed;
       spdlog::warn("episode {} {}: {}", record.episode, ToString(record.status), record.error.value_or(""));
@@ -468,7 +498,7 @@ SweepRun RunSweep(const SweepOptions& options, const std::vector<std::string>& c
                        {"episodes_to_run", todo.size()}, {"set", options.sets}}));
 
   SweepResultsWriter writer(results_file);
-  const SweepSetup setup{spec, options, model};
+  const SweepSetup setup{spec, options, model, BuildDigest(), ModelDigests(spec, model)};
   {
     const StopOnSignals stop;
     EpisodeRunner(setup, writer, finished.records, run).Run(todo);

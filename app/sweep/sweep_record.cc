@@ -47,6 +47,19 @@ void ReadStatus(const nlohmann::json& j, RunStatus& status) {
   }
 }
 
+// The optional replay block: all three keys or none.
+void ReadReplay(const nlohmann::json& j, SweepRecord& v) {
+  v.worker_arguments.clear();
+  v.build.clear();
+  v.model_digest.clear();
+  if (!j.contains("replay")) return;
+  const nlohmann::json& replay = j.at("replay");
+  ReadField(replay, "replay", "arguments", v.worker_arguments);
+  ReadField(replay, "replay", "build", v.build);
+  ReadField(replay, "replay", "model_digest", v.model_digest);
+  if (v.worker_arguments.empty()) throw std::invalid_argument("replay.arguments: expected the episode's arguments, found none");
+}
+
 // One line of results.jsonl. @throws std::invalid_argument naming the key.
 SweepRecord ParseRecord(std::string_view line) {
   nlohmann::json j;
@@ -80,6 +93,20 @@ RunStatus ParseRunStatus(std::string_view text) {
   throw std::invalid_argument("unknown run status '" + std::string(text) + "' (expected " + expected + ")");
 }
 
+nlohmann::json WithoutMachineFigures(nlohmann::json record) {
+  for (const char* key : {"wall_time_s", "peak_memory_mb", "replay"}) record.erase(key);
+  if (!record.contains("summary") || !record["summary"].is_object()) return record;
+  nlohmann::json& summary = record["summary"];
+  for (const char* key : {"wall_time_s", "real_time_factor", "perception_ms_per_frame", "render_ms_per_frame",
+                          "video_frames", "video_render_wall_s", "profile_wall_s"}) {
+    summary.erase(key);
+  }
+  if (summary.contains("physics_profile") && summary["physics_profile"].is_object()) {
+    for (const char* key : {"collision_s", "constraint_s", "smooth_s", "step_s"}) summary["physics_profile"].erase(key);
+  }
+  return record;
+}
+
 void to_json(nlohmann::json& j, const SweepRecord& v) {
   j = {{"episode", v.episode},
        {"seed", v.seed},
@@ -87,6 +114,9 @@ void to_json(nlohmann::json& j, const SweepRecord& v) {
        {"wall_time_s", v.wall_time_s},
        {"status", ToString(v.status)}};
   if (v.peak_memory_mb) j["peak_memory_mb"] = *v.peak_memory_mb;
+  if (!v.worker_arguments.empty()) {
+    j["replay"] = {{"arguments", v.worker_arguments}, {"build", v.build}, {"model_digest", v.model_digest}};
+  }
   if (v.ok()) {
     j["summary"] = v.summary;
     j["items"] = v.items;
@@ -105,6 +135,7 @@ void from_json(const nlohmann::json& j, SweepRecord& v) {
   ReadField(j, "", "wall_time_s", v.wall_time_s);
   ReadOptional(j, "peak_memory_mb", v.peak_memory_mb);
   ReadStatus(j, v.status);
+  ReadReplay(j, v);
   v.summary = EpisodeSummary{};
   v.items.clear();
   if (v.ok()) ReadSummaryAndItems(j, v.summary, v.items);

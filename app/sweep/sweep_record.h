@@ -51,12 +51,22 @@ struct SweepRecord {
   // kOk: the episode's metrics.
   EpisodeSummary summary;
   std::vector<ItemResult> items;
+  /// What `sortcell replay` needs to run the episode again exactly: the worker's `sortcell episode`
+  /// arguments (without `--out`), and digests of the build and of the model file that ran it. Absent
+  /// (empty) in results written before replays.
+  std::vector<std::string> worker_arguments;
+  std::string build, model_digest;
   // kCrashed, kTimeout: what is known of the failure.
   std::optional<int> exit_code, signal;
   std::optional<std::string> error;
 
   bool ok() const { return status == RunStatus::kOk; }
 };
+
+/// A record (or a metrics.json) without the figures of the machine that ran it: wall-clock times, the
+/// real-time factor, memory, the video's frame count and render time, the physics profile's seconds
+/// (its counts stay), and the replay block. Two runs of one episode agree on the rest exactly.
+nlohmann::json WithoutMachineFigures(nlohmann::json record);
 
 void to_json(nlohmann::json& j, const SweepRecord& v);
 /// @throws std::invalid_argument "<key path>: <what>" for a missing or mistyped key, an unknown

@@ -19,6 +19,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "app/sweep/sweep_record.h"
+
 namespace sortcell_test {
 
 inline const std::string kSweepScene = std::string(SORTCELL_SOURCE_DIR) + "/scenes/cell.xml";
@@ -58,18 +60,9 @@ inline std::string SmallSweepSpec(const std::string& file, int seed, int episode
   return file;
 }
 
-/// metrics.json (or a record of results.jsonl) without its wall-clock figures.
-inline nlohmann::json WithoutWallClock(nlohmann::json m) {
-  m.erase("wall_time_s");
-  m.erase("peak_memory_mb");
-  for (const char* key : {"wall_time_s", "real_time_factor", "perception_ms_per_frame", "render_ms_per_frame",
-                          "video_render_wall_s", "profile_wall_s"}) {
-    m["summary"].erase(key);
-  }
-  // The physics profile's seconds are wall clock; its counts (steps, contacts, rows) are not.
-  for (const char* key : {"collision_s", "constraint_s", "smooth_s", "step_s"}) m["summary"]["physics_profile"].erase(key);
-  return m;
-}
+/// metrics.json (or a record of results.jsonl) without its wall-clock figures (the library's rule,
+/// the one `sortcell replay` checks by).
+inline nlohmann::json WithoutWallClock(nlohmann::json m) { return sortcell::app::WithoutMachineFigures(std::move(m)); }
 
 /// The records of a results.jsonl by episode, without wall-clock figures.
 inline std::map<int, nlohmann::json> RecordsByEpisode(const std::string& results) {
