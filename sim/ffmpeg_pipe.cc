@@ -124,6 +124,39 @@ void FfmpegPipe::Close() {
   }
 }
 
+void CutVideo(const std::filesystem::path& in, const std::filesystem::path& out, double start_s, double length_s) {
+  std::vector<std::string> args = {"ffmpeg", "-nostdin", "-loglevel", "error", "-y", "-ss", fmt::format("{:.3f}", start_s),
+                                   "-i", in.string(), "-t", fmt::format("{:.3f}", length_s), "-an", "-c:v", "libx264",
+                                   "-pix_fmt", "yuv420p", "-movflags", "+faststart", out.string()};
+  std::vector<char*> argv;
+  for (auto& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  std::filesystem::path messages_file;
+  const int messages = TemporaryFile(messages_file);
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, "/dev/null", O_WRONLY, 0);
+  if (messages >= 0) posix_spawn_file_actions_adddup2(&actions, messages, STDERR_FILENO);
+  pid_t child = -1;
+  const int spawned = posix_spawnp(&child, "ffmpeg", &actions, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  if (messages >= 0) close(messages);
+  int status = 0;
+  pid_t waited = -1;
+  if (spawned == 0) {
+    do {
+      waited = waitpid(child, &status, 0);
+    } while (waited < 0 && errno == EINTR);
+  }
+  const std::string message = messages_file.empty() ? "" : LastLine(messages_file);
+  std::error_code ignored;
+  if (!messages_file.empty()) std::filesystem::remove(messages_file, ignored);
+  if (spawned != 0) throw Failure(out, std::string("cannot start ffmpeg (install Debian's ffmpeg): ") + std::strerror(spawned));
+  if (waited < 0 || !WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+    throw Failure(out, "ffmpeg could not cut '" + in.string() + "'" + (message.empty() ? "" : ": " + message));
+  }
+}
+
 FfmpegPipe::~FfmpegPipe() {
   try {
     Close();

@@ -35,4 +35,9 @@ class FfmpegPipe {
   std::filesystem::path messages_;  // ffmpeg's stderr, a temporary file: its last line goes into our error.
 };
 
+/// Writes the part of video `in` from `start_s` lasting `length_s` (cut short at its end) as an H.264
+/// MP4 `out`, re-encoded so that it starts on the exact frame.
+/// @throws std::runtime_error naming `out` if ffmpeg cannot start or fails (its last message).
+void CutVideo(const std::filesystem::path& in, const std::filesystem::path& out, double start_s, double length_s);
+
 }  // namespace sortcell::sim

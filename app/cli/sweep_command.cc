@@ -5,8 +5,10 @@
 #include <cstdio>
 #include <iostream>
 #include <memory>
+#include <string>
 
 #include "app/sweep/sweep.h"
+#include "app/sweep/sweep_review.h"
 
 namespace sortcell::app {
 namespace {
@@ -25,6 +27,7 @@ void ParseShard(const std::string& text, SweepOptions& o) {
 void AddSweepCommand(CLI::App& app, std::function<int()>& run, const std::vector<std::string>& command_line) {
   auto o = std::make_shared<SweepOptions>();
   auto shard = std::make_shared<std::string>("1/1");
+  auto review = std::make_shared<bool>(false);
   CLI::App* cmd = app.add_subcommand(
       "sweep",
       "Many sorting episodes from a spec (scenes/sweeps/*.yaml), in worker processes. Appends each finished "
@@ -36,6 +39,10 @@ void AddSweepCommand(CLI::App& app, std::function<int()>& run, const std::vector
   cmd->add_flag("--metrics-only", o->metrics_only,
                 "For large sweeps: keep only results.jsonl and the summaries; an episode's folder is removed once its "
                 "record is written, except when its worker crashed or timed out (its log.txt stays)");
+  cmd->add_flag("--review", *review,
+                "After the sweep, replay every episode with a failed item with its review video (sortcell replay), find "
+                "when each item failed, tell its attempts in words and cut a 6 s clip around it: DIR/review.json, "
+                "DIR/replays/<episode>/");
   cmd->add_option("--shard", *shard, "Run share i of N (episodes whose index is i-1 modulo N)")->capture_default_str();
   cmd->add_option("--set", o->sets,
                   "Override a key of the spec (repeatable): scene, object_set, model, seed, episodes, seeds, mode, "
@@ -44,8 +51,8 @@ void AddSweepCommand(CLI::App& app, std::function<int()>& run, const std::vector
                   "spec.yaml in the output folder lists the overrides; a --resume must repeat them")
       ->type_name("KEY=VALUE")
       ->allow_extra_args(false);
-  cmd->callback([&run, o, shard, command_line] {
-    run = [o, shard, command_line] {
+  cmd->callback([&run, o, shard, review, command_line] {
+    run = [o, shard, review, command_line] {
       ParseShard(*shard, *o);
       const SweepRun r = RunSweep(*o, command_line);
       const auto& s = r.summary;
@@ -63,6 +70,14 @@ void AddSweepCommand(CLI::App& app, std::function<int()>& run, const std::vector
                   s["correct_sort_rate"].is_null() ? 0.0 : 100 * s["correct_sort_rate"].get<double>(),
                   100 * s["correct_sort_rate_ci95"][0].get<double>(), 100 * s["correct_sort_rate_ci95"][1].get<double>(),
                   (o->out / "summary.md").string().c_str());
+      if (*review) {
+        const SweepReview v = ReviewSweep(o->out);
+        const std::string mismatches =
+            v.mismatches.empty() ? "" : "; " + std::to_string(v.mismatches.size()) + " replays did NOT match their records";
+        std::printf("Review: %d episodes with a failed item replayed with video, %zu failed items each told in words with "
+                    "a clip (%s)%s.\n",
+                    v.episodes_replayed, v.failures.size(), (o->out / "review.json").string().c_str(), mismatches.c_str());
+      }
       return 0;
     };
   });

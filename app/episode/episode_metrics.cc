@@ -252,6 +252,44 @@ void to_json(nlohmann::json& j, const AttemptLogEntry& v) {
   j["detail"] = v.detail;
 }
 
+void from_json(const nlohmann::json& j, AttemptLogEntry& v) {
+  v = AttemptLogEntry{};
+  ReadField(j, "", "time_s", v.time_s);
+  ReadField(j, "", "category", v.category);
+  ReadField(j, "", "bin", v.bin);
+  ReadField(j, "", "xy", v.xy);
+  ReadField(j, "", "result", v.result);
+  if (!j.contains("duration_s")) return;  // A skipped cluster.
+  double duration = 0;
+  ReadField(j, "", "duration_s", duration);
+  v.duration_s = duration;
+  ReadNullable(j, "", "confidence", v.confidence);
+  ReadNullable(j, "", "pinch_yaw", v.pinch_yaw);
+  ReadNullable(j, "", "width_m", v.width_m);
+  ReadNullable(j, "", "top_z_m", v.top_z_m);
+  ReadNullable(j, "", "lying", v.lying);
+  ReadNullable(j, "", "release_clearance_m", v.release_clearance_m);
+  nlohmann::json phases;
+  ReadField(j, "", "phases", phases);
+  if (!phases.is_array()) throw std::invalid_argument("phases: expected a list");
+  for (size_t i = 0; i < phases.size(); ++i) {
+    const std::string where = "phases[" + std::to_string(i) + "]";
+    PhaseHold p;
+    ReadField(phases[i], where, "phase", p.phase);
+    ReadField(phases[i], where, "end_s", p.end_s);
+    ReadField(phases[i], where, "hold", p.hold);
+    ReadField(phases[i], where, "gap_m", p.gap_m);
+    v.phases.push_back(p);
+  }
+  ReadNullable(j, "", "max_friction_use", v.max_friction_use);
+  ReadNullable(j, "", "recentred_m", v.recentred_m);
+  ReadNullable(j, "", "squeezed_harder_in", v.squeezed_harder_in);
+  ReadNullable(j, "", "truth_object", v.truth_object);
+  ReadNullable(j, "", "truth_centre_error_m", v.truth_centre_error_m);
+  ReadNullable(j, "", "truth_width_error_m", v.truth_width_error_m);
+  ReadField(j, "", "detail", v.detail);
+}
+
 void to_json(nlohmann::json& j, const EpisodeMetrics& v) {
   j = {{"seed", v.seed},
        {"scene", v.scene},

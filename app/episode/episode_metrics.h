@@ -168,6 +168,8 @@ void to_json(nlohmann::json& j, const EpisodeVariation& v);
 void to_json(nlohmann::json& j, const CalibrationFigures& v);
 void from_json(const nlohmann::json& j, CalibrationFigures& v);
 void to_json(nlohmann::json& j, const AttemptLogEntry& v);
+/// @throws std::invalid_argument naming the key ("phases[2].hold: missing").
+void from_json(const nlohmann::json& j, AttemptLogEntry& v);
 void to_json(nlohmann::json& j, const EpisodeMetrics& v);
 /// {"sorted": n, ...} in the order of cell::kItemOutcomes.
 nlohmann::json OutcomeCountsJson(const OutcomeCounts& counts);

@@ -1,4 +1,5 @@
-// `sortcell replay` of a sweep's failed episode reproduces its record exactly, with a video or without.
+// `sortcell sweep --review` and `sortcell replay` of a sweep's failed episode: replayed with a video and
+// without, the record is the sweep's exactly; the failure is told in words with a clip around it.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -12,7 +13,7 @@
 namespace sortcell_test {
 namespace {
 
-TEST(SweepReplay, AFailedEpisodeIsReplayedExactly) {
+TEST(SweepReplay, AFailedEpisodeIsReviewedWithAClipAndReplayedExactly) {
   const TempDir tmp;
   // A plate (wider than the gripper's stroke every way: never graspable) beside a cup.
   const std::string models = std::string(SORTCELL_SOURCE_DIR) + "/models/objects/";
@@ -23,16 +24,29 @@ TEST(SweepReplay, AFailedEpisodeIsReplayedExactly) {
   std::ofstream(tmp.path() / "spec.yaml") << "scene: " << kSweepScene << "\nobject_set: " << (tmp.path() / "set.yaml").string()
                                           << "\nmodel: " << SORTCELL_TEST_MODEL << "\nseed: 3\nepisodes: 1\naxes:\n  objects: [2]\n";
   const std::filesystem::path sweep = tmp.path() / "sweep";
-  const auto s = RunSortcell("sweep " + (tmp.path() / "spec.yaml").string() + " --out " + sweep.string());
+  const auto s = RunSortcell("sweep " + (tmp.path() / "spec.yaml").string() + " --review --out " + sweep.string());
   ASSERT_EQ(s.exit_code, 0) << s.err;
   const std::string results = ReadFile((sweep / "results.jsonl").string());
   ASSERT_NE(results.find("\"outcome\":\"ungraspable\""), std::string::npos) << results;
 
-  const auto r = RunSortcell("replay " + sweep.string() + " --episode 0 --video " + (tmp.path() / "replay.mp4").string());
+  // The review replayed it with video (and found the same record), told the failure and cut its clip.
+  const auto review = nlohmann::json::parse(ReadFile((sweep / "review.json").string()));
+  EXPECT_EQ(review["episodes_replayed"], 1);
+  EXPECT_TRUE(review["mismatches"].empty()) << review.dump();
+  ASSERT_EQ(review["failures"].size(), 1u) << review.dump();
+  const auto& f = review["failures"][0];
+  EXPECT_EQ(f["item"], "plate1");
+  EXPECT_EQ(f["outcome"], "ungraspable");
+  EXPECT_NE(f["log"][0].get<std::string>().find("not attempted: too wide"), std::string::npos) << f.dump();
+  EXPECT_EQ(f["clip"], "replays/000000/clip_plate1.mp4");
+  EXPECT_GT(std::filesystem::file_size(sweep / "replays/000000/clip_plate1.mp4"), 10000u);
+  EXPECT_GT(std::filesystem::file_size(sweep / "replays/000000/episode.mp4"), 10000u);
+
+  // And without video, into a folder of its own: the same record exactly.
+  const auto r = RunSortcell("replay " + sweep.string() + " --episode 0 --out " + (tmp.path() / "again").string());
   EXPECT_EQ(r.exit_code, 0) << r.out << r.err;
   EXPECT_NE(r.out.find("its record matches the sweep's (plate1 ungraspable, cup sorted)"), std::string::npos) << r.out;
-  EXPECT_GT(std::filesystem::file_size(tmp.path() / "replay.mp4"), 10000u);
-  EXPECT_TRUE(std::filesystem::exists(sweep / "replays/000000/metrics.json"));
+  EXPECT_TRUE(std::filesystem::exists(tmp.path() / "again/metrics.json"));
 }
 
 }  // namespace

@@ -1,6 +1,6 @@
 // `sortcell replay`: what cannot be replayed the same is refused with the reason, without running
 // anything; what differs between two records is named by its JSON path, machine figures aside. (The
-// replay of a real sweep's failed episode: SweepReplay.AFailedEpisodeIsReplayedExactly, sim.)
+// replay of a real sweep's failed episode: SweepReplay.AFailedEpisodeIsReviewedWithAClipAndReplayedExactly, sim.)
 #include <gtest/gtest.h>
 
 #include <filesystem>

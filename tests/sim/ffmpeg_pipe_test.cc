@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <functional>
@@ -94,6 +95,44 @@ TEST(FfmpegPipe, FramesToAnEncoderThatStoppedAreAnError) {
   });
   EXPECT_NE(error.find("stopped taking frames"), std::string::npos) << error;
   EXPECT_NE(FailureOf([&] { pipe.Close(); }).find("exit 1"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace sortcell::sim
+
+namespace sortcell::sim {
+namespace {
+
+int FramesOf(const std::filesystem::path& video) {
+  const std::string command = "ffprobe -v error -count_frames -select_streams v:0 -show_entries stream=nb_read_frames -of csv=p=0 '" +
+                              video.string() + "'";
+  FILE* pipe = popen(command.c_str(), "r");
+  if (!pipe) return -1;
+  int frames = -1;
+  if (std::fscanf(pipe, "%d", &frames) != 1) frames = -1;
+  pclose(pipe);
+  return frames;
+}
+
+TEST(FfmpegPipe, ACutKeepsItsSecondsAndAMissingVideoIsNamed) {
+  sortcell_test::TempDir dir;
+  const auto whole = dir.path() / "whole.mp4";
+  {
+    FfmpegPipe pipe(whole, 64, 48, 30);
+    std::vector<unsigned char> frame(64 * 48 * 3);
+    for (int k = 0; k < 90; ++k) {
+      std::fill(frame.begin(), frame.end(), static_cast<unsigned char>(k));
+      pipe.Write(frame.data());
+    }
+    pipe.Close();
+  }
+  CutVideo(whole, dir.path() / "cut.mp4", 1.0, 1.0);
+  EXPECT_NEAR(FramesOf(dir.path() / "cut.mp4"), 30, 1);
+  CutVideo(whole, dir.path() / "end.mp4", 2.5, 3.0);  // Cut short at the video's end.
+  EXPECT_NEAR(FramesOf(dir.path() / "end.mp4"), 15, 1);
+  const std::string error = FailureOf([&] { CutVideo(dir.path() / "none.mp4", dir.path() / "x.mp4", 0, 1); });
+  EXPECT_NE(error.find("x.mp4"), std::string::npos) << error;
+  EXPECT_NE(error.find("could not cut"), std::string::npos) << error;
 }
 
 }  // namespace

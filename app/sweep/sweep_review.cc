@@ -1,0 +1,157 @@
+#include "app/sweep/sweep_review.h"
+
+#include <spdlog/fmt/fmt.h>
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "app/common/output_dir.h"
+#include "app/sweep/sweep_record.h"
+#include "app/sweep/sweep_replay.h"
+#include "sim/ffmpeg_pipe.h"
+
+namespace sortcell::app {
+namespace {
+
+constexpr double kSameClusterM = 0.05;  // A skipped cluster this near an item's final place was that item.
+
+std::string Spaced(std::string text) {
+  std::replace(text.begin(), text.end(), '_', ' ');
+  return text;
+}
+
+// When the gripper, having held the object, first found itself empty: the end of that phase.
+std::optional<PhaseHold> LostDuring(const AttemptLogEntry& a) {
+  bool held = false;
+  for (const auto& p : a.phases) {
+    if (p.hold == "holding") held = true;
+    if (held && p.hold == "empty") return p;
+  }
+  return std::nullopt;
+}
+
+std::string GraspInWords(const AttemptLogEntry& a) {
+  for (const auto& p : a.phases) {
+    if (p.phase != "grasp") continue;
+    std::string text = fmt::format("closed at {:.0f} mm", 1000 * p.gap_m);
+    if (a.width_m) text += fmt::format(" on a {:.0f} mm wide view", 1000 * *a.width_m);
+    return text;
+  }
+  return "never closed";
+}
+
+std::string ResultInWords(const AttemptLogEntry& a) {
+  if (a.result == "released") return "released over bin " + a.bin;
+  if (a.result == "missed") return "closed on nothing";
+  if (a.result == "dropped") {
+    const auto lost = LostDuring(a);
+    return lost ? fmt::format("dropped during {} at {:.1f} s", lost->phase, lost->end_s) : "dropped";
+  }
+  if (a.result == "put_back") return "put back: bin " + a.bin + " out of reach from here";
+  if (a.result == "motion_failed") return "a motion failed" + (a.detail.empty() ? "" : ": " + a.detail);
+  if (a.result == "sim_diverged") return "the simulation diverged";
+  return Spaced(a.result);
+}
+
+double FailedAt(const AttemptLogEntry& a) {
+  if (a.result == "dropped") {
+    if (const auto lost = LostDuring(a)) return lost->end_s;
+  }
+  return a.time_s + a.duration_s.value_or(0);
+}
+
+bool NearItem(const AttemptLogEntry& a, const ItemResult& item) {
+  return std::hypot(a.xy[0] - item.final_xyz[0], a.xy[1] - item.final_xyz[1]) < kSameClusterM;
+}
+
+}  // namespace
+
+std::string AttemptInWords(const AttemptLogEntry& a, int number) {
+  const std::string called =
+      a.category.empty() ? "not described" : "called " + a.category + (a.confidence ? fmt::format(" ({:.2f})", *a.confidence) : "");
+  if (!a.duration_s) {
+    const std::string why = a.result.rfind("skipped: ", 0) == 0 ? a.result.substr(9) : a.result;
+    return fmt::format("at {:.1f} s: seen, {}, not attempted: {}", a.time_s, called, Spaced(why));
+  }
+  std::string text = fmt::format("attempt {} at {:.1f}-{:.1f} s: {}{}; {}; {}", number, a.time_s, a.time_s + *a.duration_s,
+                                 called, a.bin.empty() ? "" : " for bin " + a.bin, GraspInWords(a), ResultInWords(a));
+  if (a.squeezed_harder_in) text += "; squeezed harder during " + *a.squeezed_harder_in;
+  return text;
+}
+
+std::vector<ItemFailure> FailuresOf(const std::vector<ItemResult>& items, const std::vector<AttemptLogEntry>& attempts,
+                                    double episode_end_s) {
+  std::vector<ItemFailure> failures;
+  for (const auto& item : items) {
+    if (item.outcome == cell::ItemOutcome::kSorted) continue;
+    ItemFailure f;
+    f.item = item.name;
+    f.outcome = item.outcome;
+    f.at_s = episode_end_s;
+    int number = 0;
+    const AttemptLogEntry* skipped = nullptr;
+    for (const auto& a : attempts) {
+      if (a.duration_s && a.truth_object == item.name) {
+        f.log.push_back(AttemptInWords(a, ++number));
+        f.at_s = FailedAt(a);
+      } else if (!a.duration_s && NearItem(a, item)) {
+        skipped = &a;
+      }
+    }
+    if (number == 0 && skipped) {
+      f.log.push_back(AttemptInWords(*skipped, 0));
+      f.at_s = skipped->time_s;
+    }
+    if (f.log.empty()) f.log.push_back(fmt::format("never attempted; the episode ended at {:.1f} s", episode_end_s));
+    failures.push_back(f);
+  }
+  return failures;
+}
+
+nlohmann::json ReviewJson(const SweepReview& review) {
+  nlohmann::json failures = nlohmann::json::array();
+  for (const auto& r : review.failures) {
+    failures.push_back({{"episode", r.episode}, {"seed", r.seed}, {"axes", r.axes}, {"item", r.failure.item},
+                        {"outcome", cell::ToString(r.failure.outcome)}, {"at_s", r.failure.at_s},
+                        {"log", r.failure.log}, {"clip", r.clip}});
+  }
+  return {{"episodes_replayed", review.episodes_replayed}, {"mismatches", review.mismatches}, {"failures", failures}};
+}
+
+SweepReview ReviewSweep(const std::filesystem::path& dir, double before_s, double after_s) {
+  SweepReview review;
+  for (const auto& record : ReadSweepResults(dir / "results.jsonl").records) {
+    const bool failed = std::any_of(record.items.begin(), record.items.end(),
+                                    [](const ItemResult& i) { return i.outcome != cell::ItemOutcome::kSorted; });
+    if (!record.ok() || !failed) continue;
+    ReplayOptions options;
+    options.sweep_dir = dir;
+    options.episode = record.episode;
+    const std::filesystem::path folder = fmt::format("replays/{:06d}", record.episode);
+    options.video = dir / folder / "episode.mp4";
+    const ReplayResult replay = ReplayEpisode(options);
+    ++review.episodes_replayed;
+    if (!replay.matches) review.mismatches.push_back(fmt::format("episode {}: {}", record.episode, replay.differences.front()));
+    const auto metrics = nlohmann::json::parse(ReadTextFile(replay.out / "metrics.json"));
+    const auto attempts = metrics.at("attempts").get<std::vector<AttemptLogEntry>>();
+    for (const auto& f : FailuresOf(record.items, attempts, record.summary.run.sim_time_s)) {
+      ReviewedFailure r{record.episode, record.seed, record.axes, f, ""};
+      const std::filesystem::path clip = folder / ("clip_" + f.item + ".mp4");
+      try {
+        sim::CutVideo(options.video, dir / clip, std::max(0.0, f.at_s - before_s), before_s + after_s);
+        r.clip = clip.generic_string();
+      } catch (const std::runtime_error& e) {
+        spdlog::warn("review: no clip of {} in episode {}: {}", f.item, record.episode, e.what());
+      }
+      review.failures.push_back(r);
+    }
+  }
+  std::stable_sort(review.failures.begin(), review.failures.end(),
+                   [](const ReviewedFailure& a, const ReviewedFailure& b) { return a.episode < b.episode; });
+  WriteJson(dir / "review.json", ReviewJson(review));
+  return review;
+}
+
+}  // namespace sortcell::app
