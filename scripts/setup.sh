@@ -15,6 +15,7 @@ packages=(
   libassimp-dev libqhull-dev liblodepng-dev libturbojpeg0-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   ffmpeg gnuplot-nox python3-yaml
+  libjs-chart.js chromium python3-websocket
   parallel slurm-wlm munge
   clang valgrind
 )

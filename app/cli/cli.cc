@@ -22,6 +22,7 @@
 #include "app/cli/pick_command.h"
 #include "app/cli/recognition_commands.h"
 #include "app/cli/replay_command.h"
+#include "app/cli/report_command.h"
 #include "app/cli/segment_command.h"
 #include "app/cli/sweep_command.h"
 
@@ -60,6 +61,7 @@ int RunCli(int argc, char** argv) {
   AddSweepCommand(app, run, command_line);
   AddCompareCommand(app, run, command_line);
   AddReplayCommand(app, run);
+  AddReportCommand(app, run);
   AddKinematicsCommands(app, run);
   AddObjectsCommand(app, run, command_line);
   AddCellCommand(app, run, command_line);

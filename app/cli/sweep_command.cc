@@ -8,6 +8,7 @@
 #include <string>
 
 #include "app/sweep/sweep.h"
+#include "app/sweep/sweep_html_report.h"
 #include "app/sweep/sweep_review.h"
 
 namespace sortcell::app {
@@ -27,7 +28,7 @@ void ParseShard(const std::string& text, SweepOptions& o) {
 void AddSweepCommand(CLI::App& app, std::function<int()>& run, const std::vector<std::string>& command_line) {
   auto o = std::make_shared<SweepOptions>();
   auto shard = std::make_shared<std::string>("1/1");
-  auto review = std::make_shared<bool>(false);
+  auto review = std::make_shared<bool>(false), report = std::make_shared<bool>(false);
   CLI::App* cmd = app.add_subcommand(
       "sweep",
       "Many sorting episodes from a spec (scenes/sweeps/*.yaml), in worker processes. Appends each finished "
@@ -43,6 +44,7 @@ void AddSweepCommand(CLI::App& app, std::function<int()>& run, const std::vector
                 "After the sweep, replay every episode with a failed item with its review video (sortcell replay), find "
                 "when each item failed, tell its attempts in words and cut a 6 s clip around it: DIR/review.json, "
                 "DIR/replays/<episode>/");
+  cmd->add_flag("--report", *report, "Also write the report page, DIR/report/index.html (sortcell report; --review writes it too)");
   cmd->add_option("--shard", *shard, "Run share i of N (episodes whose index is i-1 modulo N)")->capture_default_str();
   cmd->add_option("--set", o->sets,
                   "Override a key of the spec (repeatable): scene, object_set, model, seed, episodes, seeds, mode, "
@@ -51,8 +53,8 @@ void AddSweepCommand(CLI::App& app, std::function<int()>& run, const std::vector
                   "spec.yaml in the output folder lists the overrides; a --resume must repeat them")
       ->type_name("KEY=VALUE")
       ->allow_extra_args(false);
-  cmd->callback([&run, o, shard, review, command_line] {
-    run = [o, shard, review, command_line] {
+  cmd->callback([&run, o, shard, review, report, command_line] {
+    run = [o, shard, review, report, command_line] {
       ParseShard(*shard, *o);
       const SweepRun r = RunSweep(*o, command_line);
       const auto& s = r.summary;
@@ -78,6 +80,7 @@ void AddSweepCommand(CLI::App& app, std::function<int()>& run, const std::vector
                     "a clip (%s)%s.\n",
                     v.episodes_replayed, v.failures.size(), (o->out / "review.json").string().c_str(), mismatches.c_str());
       }
+      if (*review || *report) std::printf("Report: %s\n", WriteHtmlReport(o->out).string().c_str());
       return 0;
     };
   });

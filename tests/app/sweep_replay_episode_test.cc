@@ -1,7 +1,9 @@
 // `sortcell sweep --review` and `sortcell replay` of a sweep's failed episode: replayed with a video and
-// without, the record is the sweep's exactly; the failure is told in words with a clip around it.
+// without, the record is the sweep's exactly; the failure is told in words with a clip around it; the
+// report page works in a real browser.
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -41,6 +43,19 @@ TEST(SweepReplay, AFailedEpisodeIsReviewedWithAClipAndReplayedExactly) {
   EXPECT_EQ(f["clip"], "replays/000000/clip_plate1.mp4");
   EXPECT_GT(std::filesystem::file_size(sweep / "replays/000000/clip_plate1.mp4"), 10000u);
   EXPECT_GT(std::filesystem::file_size(sweep / "replays/000000/episode.mp4"), 10000u);
+
+  // The report page, opened in headless Chromium: no console error, the table filters, the clip plays;
+  // its screenshot is kept in the build folder (test_output/).
+  ASSERT_TRUE(std::filesystem::exists(sweep / "report/index.html"));
+  const std::filesystem::path shots = std::filesystem::path(SORTCELL_BINARY).parent_path().parent_path() / "test_output";
+  std::filesystem::create_directories(shots);
+  const std::string browser = std::string(SORTCELL_SOURCE_DIR) + "/scripts/report_in_browser.py " +
+                              (sweep / "report/index.html").string() + " --screenshot " +
+                              (shots / "report_in_browser.png").string() + " > " + (tmp.path() / "browser.json").string();
+  EXPECT_EQ(std::system(browser.c_str()), 0) << ReadFile((tmp.path() / "browser.json").string());
+  const auto seen = nlohmann::json::parse(ReadFile((tmp.path() / "browser.json").string()));
+  EXPECT_EQ(seen["clips"].size(), 1u);
+  EXPECT_TRUE(seen["errors"].empty());
 
   // And without video, into a folder of its own: the same record exactly.
   const auto r = RunSortcell("replay " + sweep.string() + " --episode 0 --out " + (tmp.path() / "again").string());
