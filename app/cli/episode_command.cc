@@ -165,6 +165,9 @@ void AddEpisodeCommand(CLI::App& app, std::function<int()>& run, const std::vect
   cmd->add_flag("--train-if-missing", cli->train_if_missing,
                 "Without --model: train and cache the default model first if it is not there (sortcell train --objects; about 30 s for 150 scenes)");
   cmd->add_option("--video", o.video, "Also write an H.264 MP4 from the review camera (30 fps, with overlay)");
+  cmd->add_option("--stills", o.stills,
+                  "Also write the Kinect still of every decision into this folder (still_<simulated ms>.png: the capture "
+                  "with each cluster outlined and named with its category and confidence)");
   cmd->add_option("--video-size", cli->video_size, "The video's WIDTHxHEIGHT (at most 1280x960)")
       ->check(kVideoSize)
       ->capture_default_str();

@@ -27,6 +27,7 @@ void AddReplayCommand(CLI::App& app, std::function<int()>& run) {
   cmd->add_option("dir", o->sweep_dir, "Sweep folder (holding results.jsonl)")->required();
   cmd->add_option("--episode", o->episode, "Episode index, as in results.jsonl")->required()->check(CLI::NonNegativeNumber);
   cmd->add_option("--video", o->video, "Also write the replay's review video (MP4)");
+  cmd->add_option("--stills", o->stills, "Also write the Kinect still of every decision into this folder");
   cmd->add_option("--out", o->out, "Folder for the replay's metrics.json, run.json and log.txt (default DIR/replays/<episode>)");
   cmd->callback([&run, o] {
     run = [o] {

@@ -172,7 +172,7 @@ EpisodeMetrics EpisodeRun::Run(const std::vector<std::string>& command_line) {
   SelfCalibrate();
   PlaceObjects();
   recorder_ = std::make_unique<EpisodeRecorder>(*scorer_, rig_->cell(), model_, rig_->data(), rig_->video(), options_.seed,
-                                                options_.max_attempts_per_object);
+                                                options_.max_attempts_per_object, options_.stills);
   recorder_->ShowStatus("settling");
   rig_->cell().Wait("settle", kSceneSettleTime);
 

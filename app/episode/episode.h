@@ -42,6 +42,9 @@ struct EpisodeOptions {
   std::filesystem::path model;       ///< Trained recognition model (sortcell train).
   std::filesystem::path video;       ///< Empty: no video.
   sim::VideoOptions video_options;   ///< Its camera, size and frame rate.
+  /// Empty: none. Else the Kinect still of every decision, as still_<simulated ms, 7 digits>.png: the
+  /// capture's colour image with each cluster outlined and named with its category and confidence.
+  std::filesystem::path stills;
   std::filesystem::path out;
   uint64_t seed = 0;
   int objects = 0;  ///< How many of the set's objects to place (0: all of them, at most 6).

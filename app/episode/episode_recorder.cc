@@ -4,7 +4,10 @@
 #include <spdlog/fmt/fmt.h>
 
 #include <algorithm>
+#include <cmath>
+#include <stdexcept>
 
+#include "assets/image_file.h"
 #include "perception/segment_overlay.h"
 #include "sim/ground_truth.h"
 
@@ -12,9 +15,12 @@ namespace sortcell::app {
 
 EpisodeRecorder::EpisodeRecorder(EpisodeScorer& scorer, const SimCell& cell, const sim::Model& model,
                                  const sim::Data& data, sim::VideoRecorder* video, uint64_t seed,
-                                 int max_attempts_per_object)
+                                 int max_attempts_per_object, std::filesystem::path stills)
     : scorer_(scorer), cell_(cell), model_(model), data_(data), video_(video), seed_(seed),
-      max_attempts_per_object_(max_attempts_per_object), tcp_site_(model.Id(mjOBJ_SITE, "tcp")) {}
+      max_attempts_per_object_(max_attempts_per_object), tcp_site_(model.Id(mjOBJ_SITE, "tcp")) {
+  stills_ = std::move(stills);
+  if (!stills_.empty()) std::filesystem::create_directories(stills_);
+}
 
 void EpisodeRecorder::ShowStatus(const std::string& current) {
   if (!video_) return;
@@ -32,7 +38,8 @@ void EpisodeRecorder::Observed(const perception::Cloud& cloud, const cell::Obser
   std::vector<DetectionRecord> records;
   for (const auto& d : observation.detections) records.push_back({&d.segment.indices, d.category, d.confidence});
   scorer_.Observe(cell_.last_labels(), records);
-  if (video_ && observation.status == perception::SegmentationStatus::kOk) ShowObservation(cloud, observation.detections);
+  const bool seen = observation.status == perception::SegmentationStatus::kOk;
+  if ((video_ || !stills_.empty()) && seen) ShowObservation(cloud, observation.detections);
 }
 
 void EpisodeRecorder::ShowObservation(const perception::Cloud& cloud, const std::vector<cell::Detection>& detections) {
@@ -54,7 +61,12 @@ void EpisodeRecorder::ShowObservation(const perception::Cloud& cloud, const std:
     cv::putText(overlay, text, at, cv::FONT_HERSHEY_SIMPLEX, 0.6, cv::Scalar(0, 0, 0), 4, cv::LINE_AA);
     cv::putText(overlay, text, at, cv::FONT_HERSHEY_SIMPLEX, 0.6, cv::Scalar(255, 255, 255), 2, cv::LINE_AA);
   }
-  video_->SetInset(overlay);
+  if (video_) video_->SetInset(overlay);
+  if (!stills_.empty()) {
+    const auto ms = static_cast<long long>(std::llround(1000 * cell_.Now()));
+    const std::filesystem::path file = stills_ / fmt::format("still_{:07d}.png", ms);
+    if (!assets::WritePng(file, overlay)) throw std::runtime_error("cannot write '" + file.string() + "'");
+  }
 }
 
 void EpisodeRecorder::Skipped(int detection, const cell::Detection& seen, robot::GraspStatus why) {

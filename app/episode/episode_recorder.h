@@ -4,6 +4,7 @@
 /// truth of each capture through the simulated cell's own channel), keeps the attempts log and draws
 /// the review video's overlay and inset. Nothing here is consulted by a decision.
 
+#include <filesystem>
 #include <map>
 #include <optional>
 #include <string>
@@ -21,9 +22,11 @@ namespace sortcell::app {
 
 class EpisodeRecorder : public cell::PolicyObserver {
  public:
-  /// `video` may be null. `max_attempts_per_object` is for the overlay.
+  /// `video` may be null. `max_attempts_per_object` is for the overlay. `stills`: a folder for the still
+  /// of every decision (EpisodeOptions::stills), or empty.
   EpisodeRecorder(EpisodeScorer& scorer, const SimCell& cell, const sim::Model& model, const sim::Data& data,
-                  sim::VideoRecorder* video, uint64_t seed, int max_attempts_per_object);
+                  sim::VideoRecorder* video, uint64_t seed, int max_attempts_per_object,
+                  std::filesystem::path stills = {});
 
   void Observing() override;
   void Observed(const perception::Cloud& cloud, const cell::Observation& observation, double perception_wall_s) override;
@@ -50,6 +53,7 @@ class EpisodeRecorder : public cell::PolicyObserver {
 
  private:
   void ShowObservation(const perception::Cloud& cloud, const std::vector<cell::Detection>& detections);
+  std::filesystem::path stills_;
 
   EpisodeScorer& scorer_;
   const SimCell& cell_;

@@ -102,6 +102,7 @@ std::vector<std::string> ReplayArguments(const SweepRecord& record, const Replay
   args.insert(args.end(), record.worker_arguments.begin(), record.worker_arguments.end());
   args.insert(args.end(), {"--out", out.string()});
   if (!options.video.empty()) args.insert(args.end(), {"--video", options.video.string()});
+  if (!options.stills.empty()) args.insert(args.end(), {"--stills", options.stills.string()});
   return args;
 }
 

@@ -21,6 +21,8 @@ struct ReplayOptions {
   std::filesystem::path out;
   /// A review video of the replay (`sortcell episode --video`); empty: none.
   std::filesystem::path video;
+  /// The Kinect still of every decision (`sortcell episode --stills`); empty: none.
+  std::filesystem::path stills;
 };
 
 struct ReplayResult {

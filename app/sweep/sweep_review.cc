@@ -5,8 +5,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 
+#include "app/common/json_fields.h"
 #include "app/common/output_dir.h"
 #include "app/sweep/sweep_record.h"
 #include "app/sweep/sweep_replay.h"
@@ -66,6 +68,21 @@ bool NearItem(const AttemptLogEntry& a, const ItemResult& item) {
   return std::hypot(a.xy[0] - item.final_xyz[0], a.xy[1] - item.final_xyz[1]) < kSameClusterM;
 }
 
+// The last still taken at or before `decided_at_s` (relative to `dir`), or "".
+std::string StillBefore(const std::filesystem::path& dir, const std::filesystem::path& stills,
+                        const std::optional<double>& decided_at_s) {
+  if (!decided_at_s) return "";
+  std::string best;
+  std::error_code ec;
+  for (const auto& entry : std::filesystem::directory_iterator(dir / stills, ec)) {
+    const std::string name = entry.path().filename().string();
+    long long ms = 0;
+    if (std::sscanf(name.c_str(), "still_%lld.png", &ms) != 1 || ms > std::llround(1000 * *decided_at_s)) continue;
+    if (name > best) best = name;  // Zero-padded: the latest sorts last.
+  }
+  return best.empty() ? "" : (stills / best).generic_string();
+}
+
 }  // namespace
 
 std::string AttemptInWords(const AttemptLogEntry& a, int number) {
@@ -96,6 +113,7 @@ std::vector<ItemFailure> FailuresOf(const std::vector<ItemResult>& items, const 
       if (a.duration_s && a.truth_object == item.name) {
         f.log.push_back(AttemptInWords(a, ++number));
         f.at_s = FailedAt(a);
+        f.decided_at_s = a.time_s;
       } else if (!a.duration_s && NearItem(a, item)) {
         skipped = &a;
       }
@@ -103,6 +121,7 @@ std::vector<ItemFailure> FailuresOf(const std::vector<ItemResult>& items, const 
     if (number == 0 && skipped) {
       f.log.push_back(AttemptInWords(*skipped, 0));
       f.at_s = skipped->time_s;
+      f.decided_at_s = skipped->time_s;
     }
     if (f.log.empty()) f.log.push_back(fmt::format("never attempted; the episode ended at {:.1f} s", episode_end_s));
     failures.push_back(f);
@@ -115,7 +134,8 @@ nlohmann::json ReviewJson(const SweepReview& review) {
   for (const auto& r : review.failures) {
     failures.push_back({{"episode", r.episode}, {"seed", r.seed}, {"axes", r.axes}, {"item", r.failure.item},
                         {"outcome", cell::ToString(r.failure.outcome)}, {"at_s", r.failure.at_s},
-                        {"log", r.failure.log}, {"clip", r.clip}});
+                        {"log", r.failure.log}, {"clip", r.clip}, {"still", r.still},
+                        {"decided_at_s", OrNull(r.failure.decided_at_s)}});
   }
   return {{"episodes_replayed", review.episodes_replayed}, {"mismatches", review.mismatches}, {"failures", failures}};
 }
@@ -131,13 +151,14 @@ SweepReview ReviewSweep(const std::filesystem::path& dir, double before_s, doubl
     options.episode = record.episode;
     const std::filesystem::path folder = fmt::format("replays/{:06d}", record.episode);
     options.video = dir / folder / "episode.mp4";
+    options.stills = dir / folder / "stills";
     const ReplayResult replay = ReplayEpisode(options);
     ++review.episodes_replayed;
     if (!replay.matches) review.mismatches.push_back(fmt::format("episode {}: {}", record.episode, replay.differences.front()));
     const auto metrics = nlohmann::json::parse(ReadTextFile(replay.out / "metrics.json"));
     const auto attempts = metrics.at("attempts").get<std::vector<AttemptLogEntry>>();
     for (const auto& f : FailuresOf(record.items, attempts, record.summary.run.sim_time_s)) {
-      ReviewedFailure r{record.episode, record.seed, record.axes, f, ""};
+      ReviewedFailure r{record.episode, record.seed, record.axes, f, "", StillBefore(dir, folder / "stills", f.decided_at_s)};
       const std::filesystem::path clip = folder / ("clip_" + f.item + ".mp4");
       try {
         sim::CutVideo(options.video, dir / clip, std::max(0.0, f.at_s - before_s), before_s + after_s);

@@ -6,6 +6,7 @@
 /// DIR/review.json for the report; the clips and replays lie in DIR/replays/<episode>/.
 
 #include <cstdint>
+#include <optional>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -25,6 +26,9 @@ struct ItemFailure {
   std::string item;
   cell::ItemOutcome outcome = cell::ItemOutcome::kLeftOnTable;
   double at_s = 0;
+  /// When the cell last decided about it (its last attempt began, or it was left alone); null when it
+  /// never did.
+  std::optional<double> decided_at_s;
   std::vector<std::string> log;  ///< The item's attempts in words, in order (or why it never had one).
 };
 
@@ -41,7 +45,8 @@ struct ReviewedFailure {
   uint64_t seed = 0;
   nlohmann::json axes;
   ItemFailure failure;
-  std::string clip;  ///< Relative to the sweep folder; empty when none could be cut.
+  std::string clip;   ///< Relative to the sweep folder; empty when none could be cut.
+  std::string still;  ///< The Kinect still of the decision (relative), empty when none.
 };
 
 struct SweepReview {

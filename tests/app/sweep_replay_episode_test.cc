@@ -43,6 +43,10 @@ TEST(SweepReplay, AFailedEpisodeIsReviewedWithAClipAndReplayedExactly) {
   EXPECT_EQ(f["clip"], "replays/000000/clip_plate1.mp4");
   EXPECT_GT(std::filesystem::file_size(sweep / "replays/000000/clip_plate1.mp4"), 10000u);
   EXPECT_GT(std::filesystem::file_size(sweep / "replays/000000/episode.mp4"), 10000u);
+  EXPECT_EQ(f["decided_at_s"], f["at_s"]);  // Left alone when first seen: decided and failed at once.
+  ASSERT_TRUE(f["still"].is_string());
+  EXPECT_EQ(f["still"].get<std::string>().rfind("replays/000000/stills/still_", 0), 0u) << f.dump();
+  EXPECT_TRUE(std::filesystem::exists(sweep / f["still"].get<std::string>()));
 
   // The report page, opened in headless Chromium: no console error, the table filters, the clip plays;
   // its screenshot is kept in the build folder (test_output/).
