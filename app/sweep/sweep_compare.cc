@@ -94,14 +94,25 @@ std::string HtmlEscaped(const std::string& text) {
   return out;
 }
 
-// A link to episode `episode`'s folder of sweep `dir`, or the plain label when the sweep did not keep it.
-std::string EpisodeLink(const std::filesystem::path& dir, int episode, const std::filesystem::path& page_dir,
-                        const std::string& label) {
-  const std::filesystem::path folder = dir / fmt::format("episodes/{:06d}", episode);
+// A link to what sweep `dir` kept of one item: its failure (or its episode's row) on the sweep's report
+// page, else the episode's metrics.json; the plain label when the sweep kept neither.
+std::string ItemLink(const std::filesystem::path& dir, const ItemChange& change, cell::ItemOutcome outcome,
+                     const std::filesystem::path& page_dir) {
+  const std::string label = cell::ToString(outcome);
   std::error_code ec;
-  if (!std::filesystem::is_directory(folder, ec)) return HtmlEscaped(label) + " (not kept)";
-  const std::filesystem::path target = std::filesystem::relative(folder / "metrics.json", page_dir, ec);
-  return fmt::format("<a href=\"{}\">{}</a>", HtmlEscaped((ec ? folder / "metrics.json" : target).generic_string()),
+  std::filesystem::path target;
+  std::string anchor;
+  if (std::filesystem::is_regular_file(dir / "report/index.html", ec)) {
+    target = dir / "report/index.html";
+    anchor = outcome == cell::ItemOutcome::kSorted ? fmt::format("#episode-{}", change.episode)
+                                                   : fmt::format("#failure-{}-{}", change.episode, change.item);
+  } else if (std::filesystem::is_directory(dir / fmt::format("episodes/{:06d}", change.episode), ec)) {
+    target = dir / fmt::format("episodes/{:06d}/metrics.json", change.episode);
+  } else {
+    return HtmlEscaped(label) + " (not kept)";
+  }
+  const std::filesystem::path relative = std::filesystem::relative(target, page_dir, ec);
+  return fmt::format("<a href=\"{}{}\">{}</a>", HtmlEscaped((ec ? target : relative).generic_string()), HtmlEscaped(anchor),
                      HtmlEscaped(label));
 }
 
@@ -243,8 +254,7 @@ std::string ComparisonHtml(const SweepComparison& c, const std::filesystem::path
     html += fmt::format("<tr class=\"{}\"><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>\n",
                         better ? "better" : (worse ? "worse" : ""), ch.episode, ch.seed,
                         HtmlEscaped(AxesText(ch.axes).substr(ch.axes.empty() ? 0 : 2)), HtmlEscaped(ch.item),
-                        EpisodeLink(a, ch.episode, page_dir, cell::ToString(ch.before)),
-                        EpisodeLink(b, ch.episode, page_dir, cell::ToString(ch.after)));
+                        ItemLink(a, ch, ch.before, page_dir), ItemLink(b, ch, ch.after, page_dir));
   }
   html += "</table>\n</body></html>\n";
   return html;

@@ -70,7 +70,8 @@ std::string ComparisonText(const SweepComparison& c, const std::filesystem::path
 nlohmann::json ComparisonJson(const SweepComparison& c, const std::filesystem::path& a, const std::filesystem::path& b);
 
 /// A self-contained HTML page of the comparison (no scripts, no network), each changed item linked
-/// to both episodes' folders (relative to `page_dir`) where the sweeps kept them.
+/// (relative to `page_dir`) in both sweeps to its failure or its episode on the sweep's report page
+/// (`sortcell report`), else to the episode's metrics.json where the sweep kept it.
 std::string ComparisonHtml(const SweepComparison& c, const std::filesystem::path& a, const std::filesystem::path& b,
                            const std::filesystem::path& page_dir);
 

@@ -130,6 +130,8 @@ TEST(SweepCompare, TheCommandPrintsWritesThePageAndRefusesWhatIsNoSweep) {
   const auto a = WriteSweep(tmp.path() / "a", Sweep(8, 4));
   const auto b = WriteSweep(tmp.path() / "b", Sweep(8, 0));
   std::filesystem::create_directories(b / "episodes/000002");  // Kept by sweep B only.
+  std::filesystem::create_directories(a / "report");
+  std::ofstream(a / "report/index.html") << "<html></html>";  // A's report page.
   std::ofstream(a / "spec.yaml") << "episodes: 8\n";
   std::ofstream(b / "spec.yaml") << "episodes: 8\n# --set model=other.json\n";
   const auto r = sortcell_test::RunSortcell("compare " + a.string() + " " + b.string() + " --out " +
@@ -139,7 +141,8 @@ TEST(SweepCompare, TheCommandPrintsWritesThePageAndRefusesWhatIsNoSweep) {
   EXPECT_NE(r.out.find("spec.yaml differ"), std::string::npos) << r.out;
   const std::string html = sortcell_test::ReadFile((tmp.path() / "cmp/compare.html").string());
   EXPECT_NE(html.find("<a href=\"../b/episodes/000002/metrics.json\">sorted</a>"), std::string::npos) << html;
-  EXPECT_NE(html.find("dropped (not kept)"), std::string::npos);
+  EXPECT_NE(html.find("<a href=\"../a/report/index.html#failure-2-cup2\">dropped</a>"), std::string::npos) << html;
+  EXPECT_NE(html.find("sorted (not kept)"), std::string::npos);  // B kept episode 2 only.
   EXPECT_TRUE(std::filesystem::exists(tmp.path() / "cmp/compare.json"));
 
   sortcell_test::ExpectOneLineError(
