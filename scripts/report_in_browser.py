@@ -143,10 +143,18 @@ CLIP_CHECK = """(async () => {
 })()"""
 
 
+def save_screenshot(page, box, path):
+    shot = page.call("Page.captureScreenshot", format="png", captureBeyondViewport=True, clip=dict(box, scale=1))
+    with open(path, "wb") as f:
+        f.write(base64.b64decode(shot["data"]))
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("page", help="a report's index.html")
     parser.add_argument("--screenshot", help="PNG of the whole page")
+    parser.add_argument("--failure-screenshot", help="PNG of the first failure shown with its still")
+    parser.add_argument("--height", type=int, default=0, help="cut --screenshot to this many pixels (0: all)")
     parser.add_argument("--chromium", default=shutil.which("chromium") or "chromium")
     parser.add_argument("--timeout", type=float, default=60.0, help="seconds for each step")
     args = parser.parse_args()
@@ -168,11 +176,19 @@ def main():
                  "filter": page.evaluate(FILTER_CHECK), "clips": page.evaluate(CLIP_CHECK)}
         if args.screenshot:
             size = page.evaluate("({w: document.documentElement.scrollWidth, h: document.documentElement.scrollHeight})")
-            shot = page.call("Page.captureScreenshot", format="png", captureBeyondViewport=True,
-                             clip={"x": 0, "y": 0, "width": size["w"], "height": size["h"], "scale": 1})
-            with open(args.screenshot, "wb") as f:
-                f.write(base64.b64decode(shot["data"]))
+            height = min(size["h"], args.height) if args.height > 0 else size["h"]
+            save_screenshot(page, {"x": 0, "y": 0, "width": size["w"], "height": height}, args.screenshot)
             found["screenshot"] = args.screenshot
+        if args.failure_screenshot:
+            box = page.evaluate("""(() => {
+              const f = [...document.querySelectorAll('.failure')].find(d => d.querySelector('img.still'));
+              if (!f) return null;
+              const r = f.getBoundingClientRect();
+              return {x: r.x + window.scrollX, y: r.y + window.scrollY, width: r.width, height: r.height};
+            })()""")
+            if box:
+                save_screenshot(page, box, args.failure_screenshot)
+                found["failure_screenshot"] = args.failure_screenshot
         found["errors"] = page.errors()
     finally:
         page.close()
