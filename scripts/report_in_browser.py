@@ -15,11 +15,13 @@ import argparse
 import base64
 import json
 import os
+import queue
 import re
 import shutil
 import subprocess
 import sys
 import tempfile
+import threading
 import time
 import urllib.request
 
@@ -37,11 +39,16 @@ class Page:
              "--remote-debugging-port=0", "--user-data-dir=" + self.profile, "--window-size=1280,900",
              "about:blank"],
             stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+        # Chromium's stderr is read to its end by a thread of its own (a full pipe would stop it), and
+        # its lines handed over until the one that gives the DevTools port.
+        lines = queue.Queue()
+        threading.Thread(target=lambda: [lines.put(l) for l in self.proc.stderr], daemon=True).start()
         port = None
         deadline = time.time() + timeout_s
         while time.time() < deadline and port is None:
-            line = self.proc.stderr.readline()
-            if not line and self.proc.poll() is not None:
+            try:
+                line = lines.get(timeout=max(0.1, deadline - time.time()))
+            except queue.Empty:
                 break
             m = re.search(r"DevTools listening on ws://[^:]+:(\d+)/", line)
             if m:

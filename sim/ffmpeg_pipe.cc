@@ -40,6 +40,51 @@ std::string LastLine(const std::filesystem::path& file) {
   return last;
 }
 
+// Starts ffmpeg with `args`, its stdin from `stdin_fd` (-1: none), its stdout to /dev/null and its
+// stderr into a temporary file (`messages`, empty if none could be made). Returns posix_spawnp's error.
+int StartFfmpeg(std::vector<std::string> args, int stdin_fd, pid_t& child, std::filesystem::path& messages) {
+  std::vector<char*> argv;
+  for (auto& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  const int messages_fd = TemporaryFile(messages);
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  if (stdin_fd >= 0) posix_spawn_file_actions_adddup2(&actions, stdin_fd, STDIN_FILENO);
+  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, "/dev/null", O_WRONLY, 0);
+  if (messages_fd >= 0) posix_spawn_file_actions_adddup2(&actions, messages_fd, STDERR_FILENO);
+  const int spawned = posix_spawnp(&child, "ffmpeg", &actions, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  if (messages_fd >= 0) close(messages_fd);
+  if (spawned != 0) {
+    child = -1;
+    std::error_code ignored;
+    if (!messages.empty()) std::filesystem::remove(messages, ignored);
+    messages.clear();
+  }
+  return spawned;
+}
+
+// Waits for ffmpeg `child` and removes its messages file. @throws as Failure(path, ...), with ffmpeg's
+// last message, when it failed.
+void FinishFfmpeg(pid_t child, std::filesystem::path& messages, const std::filesystem::path& path) {
+  int status = 0;
+  pid_t waited = -1;
+  do {
+    waited = waitpid(child, &status, 0);
+  } while (waited < 0 && errno == EINTR);
+  const int wait_error = errno;
+  const std::string message = messages.empty() ? "" : LastLine(messages);
+  std::error_code ignored;
+  if (!messages.empty()) std::filesystem::remove(messages, ignored);
+  messages.clear();
+  if (waited < 0) throw Failure(path, std::string("ffmpeg's end not seen: ") + std::strerror(wait_error));
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+    const std::string how = WIFEXITED(status) ? fmt::format("ffmpeg failed (exit {})", WEXITSTATUS(status))
+                                              : std::string("ffmpeg was killed");
+    throw Failure(path, message.empty() ? how : how + ": " + message);
+  }
+}
+
 }  // namespace
 
 FfmpegPipe::FfmpegPipe(const std::filesystem::path& path, int width, int height, double fps)
@@ -54,25 +99,12 @@ FfmpegPipe::FfmpegPipe(const std::filesystem::path& path, int width, int height,
                                    "-pix_fmt", "bgr24", "-s", size, "-r", rate, "-i", "pipe:0",
                                    "-c:v", "libx264", "-pix_fmt", "yuv420p", "-movflags", "+faststart",
                                    path.string()};
-  std::vector<char*> argv;
-  for (auto& a : args) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  const int messages = TemporaryFile(messages_);
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_adddup2(&actions, fds[0], STDIN_FILENO);
-  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, "/dev/null", O_WRONLY, 0);
-  if (messages >= 0) posix_spawn_file_actions_adddup2(&actions, messages, STDERR_FILENO);
-  const int spawned = posix_spawnp(&child_, "ffmpeg", &actions, nullptr, argv.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
+  const int spawned = StartFfmpeg(args, fds[0], child_, messages_);
   close(fds[0]);
-  if (messages >= 0) close(messages);
   if (spawned != 0) {
     close(fds[1]);
-    child_ = -1;
     std::error_code ignored;
     std::filesystem::remove(path, ignored);
-    if (!messages_.empty()) std::filesystem::remove(messages_, ignored);
     throw Failure(path, std::string("cannot start ffmpeg (install Debian's ffmpeg): ") + std::strerror(spawned));
   }
   fd_ = fds[1];
@@ -105,55 +137,23 @@ void FfmpegPipe::Close() {
   if (fd_ >= 0) close(fd_);
   fd_ = -1;
   if (child_ < 0) return;
-  int status = 0;
-  pid_t waited = -1;
-  do {
-    waited = waitpid(child_, &status, 0);
-  } while (waited < 0 && errno == EINTR);
-  const int wait_error = errno;
+  const pid_t child = child_;
   child_ = -1;
-  const std::string message = messages_.empty() ? "" : LastLine(messages_);
-  std::error_code ignored;
-  if (!messages_.empty()) std::filesystem::remove(messages_, ignored);
-  messages_.clear();
-  if (waited < 0) throw Failure(path_, std::string("ffmpeg's end not seen: ") + std::strerror(wait_error));
-  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
-    const std::string how = WIFEXITED(status) ? fmt::format("ffmpeg failed (exit {})", WEXITSTATUS(status))
-                                              : std::string("ffmpeg was killed");
-    throw Failure(path_, message.empty() ? how : how + ": " + message);
-  }
+  FinishFfmpeg(child, messages_, path_);
 }
 
 void CutVideo(const std::filesystem::path& in, const std::filesystem::path& out, double start_s, double length_s) {
   std::vector<std::string> args = {"ffmpeg", "-nostdin", "-loglevel", "error", "-y", "-ss", fmt::format("{:.3f}", start_s),
                                    "-i", in.string(), "-t", fmt::format("{:.3f}", length_s), "-an", "-c:v", "libx264",
                                    "-pix_fmt", "yuv420p", "-movflags", "+faststart", out.string()};
-  std::vector<char*> argv;
-  for (auto& a : args) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  std::filesystem::path messages_file;
-  const int messages = TemporaryFile(messages_file);
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, "/dev/null", O_WRONLY, 0);
-  if (messages >= 0) posix_spawn_file_actions_adddup2(&actions, messages, STDERR_FILENO);
   pid_t child = -1;
-  const int spawned = posix_spawnp(&child, "ffmpeg", &actions, nullptr, argv.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
-  if (messages >= 0) close(messages);
-  int status = 0;
-  pid_t waited = -1;
-  if (spawned == 0) {
-    do {
-      waited = waitpid(child, &status, 0);
-    } while (waited < 0 && errno == EINTR);
-  }
-  const std::string message = messages_file.empty() ? "" : LastLine(messages_file);
-  std::error_code ignored;
-  if (!messages_file.empty()) std::filesystem::remove(messages_file, ignored);
+  std::filesystem::path messages;
+  const int spawned = StartFfmpeg(args, -1, child, messages);
   if (spawned != 0) throw Failure(out, std::string("cannot start ffmpeg (install Debian's ffmpeg): ") + std::strerror(spawned));
-  if (waited < 0 || !WIFEXITED(status) || WEXITSTATUS(status) != 0) {
-    throw Failure(out, "ffmpeg could not cut '" + in.string() + "'" + (message.empty() ? "" : ": " + message));
+  try {
+    FinishFfmpeg(child, messages, out);
+  } catch (const std::runtime_error& e) {
+    throw std::runtime_error(std::string(e.what()) + " (cutting '" + in.string() + "')");
   }
 }
 

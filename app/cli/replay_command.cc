@@ -32,10 +32,7 @@ void AddReplayCommand(CLI::App& app, std::function<int()>& run) {
   cmd->callback([&run, o] {
     run = [o] {
       const ReplayResult r = ReplayEpisode(*o);
-      std::string axes;
-      for (const auto& [name, value] : r.recorded.axes.items()) {
-        axes += ", " + name + "=" + (value.is_string() ? value.get<std::string>() : value.dump());
-      }
+      const std::string axes = r.recorded.axes.empty() ? "" : ", " + AxesText(r.recorded.axes);
       std::printf("Episode %d (seed %llu%s) replayed into %s: ", o->episode,
                   static_cast<unsigned long long>(r.recorded.seed), axes.c_str(), r.out.string().c_str());
       if (r.matches) {

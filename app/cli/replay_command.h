@@ -1,6 +1,6 @@
 #pragma once
 /// @file
-/// `sortcell replay DIR --episode N [--video F.mp4] [--out DIR2]`: one episode of a sweep run again
+/// `sortcell replay DIR --episode N [--video F.mp4] [--stills DIR3] [--out DIR2]`: one episode of a sweep run again
 /// exactly, and its record checked against the sweep's (app/sweep/sweep_replay.h). Exit code 0 when they
 /// match, 1 when they differ (each difference printed), 2 when it cannot be replayed (the reason named).
 

@@ -74,8 +74,9 @@ void AddSweepCommand(CLI::App& app, std::function<int()>& run, const std::vector
                   (o->out / "summary.md").string().c_str());
       if (*review) {
         const SweepReview v = ReviewSweep(o->out);
-        const std::string mismatches =
+        std::string mismatches =
             v.mismatches.empty() ? "" : "; " + std::to_string(v.mismatches.size()) + " replays did NOT match their records";
+        if (!v.not_replayed.empty()) mismatches += "; " + std::to_string(v.not_replayed.size()) + " episodes could not be replayed";
         std::printf("Review: %d episodes with a failed item replayed with video, %zu failed items each told in words with "
                     "a clip (%s)%s.\n",
                     v.episodes_replayed, v.failures.size(), (o->out / "review.json").string().c_str(), mismatches.c_str());

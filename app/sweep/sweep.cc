@@ -1,8 +1,6 @@
 #include "app/sweep/sweep.h"
 
-#include <fcntl.h>
 #include <signal.h>
-#include <sys/prctl.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -34,6 +32,7 @@
 #include "app/sweep/sweep_record.h"
 #include "app/sweep/sweep_report.h"
 #include "app/sweep/sweep_spec.h"
+#include "app/sweep/worker_process.h"
 #include "perception/recognition_model.h"
 #include "sim/model.h"
 
@@ -162,13 +161,6 @@ long PeakMemoryKb(pid_t pid) {
 }
 
 // waitpid for `pid`, again when a signal (the sweep's SIGINT/SIGTERM) interrupts it.
-int WaitFor(pid_t pid) {
-  int status = 0;
-  while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
-  }
-  return status;
-}
-
 // A SIGINT or SIGTERM asks the sweep to stop: set by the handler, read by the runner's loop.
 volatile std::sig_atomic_t g_stop_signal = 0;
 extern "C" void RequestStop(int signal) { g_stop_signal = signal; }
@@ -214,31 +206,6 @@ std::map<std::string, std::string> ModelDigests(const SweepSpec& spec, const std
   return digests;
 }
 
-// Starts `sortcell episode` with `args`; its output goes to `log`.
-pid_t Spawn(const std::vector<std::string>& args, const std::filesystem::path& log) {
-  std::vector<char*> argv;
-  for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
-  argv.push_back(nullptr);
-  const std::string log_path = log.string();
-  const pid_t pid = fork();
-  if (pid < 0) throw std::runtime_error("sweep: cannot start a worker process (fork failed)");
-  if (pid == 0) {
-    // A worker dies with the sweep (no orphans writing into a folder that a --resume reuses), and a
-    // terminal's Ctrl-C reaches the sweep only, which ends its workers itself.
-    prctl(PR_SET_PDEATHSIG, SIGKILL);
-    setpgid(0, 0);
-    const int fd = open(log_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    if (fd >= 0) {
-      dup2(fd, 1);
-      dup2(fd, 2);
-      close(fd);
-    }
-    execv("/proc/self/exe", argv.data());
-    _exit(127);
-  }
-  return pid;
-}
-
 std::string ModelOf(const SweepSetup& s, const Worker& w) {
   return w.axes.contains("model") ? w.axes["model"].get<std::string>() : s.model.string();
 }
@@ -280,7 +247,7 @@ Worker StartEpisode(const SweepSetup& s, int episode) {
   w.arguments = EpisodeArguments(s, w);
   w.model_digest = s.model_digests.at(ModelOf(s, w));
   w.started = WallClock::now();
-  w.pid = Spawn(w.arguments, w.dir / "log.txt");
+  w.pid = SpawnSelf(w.arguments, w.dir / "log.txt");
   return w;
 }
 

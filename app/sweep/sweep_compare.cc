@@ -65,16 +65,9 @@ void PairItems(const SweepRecord& a, const SweepRecord& b, SweepComparison& c) {
   c.items_unpaired += static_cast<int>(in_b.size());
 }
 
-std::string AxesText(const nlohmann::json& axes) {
-  std::string text;
-  for (const auto& [name, value] : axes.items()) {
-    text += fmt::format(", {}={}", name, value.is_string() ? value.get<std::string>() : value.dump());
-  }
-  return text;
-}
-
 std::string Verdict(const SweepComparison& c) {
-  if (c.sorted_only_in_a == c.sorted_only_in_b) return "no difference";
+  if (c.sorted_only_in_a + c.sorted_only_in_b == 0) return "no difference";
+  if (c.sorted_only_in_a == c.sorted_only_in_b) return "as many items changed each way: no difference in rate";
   const char* better = c.sorted_only_in_b > c.sorted_only_in_a ? "B" : "A";
   return c.significant ? fmt::format("{} sorts more, significant at 5 %", better)
                        : fmt::format("{} sorts more, not significant at 5 %", better);
@@ -166,21 +159,7 @@ SweepComparison CompareSweepRecords(const std::vector<SweepRecord>& a, const std
 }
 
 SweepComparison CompareSweepFolders(const std::filesystem::path& a, const std::filesystem::path& b) {
-  std::vector<SweepRecord> records[2];
-  const std::filesystem::path dirs[2] = {a, b};
-  for (int i = 0; i < 2; ++i) {
-    const std::filesystem::path file = dirs[i] / "results.jsonl";
-    std::error_code ec;
-    if (!std::filesystem::is_regular_file(file, ec)) {
-      throw std::invalid_argument("'" + dirs[i].string() + "': not a sweep folder (no results.jsonl)");
-    }
-    SweepResults results = ReadSweepResults(file);
-    if (!results.damaged.empty()) {
-      throw std::invalid_argument(results.damaged.front() + " (run `sortcell sweep --resume` on '" + dirs[i].string() +
-                                  "' first: its episode would be missing from the pairing)");
-    }
-    records[i] = std::move(results.records);
-  }
+  const std::vector<SweepRecord> records[2] = {ReadSweepFolder(a), ReadSweepFolder(b)};
   SweepComparison c = CompareSweepRecords(records[0], records[1]);
   std::error_code ec;
   if (std::filesystem::exists(a / "spec.yaml", ec) && std::filesystem::exists(b / "spec.yaml", ec)) {
@@ -201,7 +180,7 @@ std::string ComparisonText(const SweepComparison& c, const std::filesystem::path
   if (c.specs_differ) text += "The folders' spec.yaml differ (overrides or an edited spec); episodes checked one by one.\n";
   text += fmt::format("Items that changed outcome: {}\n", c.changed.size());
   for (const auto& ch : c.changed) {
-    text += fmt::format("  episode {} (seed {}{}): {}: {} -> {}\n", ch.episode, ch.seed, AxesText(ch.axes), ch.item,
+    text += fmt::format("  episode {} (seed {}{}{}): {}: {} -> {}\n", ch.episode, ch.seed, ch.axes.empty() ? "" : ", ", AxesText(ch.axes), ch.item,
                         cell::ToString(ch.before), cell::ToString(ch.after));
   }
   return text;
@@ -253,7 +232,7 @@ std::string ComparisonHtml(const SweepComparison& c, const std::filesystem::path
     const bool better = ch.after == cell::ItemOutcome::kSorted, worse = ch.before == cell::ItemOutcome::kSorted;
     html += fmt::format("<tr class=\"{}\"><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>\n",
                         better ? "better" : (worse ? "worse" : ""), ch.episode, ch.seed,
-                        HtmlEscaped(AxesText(ch.axes).substr(ch.axes.empty() ? 0 : 2)), HtmlEscaped(ch.item),
+                        HtmlEscaped(AxesText(ch.axes)), HtmlEscaped(ch.item),
                         ItemLink(a, ch, ch.before, page_dir), ItemLink(b, ch, ch.after, page_dir));
   }
   html += "</table>\n</body></html>\n";

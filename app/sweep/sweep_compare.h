@@ -57,9 +57,8 @@ double ExactMcNemarP(int b, int c);
 SweepComparison CompareSweepRecords(const std::vector<SweepRecord>& a, const std::vector<SweepRecord>& b);
 
 /// Reads `<dir>/results.jsonl` of both folders and compares them.
-/// @throws std::invalid_argument naming the folder when it has no results.jsonl or a damaged line
-///         (its episode would be missing from the pairing: `sweep --resume` first), and as
-///         CompareSweepRecords.
+/// @throws std::invalid_argument as ReadSweepFolder (a damaged line's episode would be missing from the
+///         pairing) and as CompareSweepRecords.
 SweepComparison CompareSweepFolders(const std::filesystem::path& a, const std::filesystem::path& b);
 
 /// The comparison in words, for the terminal: both rates, the paired test and its verdict, then each

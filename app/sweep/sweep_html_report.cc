@@ -51,15 +51,11 @@ std::filesystem::path ChartJsFile() {
 
 nlohmann::json ReportData(const std::filesystem::path& dir) {
   std::error_code ec;
-  for (const char* needed : {"summary.json", "results.jsonl"}) {
-    if (!std::filesystem::is_regular_file(dir / needed, ec)) {
-      throw std::invalid_argument("'" + dir.string() + "': not a finished sweep folder (no " + needed + ")");
-    }
+  if (!std::filesystem::is_regular_file(dir / "summary.json", ec)) {
+    throw std::invalid_argument("'" + dir.string() + "': not a finished sweep folder (no summary.json)");
   }
-  const SweepResults results = ReadSweepResults(dir / "results.jsonl");
-  if (!results.damaged.empty()) throw std::invalid_argument(results.damaged.front() + " (run `sortcell sweep --resume` first)");
   nlohmann::json episodes = nlohmann::json::array();
-  for (const auto& r : results.records) episodes.push_back(EpisodeRow(r));
+  for (const auto& r : ReadSweepFolder(dir)) episodes.push_back(EpisodeRow(r));
   std::sort(episodes.begin(), episodes.end(),
             [](const nlohmann::json& a, const nlohmann::json& b) { return a["episode"] < b["episode"]; });
   const std::filesystem::path review = dir / "review.json";
@@ -73,8 +69,16 @@ std::string ReportPage(const nlohmann::json& data) {
   std::string page = ReadTextFile(std::filesystem::path(DataDir()) / "web/sweep_report.html");
   const size_t at = page.find(kPlaceholder);
   if (at == std::string::npos) throw std::runtime_error("report template: no " + std::string(kPlaceholder) + " in it");
-  std::string json = data.dump();
-  for (size_t i = json.find("</"); i != std::string::npos; i = json.find("</", i + 3)) json.replace(i, 2, "<\\/");
+  // Every '<' as \u003c (inside JSON strings, the only place one can be): no "</script>" and no "<!--"
+  // can change how the HTML parser reads the data's script element.
+  std::string json;
+  for (char c : data.dump()) {
+    if (c == '<') {
+      json += "\\u003c";
+    } else {
+      json += c;
+    }
+  }
   return page.replace(at, std::string(kPlaceholder).size(), json);
 }
 

@@ -21,7 +21,8 @@ std::filesystem::path ChartJsFile();
 ///         damaged line in results.jsonl.
 nlohmann::json ReportData(const std::filesystem::path& dir);
 
-/// The page with `data` in it (the JSON's "</" written "<\/", so that no value can end its script).
+/// The page with `data` in it (every '<' of the JSON written \u003c, so that no value can end its script
+/// or change how the HTML parser reads it).
 /// @throws std::runtime_error if the template (web/sweep_report.html under the data folder) is missing.
 std::string ReportPage(const nlohmann::json& data);
 

@@ -165,6 +165,27 @@ void ReadSummaryAndItems(const nlohmann::json& json, EpisodeSummary& summary, st
   }
 }
 
+std::vector<SweepRecord> ReadSweepFolder(const std::filesystem::path& dir) {
+  const std::filesystem::path file = dir / "results.jsonl";
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(file, ec)) {
+    throw std::invalid_argument("'" + dir.string() + "': not a sweep folder (no results.jsonl)");
+  }
+  SweepResults results = ReadSweepResults(file);
+  if (!results.damaged.empty()) {
+    throw std::invalid_argument(results.damaged.front() + " (run `sortcell sweep --resume` on '" + dir.string() + "' first)");
+  }
+  return std::move(results.records);
+}
+
+std::string AxesText(const nlohmann::json& axes) {
+  std::string text;
+  for (const auto& [name, value] : axes.items()) {
+    text += (text.empty() ? "" : ", ") + name + "=" + (value.is_string() ? value.get<std::string>() : value.dump());
+  }
+  return text;
+}
+
 SweepResults ReadSweepResults(const std::filesystem::path& file) {
   SweepResults results;
   std::error_code ec;

@@ -7,6 +7,7 @@
 ///
 /// A line, as written (keys as in every results.jsonl so far, so old result folders still read):
 ///   {"episode": 3, "seed": 3, "axes": {"objects": 5}, "wall_time_s": 6.6, "status": "ok",
+///    "replay": {"arguments": [...], "build": "...", "model_digest": "..."},
 ///    "summary": {...metrics.json's summary...}, "items": [...metrics.json's items...]}
 ///   {"episode": 4, ..., "status": "crashed" | "timeout", "exit_code": 2, "signal": 9, "error": "..."}
 /// (exit_code or signal as the worker ended; error: the last line of its log).
@@ -95,6 +96,15 @@ struct SweepResults {
 /// or not a record) is listed in `damaged`, not read.
 /// @throws std::runtime_error "cannot read '<file>'" if it exists but cannot be read.
 SweepResults ReadSweepResults(const std::filesystem::path& file);
+
+/// The records of sweep folder `dir`'s results.jsonl, for the commands that read a finished sweep
+/// (report, replay, compare, review).
+/// @throws std::invalid_argument "'<dir>': not a sweep folder (no results.jsonl)", or the first damaged
+///         line's message with the advice to `sweep --resume` first.
+std::vector<SweepRecord> ReadSweepFolder(const std::filesystem::path& dir);
+
+/// An episode's axis values as text: "objects=5, placement=dense" ("" for none).
+std::string AxesText(const nlohmann::json& axes);
 
 /// Appends records to results.jsonl, one line each, flushed as written.
 class SweepResultsWriter {

@@ -1,33 +1,28 @@
 #include "app/sweep/sweep_replay.h"
 
-#include <fcntl.h>
-#include <spawn.h>
 #include <sys/wait.h>
 
 #include <spdlog/fmt/fmt.h>
 
 #include <algorithm>
-#include <cerrno>
 #include <stdexcept>
 
 #include "app/common/build_identity.h"
 #include "app/common/output_dir.h"
-
-extern char** environ;
+#include "app/sweep/worker_process.h"
 
 namespace sortcell::app {
 namespace {
 
 constexpr size_t kMostDifferences = 20;
 
-const SweepRecord& RecordOf(const SweepResults& results, const ReplayOptions& o, const std::filesystem::path& file) {
-  const auto it = std::find_if(results.records.begin(), results.records.end(),
-                               [&](const SweepRecord& r) { return r.episode == o.episode; });
-  if (it != results.records.end()) return *it;
+SweepRecord RecordOf(const std::vector<SweepRecord>& records, const ReplayOptions& o, const std::filesystem::path& file) {
+  const auto it = std::find_if(records.begin(), records.end(), [&](const SweepRecord& r) { return r.episode == o.episode; });
+  if (it != records.end()) return *it;
   int last = -1;
-  for (const auto& r : results.records) last = std::max(last, r.episode);
+  for (const auto& r : records) last = std::max(last, r.episode);
   throw std::invalid_argument(fmt::format("episode {}: not in '{}' ({} records, episodes 0-{})", o.episode,
-                                          file.string(), results.records.size(), last));
+                                          file.string(), records.size(), last));
 }
 
 // The model file the record's arguments name.
@@ -69,29 +64,17 @@ void CheckReplayable(const SweepRecord& r, const std::filesystem::path& dir) {
   }
 }
 
-// Runs this executable with `args` (argv[0] included), its output into `log`; returns the wait status.
-int RunSelf(const std::vector<std::string>& args, const std::filesystem::path& log) {
-  std::vector<char*> argv;
-  for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
-  argv.push_back(nullptr);
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, 1, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  posix_spawn_file_actions_adddup2(&actions, 1, 2);
-  pid_t pid = 0;
-  const int error = posix_spawn(&pid, "/proc/self/exe", &actions, nullptr, argv.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
-  if (error != 0) throw std::runtime_error("replay: cannot start the episode (posix_spawn: error " + std::to_string(error) + ")");
-  int status = 0;
-  while (waitpid(pid, &status, 0) < 0) {
-    if (errno != EINTR) throw std::runtime_error("replay: lost the episode's process (waitpid failed)");
-  }
-  return status;
-}
-
 std::string ValueText(const nlohmann::json& j, const std::string& pointer) {
+  if (pointer.size() >= 2 && pointer.compare(pointer.size() - 2, 2, "/-") == 0) return "(none)";  // Appended.
   const nlohmann::json::json_pointer p(pointer);
   return j.contains(p) ? j.at(p).dump() : "(none)";
+}
+
+// One JSON patch operation of the sweep's record into the replay's, in words.
+std::string DifferenceText(const nlohmann::json& sweep, const nlohmann::json& op) {
+  const std::string path = op["path"].get<std::string>();
+  const std::string replay = op.contains("value") ? op["value"].dump() : "(none)";
+  return fmt::format("{}: sweep {}, replay {}", path, ValueText(sweep, path), replay);
 }
 
 }  // namespace
@@ -111,25 +94,20 @@ std::vector<std::string> RecordDifferences(const nlohmann::json& sweep, const nl
   std::vector<std::string> differences;
   for (const auto& op : nlohmann::json::diff(a, b)) {
     if (differences.size() == kMostDifferences) break;
-    const std::string path = op["path"].get<std::string>();
-    differences.push_back(fmt::format("{}: sweep {}, replay {}", path, ValueText(a, path), ValueText(b, path)));
+    differences.push_back(DifferenceText(a, op));
   }
   return differences;
 }
 
 ReplayResult ReplayEpisode(const ReplayOptions& o) {
-  const std::filesystem::path file = o.sweep_dir / "results.jsonl";
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(file, ec)) {
-    throw std::invalid_argument("'" + o.sweep_dir.string() + "': not a sweep folder (no results.jsonl)");
-  }
   ReplayResult result;
-  result.recorded = RecordOf(ReadSweepResults(file), o, file);
+  result.recorded = RecordOf(ReadSweepFolder(o.sweep_dir), o, o.sweep_dir / "results.jsonl");
+  std::error_code ec;
   CheckReplayable(result.recorded, o.sweep_dir);
   result.out = o.out.empty() ? o.sweep_dir / fmt::format("replays/{:06d}", o.episode) : o.out;
   PrepareOutputDir(result.out);
   std::filesystem::remove(result.out / "metrics.json", ec);
-  const int status = RunSelf(ReplayArguments(result.recorded, o, result.out), result.out / "log.txt");
+  const int status = WaitFor(SpawnSelf(ReplayArguments(result.recorded, o, result.out), result.out / "log.txt"));
   const std::filesystem::path metrics = result.out / "metrics.json";
   if (!WIFEXITED(status) || WEXITSTATUS(status) != 0 || !std::filesystem::exists(metrics, ec)) {
     throw std::runtime_error(fmt::format("replay of episode {} failed ({} {}); its log: {}", o.episode,
@@ -138,7 +116,11 @@ ReplayResult ReplayEpisode(const ReplayOptions& o) {
                                          (result.out / "log.txt").string()));
   }
   SweepRecord replayed = result.recorded;
-  ReadSummaryAndItems(nlohmann::json::parse(ReadTextFile(metrics)), replayed.summary, replayed.items);
+  try {
+    ReadSummaryAndItems(nlohmann::json::parse(ReadTextFile(metrics)), replayed.summary, replayed.items);
+  } catch (const std::exception& e) {
+    throw std::runtime_error("'" + metrics.string() + "': " + e.what());
+  }
   result.differences = RecordDifferences(nlohmann::json(result.recorded), nlohmann::json(replayed));
   result.matches = result.differences.empty();
   return result;

@@ -33,7 +33,8 @@ struct ReplayResult {
   std::vector<std::string> differences;
 };
 
-/// The worker arguments of a record with `--out` (and `--video` when given) added: what the replay runs.
+/// The worker arguments of a record with `--out` (and `--video`, `--stills` when given) added: what the
+/// replay runs.
 std::vector<std::string> ReplayArguments(const SweepRecord& record, const ReplayOptions& options,
                                          const std::filesystem::path& out);
 

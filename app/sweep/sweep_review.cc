@@ -4,6 +4,7 @@
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
@@ -83,6 +84,60 @@ std::string StillBefore(const std::filesystem::path& dir, const std::filesystem:
   return best.empty() ? "" : (stills / best).generic_string();
 }
 
+// A file name made of the item's name (letters, digits, '-', '_' and '.' kept; anything else '_').
+std::string FileSafe(const std::string& name) {
+  std::string safe = name;
+  for (char& c : safe) {
+    if (!std::isalnum(static_cast<unsigned char>(c)) && c != '-' && c != '_' && c != '.') c = '_';
+  }
+  return safe;
+}
+
+std::vector<AttemptLogEntry> AttemptsOf(const std::filesystem::path& metrics_file) {
+  try {
+    const auto metrics = nlohmann::json::parse(ReadTextFile(metrics_file));
+    std::vector<AttemptLogEntry> attempts;
+    const auto& list = metrics.at("attempts");
+    for (size_t i = 0; i < list.size(); ++i) {
+      try {
+        attempts.push_back(list[i].get<AttemptLogEntry>());
+      } catch (const std::invalid_argument& e) {
+        throw std::invalid_argument("attempts[" + std::to_string(i) + "]." + e.what());
+      }
+    }
+    return attempts;
+  } catch (const std::exception& e) {
+    throw std::runtime_error("'" + metrics_file.string() + "': " + e.what());
+  }
+}
+
+// Replays one episode with video and stills and adds its failures, each with its still and clip.
+void ReviewEpisode(const std::filesystem::path& dir, const SweepRecord& record, double before_s, double after_s,
+                   SweepReview& review) {
+  ReplayOptions options;
+  options.sweep_dir = dir;
+  options.episode = record.episode;
+  const std::filesystem::path folder = fmt::format("replays/{:06d}", record.episode);
+  std::filesystem::remove_all(dir / folder);  // No still or clip of an earlier replay may be taken for this one's.
+  options.video = dir / folder / "episode.mp4";
+  options.stills = dir / folder / "stills";
+  const ReplayResult replay = ReplayEpisode(options);
+  ++review.episodes_replayed;
+  if (!replay.matches) review.mismatches.push_back(fmt::format("episode {}: {}", record.episode, replay.differences.front()));
+  const auto attempts = AttemptsOf(replay.out / "metrics.json");
+  for (const auto& f : FailuresOf(record.items, attempts, record.summary.run.sim_time_s)) {
+    ReviewedFailure r{record.episode, record.seed, record.axes, f, "", StillBefore(dir, folder / "stills", f.decided_at_s)};
+    const std::filesystem::path clip = folder / ("clip_" + FileSafe(f.item) + ".mp4");
+    try {
+      sim::CutVideo(options.video, dir / clip, std::max(0.0, f.at_s - before_s), before_s + after_s);
+      r.clip = clip.generic_string();
+    } catch (const std::runtime_error& e) {
+      spdlog::warn("review: no clip of {} in episode {}: {}", f.item, record.episode, e.what());
+    }
+    review.failures.push_back(r);
+  }
+}
+
 }  // namespace
 
 std::string AttemptInWords(const AttemptLogEntry& a, int number) {
@@ -137,36 +192,24 @@ nlohmann::json ReviewJson(const SweepReview& review) {
                         {"log", r.failure.log}, {"clip", r.clip}, {"still", r.still},
                         {"decided_at_s", OrNull(r.failure.decided_at_s)}});
   }
-  return {{"episodes_replayed", review.episodes_replayed}, {"mismatches", review.mismatches}, {"failures", failures}};
+  return {{"episodes_replayed", review.episodes_replayed},
+          {"mismatches", review.mismatches},
+          {"not_replayed", review.not_replayed},
+          {"failures", failures}};
 }
 
 SweepReview ReviewSweep(const std::filesystem::path& dir, double before_s, double after_s) {
   SweepReview review;
-  for (const auto& record : ReadSweepResults(dir / "results.jsonl").records) {
+  for (const auto& record : ReadSweepFolder(dir)) {
     const bool failed = std::any_of(record.items.begin(), record.items.end(),
                                     [](const ItemResult& i) { return i.outcome != cell::ItemOutcome::kSorted; });
     if (!record.ok() || !failed) continue;
-    ReplayOptions options;
-    options.sweep_dir = dir;
-    options.episode = record.episode;
-    const std::filesystem::path folder = fmt::format("replays/{:06d}", record.episode);
-    options.video = dir / folder / "episode.mp4";
-    options.stills = dir / folder / "stills";
-    const ReplayResult replay = ReplayEpisode(options);
-    ++review.episodes_replayed;
-    if (!replay.matches) review.mismatches.push_back(fmt::format("episode {}: {}", record.episode, replay.differences.front()));
-    const auto metrics = nlohmann::json::parse(ReadTextFile(replay.out / "metrics.json"));
-    const auto attempts = metrics.at("attempts").get<std::vector<AttemptLogEntry>>();
-    for (const auto& f : FailuresOf(record.items, attempts, record.summary.run.sim_time_s)) {
-      ReviewedFailure r{record.episode, record.seed, record.axes, f, "", StillBefore(dir, folder / "stills", f.decided_at_s)};
-      const std::filesystem::path clip = folder / ("clip_" + f.item + ".mp4");
-      try {
-        sim::CutVideo(options.video, dir / clip, std::max(0.0, f.at_s - before_s), before_s + after_s);
-        r.clip = clip.generic_string();
-      } catch (const std::runtime_error& e) {
-        spdlog::warn("review: no clip of {} in episode {}: {}", f.item, record.episode, e.what());
-      }
-      review.failures.push_back(r);
+    try {
+      ReviewEpisode(dir, record, before_s, after_s, review);
+    } catch (const std::exception& e) {  // One episode that cannot be replayed costs its own review only.
+      const std::string episode = fmt::format("episode {}", record.episode), why = e.what();
+      review.not_replayed.push_back(why.rfind(episode, 0) == 0 ? why : episode + ": " + why);
+      spdlog::warn("review: {}", review.not_replayed.back());
     }
   }
   std::stable_sort(review.failures.begin(), review.failures.end(),

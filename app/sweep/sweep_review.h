@@ -55,11 +55,15 @@ struct SweepReview {
   /// Replays whose record did not match the sweep's ("episode 4: /items/0/outcome: ..."); their clips
   /// still show what the replay did.
   std::vector<std::string> mismatches;
+  /// Episodes that could not be replayed ("episode 4: <why>": another build, a changed model, a record
+  /// from before replays, a replay that failed); the rest are reviewed all the same.
+  std::vector<std::string> not_replayed;
 };
 
-/// Replays each episode of `dir` with a failed item (with video), cuts a clip of `before_s` + `after_s`
-/// around each failure and writes DIR/review.json. Episodes that crashed or timed out are not replayed.
-/// @throws as ReplayEpisode, and std::runtime_error if review.json cannot be written.
+/// Replays each episode of `dir` with a failed item (with video and stills), cuts a clip of `before_s` +
+/// `after_s` around each failure and writes DIR/review.json. Episodes that crashed or timed out are not
+/// replayed; one that cannot be replayed is listed in `not_replayed` and the review goes on.
+/// @throws as ReadSweepFolder, and std::runtime_error if review.json cannot be written.
 SweepReview ReviewSweep(const std::filesystem::path& dir, double before_s = 3, double after_s = 3);
 
 nlohmann::json ReviewJson(const SweepReview& review);

@@ -28,7 +28,7 @@ std::filesystem::path SweepFolder(const std::filesystem::path& dir) {
     r.seed = 40 + e;
     r.axes = {{"placement", "dense"}};
     ItemResult item;
-    item.name = e ? "</script><b>cup" : "ball";
+    item.name = e ? "</script><b>cup" : "<!--<script>ball";
     item.outcome = e ? cell::ItemOutcome::kDropped : cell::ItemOutcome::kSorted;
     r.items = {item};
     r.summary = SummarizeEpisode(r.items, 1, 1, RunFigures{});
@@ -53,6 +53,7 @@ TEST(SweepHtmlReport, TheDataAreTheFoldersInEpisodeOrder) {
   ASSERT_EQ(data["episodes"].size(), 2u);
   EXPECT_EQ(data["episodes"][0]["episode"], 0);
   EXPECT_EQ(data["episodes"][1]["items"][0], nlohmann::json({"</script><b>cup", "dropped"}));
+  EXPECT_EQ(data["episodes"][0]["items"][0], nlohmann::json({"<!--<script>ball", "sorted"}));
   EXPECT_TRUE(data["review"].is_null());
   std::ofstream(dir / "review.json") << R"({"failures": []})";
   EXPECT_TRUE(ReportData(dir)["review"].is_object());
@@ -62,7 +63,9 @@ TEST(SweepHtmlReport, NoValueClosesThePagesScript) {
   const TempDir tmp;
   const std::string page = ReportPage(ReportData(SweepFolder(tmp.path() / "sweep")));
   EXPECT_EQ(page.find("</script><b>"), std::string::npos);
-  EXPECT_NE(page.find(R"(<\/script><b>cup)"), std::string::npos);
+  EXPECT_EQ(page.find("<!--<script>"), std::string::npos);
+  EXPECT_NE(page.find(R"(\u003c/script>\u003cb>cup)"), std::string::npos);
+  EXPECT_NE(page.find(R"(\u003c!--\u003cscript>ball)"), std::string::npos);
   EXPECT_EQ(page.find("/*SORTCELL_DATA*/"), std::string::npos);
 }
 

@@ -3,11 +3,14 @@
 // attempt log read back strictly.
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <string>
 #include <vector>
 
 #include "app/episode/episode_metrics.h"
+#include "app/sweep/sweep_record.h"
 #include "app/sweep/sweep_review.h"
+#include "temp_dir.h"
 
 namespace sortcell::app {
 namespace {
@@ -86,6 +89,28 @@ TEST(SweepReview, TheAttemptLogReadsBackAsWritten) {
   } catch (const std::invalid_argument& e) {
     EXPECT_STREQ(e.what(), "phases[1].hold: missing");
   }
+}
+
+TEST(SweepReview, AnEpisodeThatCannotBeReplayedCostsOnlyItsOwnReview) {
+  const sortcell_test::TempDir tmp;
+  SweepRecord old;  // Written before records kept what a replay needs.
+  old.episode = 4;
+  old.items = {Item("cup", cell::ItemOutcome::kDropped, 0.3, 0.2)};
+  old.summary = SummarizeEpisode(old.items, 1, 1, RunFigures{});
+  SweepRecord fine = old;
+  fine.episode = 5;
+  fine.items[0].outcome = cell::ItemOutcome::kSorted;  // Nothing to review.
+  {
+    SweepResultsWriter writer(tmp.path() / "results.jsonl");
+    writer.Append(old);
+    writer.Append(fine);
+    writer.Close();
+  }
+  const SweepReview review = ReviewSweep(tmp.path());
+  EXPECT_EQ(review.episodes_replayed, 0);
+  ASSERT_EQ(review.not_replayed.size(), 1u);
+  EXPECT_EQ(review.not_replayed[0].find("episode 4: recorded before sweeps kept what a replay needs"), 0u) << review.not_replayed[0];
+  EXPECT_TRUE(std::filesystem::exists(tmp.path() / "review.json"));
 }
 
 }  // namespace
