@@ -59,7 +59,9 @@ nlohmann::json ReportData(const std::filesystem::path& dir) {
   std::sort(episodes.begin(), episodes.end(),
             [](const nlohmann::json& a, const nlohmann::json& b) { return a["episode"] < b["episode"]; });
   const std::filesystem::path review = dir / "review.json";
-  return {{"name", std::filesystem::absolute(dir).lexically_normal().filename().string()},
+  std::filesystem::path named = std::filesystem::absolute(dir).lexically_normal();
+  if (named.filename().empty()) named = named.parent_path();  // "DIR/" and "." name the folder too.
+  return {{"name", named.filename().string()},
           {"summary", ReadJsonFile(dir / "summary.json")},
           {"episodes", episodes},
           {"review", std::filesystem::exists(review, ec) ? ReadJsonFile(review) : nlohmann::json(nullptr)}};

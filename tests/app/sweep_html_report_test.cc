@@ -49,6 +49,8 @@ TEST(SweepHtmlReport, TheDataAreTheFoldersInEpisodeOrder) {
   const auto dir = SweepFolder(tmp.path() / "sweep");
   nlohmann::json data = ReportData(dir);
   EXPECT_EQ(data["name"], "sweep");
+  EXPECT_EQ(ReportData(dir / "")["name"], "sweep");
+  EXPECT_EQ(ReportData(dir / ".")["name"], "sweep");
   EXPECT_EQ(data["summary"]["items"], 2);
   ASSERT_EQ(data["episodes"].size(), 2u);
   EXPECT_EQ(data["episodes"][0]["episode"], 0);
