@@ -20,7 +20,7 @@ Eigen::VectorXf FeatureScaling::Apply(const Eigen::VectorXf& x) const {
     throw std::invalid_argument("feature scaling: a sample has " + std::to_string(x.size()) + " features, expected " +
                                 std::to_string(min.size()));
   }
-  return ((x - min).array() * scale.array()).matrix();
+  return ((x - min).array() * scale.array()).cwiseMax(0.0f).cwiseMin(1.0f).matrix();
 }
 
 }  // namespace sortcell::perception

@@ -14,7 +14,9 @@ struct FeatureScaling {
   /// @throws std::invalid_argument for no rows or non-finite values.
   static FeatureScaling Fit(const Eigen::MatrixXf& samples);
 
-  /// (x - min) * scale, feature by feature. Values outside the training range go outside [0, 1].
+  /// (x - min) * scale, feature by feature, clipped to [0, 1]: a feature outside the range seen in
+  /// training (a real sensor's view of a bin no simulated view filled so much) says only "more than any
+  /// training view"; unclipped it can outweigh every other feature in the RBF kernel's distance.
   /// @throws std::invalid_argument if x's size differs from the fitted one.
   Eigen::VectorXf Apply(const Eigen::VectorXf& x) const;
 };

@@ -1,5 +1,6 @@
 // SVM training, prediction, model file round trip and rejection of foreign or damaged models.
 #include "perception/recognition_model.h"
+#include "perception/feature_scaling.h"
 
 #include <gtest/gtest.h>
 
@@ -67,6 +68,28 @@ TEST(SvmClassifier, LearnsSeparableClassesWithConfidence) {
   }
   EXPECT_GE(correct, 28);
   EXPECT_EQ(m.classifier.cv_scores().size(), 4u);
+}
+
+TEST(FeatureScaling, ValuesBeyondTheTrainingRangeAreClipped) {
+  Eigen::MatrixXf samples(2, 2);
+  samples << 0, 10, 2, 20;
+  const FeatureScaling s = FeatureScaling::Fit(samples);
+  EXPECT_TRUE(s.Apply(Eigen::Vector2f(1, 15)).isApprox(Eigen::Vector2f(0.5f, 0.5f)));
+  EXPECT_TRUE(s.Apply(Eigen::Vector2f(4, 5)).isApprox(Eigen::Vector2f(1, 0)));
+}
+
+// A real sensor's view can fill one histogram bin far beyond anything seen in training; the rest of the
+// view still says what it is.
+TEST(SvmClassifier, OneFeatureFarOutsideTheTrainingRangeDoesNotDecide) {
+  const RecognitionModel m = TrainedModel();
+  const Data test = Blobs(308, 10, 3);
+  int correct = 0;
+  for (int r = 0; r < test.x.rows(); ++r) {
+    Eigen::VectorXf x = test.x.row(r).transpose();
+    x[(test.y[r] + 1) % 3] = 1000.0f;  // Another class's feature, a thousand times its usual value.
+    correct += m.classifier.Predict(x).label == test.y[r];
+  }
+  EXPECT_GE(correct, 28);
 }
 
 TEST(SvmClassifier, TiesInAccuracyGoToTheLargestHeldOutMargin) {
