@@ -69,16 +69,14 @@ bool NearItem(const AttemptLogEntry& a, const ItemResult& item) {
   return std::hypot(a.xy[0] - item.final_xyz[0], a.xy[1] - item.final_xyz[1]) < kSameClusterM;
 }
 
-// The last still taken at or before `decided_at_s` (relative to `dir`), or "".
-std::string StillBefore(const std::filesystem::path& dir, const std::filesystem::path& stills,
-                        const std::optional<double>& decided_at_s) {
-  if (!decided_at_s) return "";
+// The last still taken at or before `at_s` (relative to `dir`), or "".
+std::string StillBefore(const std::filesystem::path& dir, const std::filesystem::path& stills, double at_s) {
   std::string best;
   std::error_code ec;
   for (const auto& entry : std::filesystem::directory_iterator(dir / stills, ec)) {
     const std::string name = entry.path().filename().string();
     long long ms = 0;
-    if (std::sscanf(name.c_str(), "still_%lld.png", &ms) != 1 || ms > std::llround(1000 * *decided_at_s)) continue;
+    if (std::sscanf(name.c_str(), "still_%lld.png", &ms) != 1 || ms > std::llround(1000 * at_s)) continue;
     if (name > best) best = name;  // Zero-padded: the latest sorts last.
   }
   return best.empty() ? "" : (stills / best).generic_string();
@@ -126,7 +124,9 @@ void ReviewEpisode(const std::filesystem::path& dir, const SweepRecord& record, 
   if (!replay.matches) review.mismatches.push_back(fmt::format("episode {}: {}", record.episode, replay.differences.front()));
   const auto attempts = AttemptsOf(replay.out / "metrics.json");
   for (const auto& f : FailuresOf(record.items, attempts, record.summary.run.sim_time_s)) {
-    ReviewedFailure r{record.episode, record.seed, record.axes, f, "", StillBefore(dir, folder / "stills", f.decided_at_s)};
+    // Never decided about: the cell's last look before it failed shows where it was left.
+    const std::string still = StillBefore(dir, folder / "stills", f.decided_at_s.value_or(f.at_s));
+    ReviewedFailure r{record.episode, record.seed, record.axes, f, "", still};
     const std::filesystem::path clip = folder / ("clip_" + FileSafe(f.item) + ".mp4");
     try {
       sim::CutVideo(options.video, dir / clip, std::max(0.0, f.at_s - before_s), before_s + after_s);

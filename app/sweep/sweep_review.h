@@ -46,7 +46,9 @@ struct ReviewedFailure {
   nlohmann::json axes;
   ItemFailure failure;
   std::string clip;   ///< Relative to the sweep folder; empty when none could be cut.
-  std::string still;  ///< The Kinect still of the decision (relative), empty when none.
+  /// The Kinect still of the last decision about it (relative), or, for an item never decided about, of
+  /// the cell's last look before it failed; empty when none.
+  std::string still;
 };
 
 struct SweepReview {
