@@ -14,14 +14,14 @@ namespace sortcell::app {
 namespace {
 
 SortRate RateOf(const std::vector<SweepRecord>& records) {
-  SortRate r;
+  ItemTally tally;  // Counted as the sweep's summary counts them.
   for (const auto& record : records) {
     if (!record.ok()) continue;
-    for (const auto& item : record.items) {
-      ++r.items;
-      if (item.outcome == cell::ItemOutcome::kSorted) ++r.sorted;
-    }
+    for (const auto& item : record.items) tally.Add(item);
   }
+  SortRate r;
+  r.items = tally.items;
+  r.sorted = tally.Count(cell::ItemOutcome::kSorted);
   if (r.items > 0) r.rate = static_cast<double>(r.sorted) / r.items;
   std::tie(r.low, r.high) = WilsonInterval(r.sorted, r.items);
   return r;

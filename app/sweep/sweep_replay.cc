@@ -35,7 +35,7 @@ std::filesystem::path ModelArgument(const SweepRecord& r) {
 }
 
 // Refuses what would not replay the same episode.
-void CheckReplayable(const SweepRecord& r, const std::filesystem::path& dir) {
+void CheckReplayable(const SweepRecord& r, const std::filesystem::path& dir, const std::string& build) {
   if (!r.ok()) {
     throw std::invalid_argument(fmt::format("episode {} {} in the sweep: no record to compare with (its log: {})",
                                             r.episode, ToString(r.status),
@@ -45,7 +45,6 @@ void CheckReplayable(const SweepRecord& r, const std::filesystem::path& dir) {
     throw std::invalid_argument(fmt::format(
         "episode {}: recorded before sweeps kept what a replay needs (arguments, build, model): sweep again", r.episode));
   }
-  const std::string build = BuildDigest();
   if (r.build != build) {
     throw std::invalid_argument(fmt::format("episode {} ran on another build (digest {}; this sortcell is {}): replay "
                                             "it with the build that ran the sweep",
@@ -100,17 +99,21 @@ std::vector<std::string> RecordDifferences(const nlohmann::json& sweep, const nl
 }
 
 ReplayResult ReplayEpisode(const ReplayOptions& o) {
+  return ReplayRecord(RecordOf(ReadSweepFolder(o.sweep_dir), o, o.sweep_dir / "results.jsonl"), o, BuildDigest());
+}
+
+ReplayResult ReplayRecord(const SweepRecord& recorded, const ReplayOptions& o, const std::string& build) {
   ReplayResult result;
-  result.recorded = RecordOf(ReadSweepFolder(o.sweep_dir), o, o.sweep_dir / "results.jsonl");
+  result.recorded = recorded;
   std::error_code ec;
-  CheckReplayable(result.recorded, o.sweep_dir);
-  result.out = o.out.empty() ? o.sweep_dir / fmt::format("replays/{:06d}", o.episode) : o.out;
+  CheckReplayable(result.recorded, o.sweep_dir, build);
+  result.out = o.out.empty() ? o.sweep_dir / fmt::format("replays/{:06d}", recorded.episode) : o.out;
   PrepareOutputDir(result.out);
   std::filesystem::remove(result.out / "metrics.json", ec);
   const int status = WaitFor(SpawnSelf(ReplayArguments(result.recorded, o, result.out), result.out / "log.txt"));
   const std::filesystem::path metrics = result.out / "metrics.json";
   if (!WIFEXITED(status) || WEXITSTATUS(status) != 0 || !std::filesystem::exists(metrics, ec)) {
-    throw std::runtime_error(fmt::format("replay of episode {} failed ({} {}); its log: {}", o.episode,
+    throw std::runtime_error(fmt::format("replay of episode {} failed ({} {}); its log: {}", recorded.episode,
                                          WIFEXITED(status) ? "exit code" : "signal",
                                          WIFEXITED(status) ? WEXITSTATUS(status) : WTERMSIG(status),
                                          (result.out / "log.txt").string()));

@@ -48,4 +48,8 @@ std::vector<std::string> RecordDifferences(const nlohmann::json& sweep, const nl
 /// @throws std::runtime_error when the replayed episode itself fails (its exit status and log named).
 ReplayResult ReplayEpisode(const ReplayOptions& options);
 
+/// As ReplayEpisode, for a record already read (options.episode is not looked up) and this executable's
+/// BuildDigest() already taken: a review replays many episodes of one folder.
+ReplayResult ReplayRecord(const SweepRecord& recorded, const ReplayOptions& options, const std::string& build);
+
 }  // namespace sortcell::app

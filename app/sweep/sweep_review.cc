@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <stdexcept>
 
+#include "app/common/build_identity.h"
 #include "app/common/json_fields.h"
 #include "app/common/output_dir.h"
 #include "app/sweep/sweep_record.h"
@@ -110,8 +111,8 @@ std::vector<AttemptLogEntry> AttemptsOf(const std::filesystem::path& metrics_fil
 }
 
 // Replays one episode with video and stills and adds its failures, each with its still and clip.
-void ReviewEpisode(const std::filesystem::path& dir, const SweepRecord& record, double before_s, double after_s,
-                   SweepReview& review) {
+void ReviewEpisode(const std::filesystem::path& dir, const SweepRecord& record, const std::string& build,
+                   double before_s, double after_s, SweepReview& review) {
   ReplayOptions options;
   options.sweep_dir = dir;
   options.episode = record.episode;
@@ -119,7 +120,7 @@ void ReviewEpisode(const std::filesystem::path& dir, const SweepRecord& record, 
   std::filesystem::remove_all(dir / folder);  // No still or clip of an earlier replay may be taken for this one's.
   options.video = dir / folder / "episode.mp4";
   options.stills = dir / folder / "stills";
-  const ReplayResult replay = ReplayEpisode(options);
+  const ReplayResult replay = ReplayRecord(record, options, build);
   ++review.episodes_replayed;
   if (!replay.matches) review.mismatches.push_back(fmt::format("episode {}: {}", record.episode, replay.differences.front()));
   const auto attempts = AttemptsOf(replay.out / "metrics.json");
@@ -200,12 +201,13 @@ nlohmann::json ReviewJson(const SweepReview& review) {
 
 SweepReview ReviewSweep(const std::filesystem::path& dir, double before_s, double after_s) {
   SweepReview review;
+  const std::string build = BuildDigest();
   for (const auto& record : ReadSweepFolder(dir)) {
     const bool failed = std::any_of(record.items.begin(), record.items.end(),
                                     [](const ItemResult& i) { return i.outcome != cell::ItemOutcome::kSorted; });
     if (!record.ok() || !failed) continue;
     try {
-      ReviewEpisode(dir, record, before_s, after_s, review);
+      ReviewEpisode(dir, record, build, before_s, after_s, review);
     } catch (const std::exception& e) {  // One episode that cannot be replayed costs its own review only.
       const std::string episode = fmt::format("episode {}", record.episode), why = e.what();
       review.not_replayed.push_back(why.rfind(episode, 0) == 0 ? why : episode + ": " + why);
