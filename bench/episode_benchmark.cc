@@ -9,12 +9,15 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <vector>
 
 #include "app/recognition/default_model.h"
 #include "bench_args.h"
 #include "bench_temp_dir.h"
 #include "app/episode/episode.h"
 #include "app/common/object_set.h"
+#include "sim/model.h"
+#include "sim/object_placement.h"
 
 namespace {
 
@@ -35,6 +38,32 @@ double SweepEpisodesPerHour(const std::string& model, int episodes, int jobs) {
   }
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return episodes * 3600.0 / wall;
+}
+
+// The ceiling: MuJoCo stepping the episode's scene with its six objects standing in the workspace and
+// nothing else (no planning, control, camera or perception; the arm held up by its own bias torques,
+// which MuJoCo computes in every step anyway), the same number of steps as the episode took, with the
+// scene's solver options. Returns simulated / wall seconds.
+double RawSteppingRealTimeFactor(const std::string& scene, double steps) {
+  const sim::Model model = sim::Model::FromFile(scene);
+  sim::Data data(model);
+  sim::ResetToObserve(model, data);
+  const std::vector<std::string> objects = sim::FreeBodyNames(model);
+  for (size_t i = 0; i < objects.size(); ++i) {
+    sim::PlaceObject(model, data, model.Id(mjOBJ_BODY, objects[i]), 0.40 + 0.15 * (i % 3), -0.12 + 0.24 * (i / 3 % 2), 0.3 * i);
+  }
+  const mjModel* m = model.get();
+  const auto start = std::chrono::steady_clock::now();
+  for (long k = 0; k < static_cast<long>(steps); ++k) {
+    for (int a = 0; a < m->nu; ++a) {
+      if (m->actuator_trntype[a] == mjTRN_JOINT && m->actuator_gainprm[a * mjNGAIN] == 1 && m->actuator_biastype[a] == mjBIAS_NONE) {
+        data->ctrl[a] = data->qfrc_bias[m->jnt_dofadr[m->actuator_trnid[2 * a]]];  // A motor: hold its joint up.
+      }
+    }
+    mj_step(m, data.get());
+  }
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return steps * m->opt.timestep / wall;
 }
 
 int Run(int argc, char** argv) {
@@ -86,6 +115,10 @@ int Run(int argc, char** argv) {
     const double s = physics[stage].get<double>();
     std::printf("  %-14s %8.2f s (%4.1f %% of the steps)\n", stage, s, 100 * s / std::max(1e-9, step_s));
   }
+  const double ceiling = RawSteppingRealTimeFactor(options.scene.string(), physics["steps"].get<double>());
+  std::printf("raw MuJoCo stepping of the same scene and objects, no controller (the ceiling): RTF %.1f; "
+              "the headless episode runs at %.0f %% of it\n",
+              ceiling, 100 * headless["real_time_factor"].get<double>() / ceiling);
   std::printf("pick cycle (mean simulated s per attempt): %.2f over", headless["mean_cycle_time_s"].get<double>());
   for (const auto& [phase, seconds] : headless["cycle_phases_s"].items()) std::printf(" %s %.2f", phase.c_str(), seconds.get<double>());
   std::printf("; %.0f picks per hour\n", headless["picks_per_hour"].get<double>());

@@ -58,7 +58,12 @@ std::vector<Capsule> ArmCapsules(const robot::Joints& q, const std::optional<Hel
 
 WorkspaceView::WorkspaceView(const CameraCalibration& camera, const Eigen::Vector3d& workspace_min_W,
                              const Eigen::Vector3d& workspace_max_W)
-    : p_WC_(camera.X_WC.translation()), surface_W_(BoxSurface(workspace_min_W, workspace_max_W, kSurfaceSpacing)) {}
+    : p_WC_(camera.X_WC.translation()) {
+  for (const Eigen::Vector3d& b : BoxSurface(workspace_min_W, workspace_max_W, kSurfaceSpacing)) {
+    surface_from_camera_W_.push_back(b - p_WC_);
+    surface_range_.push_back(surface_from_camera_W_.back().norm());
+  }
+}
 
 bool WorkspaceView::ArmInView(const robot::Joints& q, const std::optional<HeldObject>& held) const {
   const Eigen::Vector3d& o = p_WC_;
@@ -72,9 +77,9 @@ bool WorkspaceView::ArmInView(const robot::Joints& q, const std::optional<HeldOb
       if (distance <= capsule.radius) return true;  // At the lens: it hides everything.
       const Eigen::Vector3d axis = (p - o) / distance;
       const double cos_cone = std::sqrt(1.0 - std::pow(capsule.radius / distance, 2));
-      for (const Eigen::Vector3d& b : surface_W_) {
-        const double range = (b - o).norm();
-        if (range > distance - capsule.radius && axis.dot(b - o) >= cos_cone * range) return true;
+      for (size_t k = 0; k < surface_range_.size(); ++k) {
+        const double range = surface_range_[k];
+        if (range > distance - capsule.radius && axis.dot(surface_from_camera_W_[k]) >= cos_cone * range) return true;
       }
     }
   }

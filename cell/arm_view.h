@@ -40,8 +40,11 @@ class WorkspaceView {
   bool ArmInView(const robot::Joints& q, const std::optional<HeldObject>& held) const;
 
  private:
-  Eigen::Vector3d p_WC_;                    // The camera.
-  std::vector<Eigen::Vector3d> surface_W_;  // Points on the box's surface.
+  Eigen::Vector3d p_WC_;  // The camera.
+  // Points on the box's surface as seen from the camera: their offsets from it (world frame) and their
+  // distances, computed once (ArmInView runs every control period of a carry).
+  std::vector<Eigen::Vector3d> surface_from_camera_W_;
+  std::vector<double> surface_range_;
 };
 
 }  // namespace sortcell::cell
