@@ -2,7 +2,10 @@
 
 #include "perception/plane_moments.h"
 
-#include <flann/flann.hpp>
+// FLANN's one index type we use, not flann.hpp: that instantiates every index type FLANN has (about
+// two thirds of this file's compile).
+#include <flann/algorithms/dist.h>
+#include <flann/algorithms/kdtree_single_index.h>
 #include <pcl/features/normal_3d.h>
 
 #include <algorithm>
@@ -142,7 +145,7 @@ std::vector<std::vector<int>> RadiusNeighbours(const Cloud& points, double radiu
   xyz.reserve(3 * points.size());
   for (const PointT& p : points) xyz.insert(xyz.end(), {p.x, p.y, p.z});
   const flann::Matrix<float> matrix(xyz.data(), points.size(), 3);
-  flann::Index<flann::L2_Simple<float>> index(matrix, flann::KDTreeSingleIndexParams(15));  // PCL's leaf size.
+  flann::KDTreeSingleIndex<flann::L2_Simple<float>> index(matrix, flann::KDTreeSingleIndexParams(15));  // PCL's leaf size.
   index.buildIndex();
   flann::SearchParams search(-1, 0, false);  // Unlimited checks, exact, unsorted (as the unsorted KdTree).
   search.max_neighbors = -1;
