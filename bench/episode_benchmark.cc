@@ -122,6 +122,15 @@ int Run(int argc, char** argv) {
   std::printf("pick cycle (mean simulated s per attempt): %.2f over", headless["mean_cycle_time_s"].get<double>());
   for (const auto& [phase, seconds] : headless["cycle_phases_s"].items()) std::printf(" %s %.2f", phase.c_str(), seconds.get<double>());
   std::printf("; %.0f picks per hour\n", headless["picks_per_hour"].get<double>());
+  if (headless["cycle_to_bound"].is_number()) {
+    std::printf("the arm's least time over the same paths (speeds and torque budget): %.2f s per item, the cycle %.2f "
+                "times it; by phase:",
+                headless["mean_cycle_bound_s"].get<double>(), headless["cycle_to_bound"].get<double>());
+    for (const auto& [phase, seconds] : headless["cycle_phases_bound_s"].items()) {
+      std::printf(" %s %.2f", phase.c_str(), seconds.get<double>());
+    }
+    std::printf("\n");
+  }
   std::printf("sweep of %d episodes (4-6 paper objects):\n", episodes);
   const double one = SweepEpisodesPerHour(model, episodes, 1);
   const double two = SweepEpisodesPerHour(model, episodes, 2);

@@ -7,6 +7,7 @@
 /// reported as `false` with the reason in failure().
 
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -26,6 +27,10 @@ struct PhaseSpan {
   double start_s = 0, end_s = 0;
   robot::HoldState hold = robot::HoldState::kMoving;
   double gap_m = 0;  ///< Between the pads.
+  /// The least time the arm could take over this phase's path, as fast as its joint speeds and torque
+  /// budget allow (robot::TimeOptimalTiming); a phase with the arm standing (the fingers, a wait)
+  /// counts as long as it took.
+  double bound_s = 0;
 };
 
 /// Motions run as one, each next one starting while the one before slows down (robot::BlendMoves):
@@ -115,7 +120,9 @@ class MotionSequencer {
   bool stopped() const { return stopped_; }
 
  private:
-  bool Phase(const std::string& name, const std::function<MotionResult()>& action);
+  /// Runs `action` as phase `name`; `bound_s`: the arm's least time for it (none: the arm stands).
+  bool Phase(const std::string& name, const std::function<MotionResult()>& action,
+             std::optional<double> bound_s = std::nullopt);
   MotionResult CloseAndSqueeze(const std::string& name);
   MotionResult MoveFingers(const std::string& name, double half_gap);
 

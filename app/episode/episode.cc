@@ -231,6 +231,7 @@ EpisodeMetrics EpisodeRun::Metrics(const cell::PolicyResult& result, double wall
   run.video_render_wall_s = rig_->video() ? rig_->video()->render_wall_s() : 0.0;
   for (int i = 0; i < mjNWARNING; ++i) run.mujoco_warnings += rig_->data()->warning[i].number;
   run.cycle_phases_s = recorder_->CyclePhases();
+  run.cycle_phases_bound_s = recorder_->CyclePhaseBounds();
   run.profile_wall_s = WallProfile(wall_s);
   run.physics_profile = PhysicsProfile();
   run.tracking_max_error_rad = rig_->cell().tracking().max_error;

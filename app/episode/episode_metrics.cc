@@ -25,6 +25,11 @@ void ItemTally::Add(const ItemResult& item) {
   if (in_a_bin && item.cycle_time_s) {
     ++completed;
     cycle_s += *item.cycle_time_s;
+    if (item.cycle_bound_s) {
+      ++bounded;
+      bounded_cycle_s += *item.cycle_time_s;
+      cycle_bound_s += *item.cycle_bound_s;
+    }
   }
 }
 
@@ -34,6 +39,10 @@ int ItemTally::Count(cell::ItemOutcome outcome) const {
 }
 
 std::optional<double> Ratio(double a, int b) { return b > 0 ? std::optional<double>(a / b) : std::nullopt; }
+
+std::optional<double> CycleToBound(const ItemTally& tally) {
+  return tally.cycle_bound_s > 0 ? std::optional<double>(tally.bounded_cycle_s / tally.cycle_bound_s) : std::nullopt;
+}
 
 std::optional<double> PicksPerHour(int sorted, double sim_time_s) {
   return sim_time_s > 0 ? std::optional<double>(3600.0 * sorted / sim_time_s) : std::nullopt;
@@ -52,6 +61,8 @@ EpisodeSummary SummarizeEpisode(const std::vector<ItemResult>& items, int attemp
   s.grasps = grasps;
   s.grasp_success_rate = Ratio(grasps, attempts);
   s.mean_cycle_time_s = Ratio(tally.cycle_s, tally.completed);
+  s.mean_cycle_bound_s = Ratio(tally.cycle_bound_s, tally.bounded);
+  s.cycle_to_bound = CycleToBound(tally);
   s.picks_per_hour = PicksPerHour(tally.Count(cell::ItemOutcome::kSorted), run.sim_time_s);
   s.run = run;
   return s;
@@ -68,7 +79,10 @@ std::string EpisodeParagraph(const EpisodeMetrics& metrics) {
   }
   text += fmt::format(". Recognition accuracy {}, grasp success {} of {} attempts, {}{}. ", rate(s.recognition_accuracy),
                       rate(s.grasp_success_rate), s.grasp_attempts,
-                      s.mean_cycle_time_s ? fmt::format("mean cycle {:.1f} s per item", *s.mean_cycle_time_s)
+                      s.mean_cycle_time_s ? fmt::format("mean cycle {:.1f} s per item", *s.mean_cycle_time_s) +
+                                                (s.cycle_to_bound ? fmt::format(" ({:.1f} times the arm's least time)",
+                                                                                *s.cycle_to_bound)
+                                                                  : std::string())
                                           : std::string("no completed pick"),
                       s.picks_per_hour ? fmt::format(" ({:.0f} picks per hour)", *s.picks_per_hour) : std::string());
   text += fmt::format("{:.1f} s simulated in {:.1f} s (real-time factor {:.1f}), perception {:.0f} ms per frame over {} "
@@ -95,6 +109,7 @@ void to_json(nlohmann::json& j, const ItemResult& v) {
        {"attempts", v.attempts},
        {"outcome", v.outcome},
        {"cycle_time_s", OrNull(v.cycle_time_s)},
+       {"cycle_bound_s", OrNull(v.cycle_bound_s)},
        {"final_xyz", v.final_xyz}};
   // Records from before the cell files (no rule bin) are written back as they were read.
   if (!v.rule_bin.empty()) {
@@ -113,6 +128,7 @@ void from_json(const nlohmann::json& j, ItemResult& v) {
   ReadField(j, "", "attempts", v.attempts);
   ReadField(j, "", "outcome", v.outcome);
   ReadNullable(j, "", "cycle_time_s", v.cycle_time_s);
+  if (j.contains("cycle_bound_s")) ReadNullable(j, "", "cycle_bound_s", v.cycle_bound_s);  // Added later.
   ReadField(j, "", "final_xyz", v.final_xyz);
   ReadAddedField(j, "", "rule_bin", v.rule_bin);
   ReadAddedField(j, "", "bin", v.bin);
@@ -130,6 +146,8 @@ void to_json(nlohmann::json& j, const EpisodeSummary& v) {
        {"grasps", v.grasps},
        {"grasp_success_rate", OrNull(v.grasp_success_rate)},
        {"mean_cycle_time_s", OrNull(v.mean_cycle_time_s)},
+       {"mean_cycle_bound_s", OrNull(v.mean_cycle_bound_s)},
+       {"cycle_to_bound", OrNull(v.cycle_to_bound)},
        {"picks_per_hour", OrNull(v.picks_per_hour)},
        // The run's own figures, flat beside the counts.
        {"status", v.run.status},
@@ -143,6 +161,7 @@ void to_json(nlohmann::json& j, const EpisodeSummary& v) {
        {"video_render_wall_s", v.run.video_render_wall_s},
        {"mujoco_warnings", v.run.mujoco_warnings},
        {"cycle_phases_s", v.run.cycle_phases_s},
+       {"cycle_phases_bound_s", v.run.cycle_phases_bound_s},
        {"profile_wall_s", v.run.profile_wall_s},
        {"physics_profile", v.run.physics_profile},
        {"tracking_max_error_rad", v.run.tracking_max_error_rad},
@@ -189,6 +208,9 @@ void from_json(const nlohmann::json& j, EpisodeSummary& v) {
   // Added later: records written before them still read.
   v.picks_per_hour = PicksPerHour(v.outcomes.at(cell::ItemOutcome::kSorted), v.run.sim_time_s);
   ReadAddedField(j, path, "cycle_phases_s", v.run.cycle_phases_s);
+  ReadAddedField(j, path, "cycle_phases_bound_s", v.run.cycle_phases_bound_s);
+  if (j.contains("mean_cycle_bound_s")) ReadNullable(j, path, "mean_cycle_bound_s", v.mean_cycle_bound_s);
+  if (j.contains("cycle_to_bound")) ReadNullable(j, path, "cycle_to_bound", v.cycle_to_bound);
   ReadAddedField(j, path, "profile_wall_s", v.run.profile_wall_s);
   ReadAddedField(j, path, "physics_profile", v.run.physics_profile);
   ReadAddedField(j, path, "tracking_max_error_rad", v.run.tracking_max_error_rad);

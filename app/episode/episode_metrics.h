@@ -25,6 +25,10 @@ struct ItemResult {
   int attempts = 0;
   cell::ItemOutcome outcome = cell::ItemOutcome::kLeftOnTable;
   std::optional<double> cycle_time_s;  ///< Null if never attempted.
+  /// The least time the arm could have taken over the same paths, as fast as its joint speeds and
+  /// torque budget allow, the fingers' phases as they ran (cell::PhaseSpan::bound_s); null if never
+  /// attempted (or in records from before it).
+  std::optional<double> cycle_bound_s;
   std::array<double, 3> final_xyz{};
   /// The bin the cell's rules send it to (an unknown object: the reject bin), and the bin it ended
   /// in (empty: none). Records from before the cell files have neither (both empty).
@@ -50,6 +54,8 @@ struct RunFigures {
   /// The pick cycle by phase: mean simulated seconds per attempt in each motion phase (approach,
   /// descend, reach, grasp, lift, carry, lower, release, retreat, home, ...).
   std::map<std::string, double> cycle_phases_s;
+  /// The same for the least time the arm could have taken over each phase's paths.
+  std::map<std::string, double> cycle_phases_bound_s;
   /// Where the wall time went (s): "physics" (steps), "kinect_render", "kinect_noise", "label_render",
   /// "cloud" (the organized cloud), "perception", "video" (review frames), "other" (the rest).
   std::map<std::string, double> profile_wall_s;
@@ -83,6 +89,9 @@ struct EpisodeSummary {
   int items_classified = 0;
   int grasp_attempts = 0, grasps = 0;
   std::optional<double> grasp_success_rate, mean_cycle_time_s;
+  /// The mean least time of the same items' cycles (ItemResult::cycle_bound_s), and the cycles' total
+  /// over the bounds' total: how many times slower than the arm could go the cell sorts.
+  std::optional<double> mean_cycle_bound_s, cycle_to_bound;
   std::optional<double> picks_per_hour;  ///< Items sorted per simulated hour (null without simulated time).
   RunFigures run;
   std::optional<CalibrationFigures> calibration;  ///< Null when the episode did not self-calibrate.
@@ -142,6 +151,8 @@ struct ItemTally {
   int unknown = 0, unknown_rejected = 0, unknown_in_category_bin = 0, known = 0, known_rejected = 0;
   int completed = 0;   ///< Items that reached a bin (sorted or wrong_bin) with a cycle time.
   double cycle_s = 0;  ///< Their cycle times, summed.
+  int bounded = 0;          ///< Those of them with a cycle bound (records from before it have none).
+  double bounded_cycle_s = 0, cycle_bound_s = 0;  ///< Their cycle times and bounds, summed.
   OutcomeCounts outcomes;
 
   void Add(const ItemResult& item);
@@ -154,6 +165,8 @@ EpisodeSummary SummarizeEpisode(const std::vector<ItemResult>& items, int attemp
 
 /// a / b, or null when b is 0.
 std::optional<double> Ratio(double a, int b);
+/// The items' cycles over their bounds, or null without bounds.
+std::optional<double> CycleToBound(const ItemTally& tally);
 /// Items sorted per simulated hour, or null without simulated time.
 std::optional<double> PicksPerHour(int sorted, double sim_time_s);
 

@@ -126,12 +126,16 @@ void EpisodeRecorder::AttemptEnded(const cell::AttemptReport& report) {
   record.confidence = d.confidence;
   record.start_s = report.start_s;
   record.end_s = report.end_s;
+  for (const auto& span : report.phases) record.bound_s += span.bound_s;
   record.grasped = report.pick.grasped;
   record.lifted = report.pick.lifted;
   record.result = result;
   scorer_.Attempt(record);
   ++attempts_;
-  for (const auto& span : report.phases) phase_s_[span.phase] += span.end_s - span.start_s;
+  for (const auto& span : report.phases) {
+    phase_s_[span.phase] += span.end_s - span.start_s;
+    phase_bound_s_[span.phase] += span.bound_s;
+  }
   if (result == cell::AttemptResult::kReleased) ++released_;
   if (result == cell::AttemptResult::kMissed) ++missed_;
   if (result == cell::AttemptResult::kDropped) ++dropped_;
@@ -162,10 +166,18 @@ void EpisodeRecorder::AttemptEnded(const cell::AttemptReport& report) {
   log_.push_back(entry);
 }
 
-std::map<std::string, double> EpisodeRecorder::CyclePhases() const {
+namespace {
+
+std::map<std::string, double> PerAttempt(const std::map<std::string, double>& total_s, int attempts) {
   std::map<std::string, double> mean;
-  for (const auto& [phase, seconds] : phase_s_) mean[phase] = seconds / attempts_;
+  for (const auto& [phase, seconds] : total_s) mean[phase] = seconds / attempts;
   return mean;
 }
+
+}  // namespace
+
+std::map<std::string, double> EpisodeRecorder::CyclePhases() const { return PerAttempt(phase_s_, attempts_); }
+
+std::map<std::string, double> EpisodeRecorder::CyclePhaseBounds() const { return PerAttempt(phase_bound_s_, attempts_); }
 
 }  // namespace sortcell::app

@@ -50,6 +50,8 @@ class EpisodeRecorder : public cell::PolicyObserver {
   double perception_wall_s() const { return perception_wall_s_; }
   /// Mean simulated seconds per attempt in each motion phase.
   std::map<std::string, double> CyclePhases() const;
+  /// The same for the least time the arm could have taken over each phase's paths.
+  std::map<std::string, double> CyclePhaseBounds() const;
 
  private:
   void ShowObservation(const perception::Cloud& cloud, const std::vector<cell::Detection>& detections);
@@ -70,6 +72,7 @@ class EpisodeRecorder : public cell::PolicyObserver {
   Slip slip_;
   double perception_wall_s_ = 0;
   std::map<std::string, double> phase_s_;  // Simulated seconds in each phase, over every attempt.
+  std::map<std::string, double> phase_bound_s_;  // The arm's least time for each phase, over every attempt.
   int attempts_ = 0;
   int released_ = 0, missed_ = 0, dropped_ = 0, skipped_ = 0;
 };

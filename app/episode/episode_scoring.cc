@@ -57,6 +57,7 @@ void EpisodeScorer::Attempt(const AttemptRecord& attempt) {
   Track& t = tracks_[o];
   ++t.attempts;
   t.cycle_time_s += attempt.end_s - attempt.start_s;
+  t.cycle_bound_s += attempt.bound_s;
   t.predicted = attempt.predicted;
   t.confidence = attempt.confidence;
   // Put back because its bin is out of reach: it stands on the table again (whatever happened to it
@@ -109,7 +110,10 @@ std::vector<ItemResult> EpisodeScorer::Items(const sim::Data& data, const std::v
     if (in_bin) item.bin = in_bin->name;
     item.unknown = objects_[o].unknown;
     item.rejected = t.predicted && rules_.Rejects(t.confidence);
-    if (t.attempts > 0) item.cycle_time_s = t.cycle_time_s;
+    if (t.attempts > 0) {
+    item.cycle_time_s = t.cycle_time_s;
+    item.cycle_bound_s = t.cycle_bound_s;
+  }
     item.final_xyz = {p.x(), p.y(), p.z()};
     items.push_back(item);
   }

@@ -47,6 +47,7 @@ struct AttemptRecord {
   bool grasped = false;   ///< Something held when the fingers closed.
   bool lifted = false;    ///< Still held after the lift.
   cell::AttemptResult result = cell::AttemptResult::kMotionFailed;
+  double bound_s = 0;  ///< The least time the arm could have taken over the attempt's paths (cell::PhaseSpan::bound_s).
 };
 
 /// The table top's extent in x and y: an object outside it has fallen off (the table collides as an
@@ -91,7 +92,7 @@ class EpisodeScorer {
   struct Track {
     bool seen = false, unreachable = false, ungraspable = false, lifted = false;
     int attempts = 0;
-    double cycle_time_s = 0;
+    double cycle_time_s = 0, cycle_bound_s = 0;
     std::optional<std::string> predicted;
     double confidence = 0;
   };

@@ -27,6 +27,7 @@ struct Tally {
   double sim_s = 0, wall_s = 0;
   ItemTally items;
   std::map<std::string, double> phase_s;  // Simulated seconds in each pick phase, over every attempt.
+  std::map<std::string, double> phase_bound_s;  // The arm's least time in each, over every attempt.
   int saturated = 0;
   double max_error = 0;
   double slip_max_mm = 0, slip_sum_mm = 0, turn_max_deg = 0;
@@ -45,6 +46,9 @@ struct Tally {
     for (const auto& item : record.items) items.Add(item);
     const RunFigures& run = record.summary.run;
     for (const auto& [phase, mean_s] : run.cycle_phases_s) phase_s[phase] += mean_s * record.summary.grasp_attempts;
+    for (const auto& [phase, mean_s] : run.cycle_phases_bound_s) {
+      phase_bound_s[phase] += mean_s * record.summary.grasp_attempts;
+    }
     saturated += run.torque_saturated_samples;
     max_error = std::max(max_error, run.tracking_max_error_rad);
     slip_max_mm = std::max(slip_max_mm, run.carry_slip_max_mm);
@@ -58,8 +62,9 @@ struct Tally {
 struct GroupFigures {
   int episodes = 0, episodes_failed = 0, items = 0, sorted = 0, grasp_attempts = 0;
   std::optional<double> correct_sort_rate, recognition_accuracy, grasp_success_rate, mean_cycle_time_s, real_time_factor;
-  std::optional<double> picks_per_hour;
+  std::optional<double> picks_per_hour, mean_cycle_bound_s, cycle_to_bound;
   std::map<std::string, double> cycle_phases_s;  // Mean simulated seconds per attempt in each phase.
+  std::map<std::string, double> cycle_phases_bound_s;  // The arm's least time per attempt in each phase.
   int torque_saturated_samples = 0;
   double tracking_max_error_rad = 0;
   double carry_slip_max_mm = 0, carry_turn_max_deg = 0;
@@ -83,12 +88,15 @@ GroupFigures Figures(const Tally& t) {
   f.grasp_success_rate = Ratio(t.grasps, t.attempts);
   f.grasp_attempts = t.attempts;
   f.mean_cycle_time_s = Ratio(t.items.cycle_s, t.items.completed);
+  f.mean_cycle_bound_s = Ratio(t.items.cycle_bound_s, t.items.bounded);
+  f.cycle_to_bound = CycleToBound(t.items);
   f.sim_time_s = t.sim_s;
   f.episode_wall_time_s = t.wall_s;
   if (t.wall_s > 0) f.real_time_factor = t.sim_s / t.wall_s;
   f.picks_per_hour = PicksPerHour(f.sorted, t.sim_s);
   if (t.attempts > 0) {
     for (const auto& [phase, seconds] : t.phase_s) f.cycle_phases_s[phase] = seconds / t.attempts;
+    for (const auto& [phase, seconds] : t.phase_bound_s) f.cycle_phases_bound_s[phase] = seconds / t.attempts;
   }
   f.torque_saturated_samples = t.saturated;
   f.tracking_max_error_rad = t.max_error;
@@ -126,8 +134,11 @@ nlohmann::json FiguresJson(const GroupFigures& f) {
           {"grasp_success_rate", OrNull(f.grasp_success_rate)},
           {"grasp_attempts", f.grasp_attempts},
           {"mean_cycle_time_s", OrNull(f.mean_cycle_time_s)},
+          {"mean_cycle_bound_s", OrNull(f.mean_cycle_bound_s)},
+          {"cycle_to_bound", OrNull(f.cycle_to_bound)},
           {"picks_per_hour", OrNull(f.picks_per_hour)},
           {"cycle_phases_s", f.cycle_phases_s},
+          {"cycle_phases_bound_s", f.cycle_phases_bound_s},
           {"torque_saturated_samples", f.torque_saturated_samples},
           {"tracking_max_error_rad", f.tracking_max_error_rad},
           {"carry_slip_max_mm", f.carry_slip_max_mm},
@@ -229,8 +240,14 @@ std::string MarkdownPhases(const GroupFigures& all) {
   if (all.cycle_phases_s.empty()) return "";
   std::vector<std::pair<std::string, double>> phases(all.cycle_phases_s.begin(), all.cycle_phases_s.end());
   std::stable_sort(phases.begin(), phases.end(), [](const auto& a, const auto& b) { return a.second > b.second; });
-  std::string md = "Cycle by phase, mean simulated seconds per attempt:";
-  for (const auto& [phase, seconds] : phases) md += fmt::format(" {} {:.2f},", phase, seconds);
+  const bool bounded = !all.cycle_phases_bound_s.empty();
+  std::string md = std::string("Cycle by phase, mean simulated seconds per attempt") +
+                   (bounded ? " (in brackets the arm's least time over the same paths):" : ":");
+  for (const auto& [phase, seconds] : phases) {
+    const auto bound = all.cycle_phases_bound_s.find(phase);
+    md += fmt::format(" {} {:.2f}", phase, seconds) +
+          (bound != all.cycle_phases_bound_s.end() ? fmt::format(" ({:.2f}),", bound->second) : ",");
+  }
   md.back() = '.';
   md += fmt::format(" Torque-saturated control periods {}, largest tracking error {:.4f} rad.",
                    all.torque_saturated_samples, all.tracking_max_error_rad);
@@ -246,12 +263,16 @@ std::string MarkdownOverview(const SweepSpec& spec, const GroupFigures& all) {
   std::string md = fmt::format("# Sweep {}\n\n{} episodes ({} failed to run) of {} in the spec, {} items.\n\n",
                                spec.source.filename().string(), all.episodes, all.episodes_failed, spec.EpisodeCount(),
                                all.items);
-  md += "| items | correct-sort rate (95 % CI) | recognition accuracy | grasp success | mean cycle per item | picks per hour |\n"
-        "|---|---|---|---|---|---|\n";
-  md += fmt::format("| {} | {} ({:.1f}-{:.1f} %) | {} | {} | {} | {} |\n\n", all.items, Percent(all.correct_sort_rate),
+  md += "| items | correct-sort rate (95 % CI) | recognition accuracy | grasp success | mean cycle per item | "
+        "the arm's least time (cycle / it) | picks per hour |\n"
+        "|---|---|---|---|---|---|---|\n";
+  md += fmt::format("| {} | {} ({:.1f}-{:.1f} %) | {} | {} | {} | {} | {} |\n\n", all.items, Percent(all.correct_sort_rate),
                     100 * all.ci95.first, 100 * all.ci95.second, Percent(all.recognition_accuracy),
                     Percent(all.grasp_success_rate),
                     all.mean_cycle_time_s ? fmt::format("{:.1f} s", *all.mean_cycle_time_s) : "n/a",
+                    all.mean_cycle_bound_s && all.cycle_to_bound
+                        ? fmt::format("{:.1f} s (x{:.2f})", *all.mean_cycle_bound_s, *all.cycle_to_bound)
+                        : "n/a",
                     all.picks_per_hour ? fmt::format("{:.0f}", *all.picks_per_hour) : "n/a");
   md += MarkdownPhases(all);
   if (all.unknown > 0 || all.known_rejected > 0) {

@@ -76,6 +76,18 @@ TEST(EpisodeScenario, SixPaperObjectsAllSorted) {
   double phases = 0;
   for (const auto& [phase, seconds] : m["summary"]["cycle_phases_s"].items()) phases += seconds.get<double>();
   EXPECT_NEAR(phases, m["summary"]["mean_cycle_time_s"].get<double>(), 1e-6);
+  // The arm's least time over the same paths: below every motion phase, the fingers' phases as they ran.
+  double bounds = 0;
+  for (const auto& [phase, seconds] : m["summary"]["cycle_phases_bound_s"].items()) {
+    const double ran = m["summary"]["cycle_phases_s"][phase].get<double>();
+    if (phase == "grasp" || phase == "release") EXPECT_DOUBLE_EQ(seconds.get<double>(), ran) << phase;
+    else EXPECT_LT(seconds.get<double>(), ran) << phase;
+    bounds += seconds.get<double>();
+  }
+  EXPECT_NEAR(bounds, m["summary"]["mean_cycle_bound_s"].get<double>(), 1e-6);
+  EXPECT_NEAR(m["summary"]["cycle_to_bound"].get<double>(),
+              m["summary"]["mean_cycle_time_s"].get<double>() / m["summary"]["mean_cycle_bound_s"].get<double>(), 1e-9);
+  EXPECT_GT(m["summary"]["cycle_to_bound"].get<double>(), 1.0);
   EXPECT_NEAR(m["summary"]["picks_per_hour"].get<double>(), 3600.0 * 6 / m["summary"]["sim_time_s"].get<double>(), 1e-6);
   // The wall-time profile accounts for the episode's wall time, most of it in physics and capture.
   const auto& profile = m["summary"]["profile_wall_s"];

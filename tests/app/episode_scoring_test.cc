@@ -163,6 +163,26 @@ TEST(ItemTally, CountsOutcomesRecognitionAndCyclesOfItemsThatReachedABin) {
   EXPECT_FALSE(s.picks_per_hour.has_value());  // no simulated time
   run.sim_time_s = 90;
   EXPECT_DOUBLE_EQ(*SummarizeEpisode(items, 5, 3, run).picks_per_hour, 40.0);  // 1 sorted in 90 s
+  EXPECT_FALSE(s.mean_cycle_bound_s.has_value());  // no item with a bound
+  EXPECT_FALSE(s.cycle_to_bound.has_value());
+}
+
+TEST(ItemTally, TheCycleBoundCountsOnlyItemsThatReachedABinWithABound) {
+  std::vector<ItemResult> items(4);
+  for (auto& item : items) item.true_category = "cup";
+  items[0].outcome = cell::ItemOutcome::kSorted, items[0].cycle_time_s = 6, items[0].cycle_bound_s = 2;
+  items[1].outcome = cell::ItemOutcome::kWrongBin, items[1].cycle_time_s = 9, items[1].cycle_bound_s = 4;
+  items[2].outcome = cell::ItemOutcome::kDropped, items[2].cycle_time_s = 30, items[2].cycle_bound_s = 1;
+  items[3].outcome = cell::ItemOutcome::kSorted, items[3].cycle_time_s = 12;  // an old record: no bound
+  const EpisodeSummary s = SummarizeEpisode(items, 4, 4, RunFigures{});
+  EXPECT_DOUBLE_EQ(*s.mean_cycle_time_s, 9.0);
+  EXPECT_DOUBLE_EQ(*s.mean_cycle_bound_s, 3.0);
+  EXPECT_DOUBLE_EQ(*s.cycle_to_bound, 15.0 / 6.0);  // the bounded items' cycles over their bounds
+  const nlohmann::json written = s;
+  EpisodeSummary back;
+  from_json(written, back);
+  EXPECT_DOUBLE_EQ(*back.mean_cycle_bound_s, 3.0);
+  EXPECT_DOUBLE_EQ(*back.cycle_to_bound, 15.0 / 6.0);
 }
 
 TEST(EpisodeMetrics, ASummaryWrittenBeforeTheCycleFiguresStillReads) {

@@ -3,8 +3,8 @@
 
 #include <random>
 
-#include "robot/ik_selection.h"
 #include "robot/torque_limited_motion.h"
+#include "tests/robot/random_poses.h"
 
 namespace sortcell::robot {
 namespace {
@@ -16,16 +16,6 @@ bool EverySampleFits(const JointTrajectory& t, const TorqueBudget& budget) {
     if (!budget.Fits(t.q[k], t.qd[k], t.qdd[k])) return false;
   }
   return true;
-}
-
-Joints RandomPoseAboveTable(std::mt19937_64& rng) {
-  std::uniform_real_distribution<double> unit(0, 1);
-  for (;;) {
-    Joints q;
-    q << 2 * M_PI * unit(rng), -M_PI * unit(rng), -2.8 + 5.6 * unit(rng), -M_PI + 2 * M_PI * unit(rng),
-        -M_PI + 2 * M_PI * unit(rng), -M_PI + 2 * M_PI * unit(rng);
-    if (LinksAboveTable(q, 0.05)) return q;
-  }
 }
 
 TEST(TorqueLimitedMotion, EveryJointMoveStaysWithinTheBudget) {
