@@ -31,8 +31,8 @@ cv::Mat DecodeJpeg(const std::vector<unsigned char>& bytes, PixelFormat format) 
     const bool grey = format == PixelFormat::kGrey8;
     image.create(height, width, grey ? CV_8UC1 : CV_8UC3);
     // Flags 0: the accurate integer DCT and smooth chroma upsampling, as OpenCV's imread decodes.
-    if (!ok(tjDecompress2(decoder, bytes.data(), bytes.size(), image.data, width, static_cast<int>(image.step),
-                          height, grey ? TJPF_GRAY : TJPF_BGR, 0))) {
+    if (!ok(tjDecompress2(decoder, bytes.data(), bytes.size(), image.data, width, static_cast<int>(image.step), height,
+                          grey ? TJPF_GRAY : TJPF_BGR, 0))) {
       image.release();
     }
   }

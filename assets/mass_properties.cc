@@ -22,7 +22,7 @@ namespace sortcell::assets {
 // det/120 (a a^T + b b^T + c c^T + s s^T), s = a + b + c.
 MassProperties MassPropertiesOf(const TriangleMesh& closed) {
   double six_volume = 0;
-  Eigen::Vector3d first = Eigen::Vector3d::Zero();  // 24 x the first moment
+  Eigen::Vector3d first = Eigen::Vector3d::Zero();   // 24 x the first moment
   Eigen::Matrix3d second = Eigen::Matrix3d::Zero();  // 120 x the second moment
   for (const auto& t : closed.triangles) {
     const Eigen::Vector3d& a = closed.vertices[t[0]];
@@ -73,7 +73,8 @@ MassProperties Combined(const std::vector<MassProperties>& parts) {
 }
 
 TriangleMesh ConvexHull(const std::vector<Eigen::Vector3d>& points) {
-  if (points.size() < 4) throw std::invalid_argument("a convex hull needs 4 points, got " + std::to_string(points.size()));
+  if (points.size() < 4)
+    throw std::invalid_argument("a convex hull needs 4 points, got " + std::to_string(points.size()));
   std::vector<double> coordinates;
   coordinates.reserve(3 * points.size());
   for (const auto& p : points) coordinates.insert(coordinates.end(), {p.x(), p.y(), p.z()});

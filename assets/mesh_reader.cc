@@ -16,8 +16,7 @@ namespace {
 // flipped to the image's top-left origin (what MuJoCo's mesh texcoords use), degenerate triangles
 // and lines/points dropped, and assimp's own consistency checks (indices in range and the like).
 constexpr unsigned kPostProcess = aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_FlipUVs |
-                                  aiProcess_FindDegenerates | aiProcess_SortByPType |
-                                  aiProcess_ValidateDataStructure;
+                                  aiProcess_FindDegenerates | aiProcess_SortByPType | aiProcess_ValidateDataStructure;
 
 [[noreturn]] void Fail(const std::string& name, const std::string& what) {
   throw std::invalid_argument("mesh '" + name + "': " + what);

@@ -84,7 +84,8 @@ void AddHulls(const TriangleMesh& mesh, const std::string& file, const ImportLim
     g.hulls.push_back(std::move(*hull));
   }
   if (dropped > 0) {
-    g.warnings.push_back("'" + file + "': " + std::to_string(dropped) + " piece(s) with no volume ignored for collision");
+    g.warnings.push_back("'" + file + "': " + std::to_string(dropped) +
+                         " piece(s) with no volume ignored for collision");
   }
 }
 
@@ -95,8 +96,14 @@ TriangleMesh Join(const TriangleMesh& a, const TriangleMesh& b) {
   out.vertices.insert(out.vertices.end(), b.vertices.begin(), b.vertices.end());
   for (const auto& t : b.triangles) out.triangles.push_back(t + Eigen::Vector3i::Constant(base));
   const bool normals = !a.normals.empty() && !b.normals.empty(), uvs = !a.uvs.empty() && !b.uvs.empty();
-  if (normals) out.normals.insert(out.normals.end(), b.normals.begin(), b.normals.end()); else out.normals.clear();
-  if (uvs) out.uvs.insert(out.uvs.end(), b.uvs.begin(), b.uvs.end()); else out.uvs.clear();
+  if (normals)
+    out.normals.insert(out.normals.end(), b.normals.begin(), b.normals.end());
+  else
+    out.normals.clear();
+  if (uvs)
+    out.uvs.insert(out.uvs.end(), b.uvs.begin(), b.uvs.end());
+  else
+    out.uvs.clear();
   return out;
 }
 
@@ -176,7 +183,8 @@ MassProperties Primitive::Mass() const {
       m.volume = 4.0 / 3 * M_PI * std::pow(s.x(), 3);
       d.setConstant(0.4 * m.volume * s.x() * s.x());
       break;
-    case UrdfShape::Kind::kMesh: return m;
+    case UrdfShape::Kind::kMesh:
+      return m;
   }
   const Eigen::Matrix3d R = shape.X_LS.linear();
   m.centroid = shape.X_LS.translation();
@@ -189,8 +197,9 @@ std::vector<Eigen::Vector3d> Primitive::ExtentPoints() const {
   const Eigen::Vector3d& s = shape.size;
   switch (shape.kind) {
     case UrdfShape::Kind::kBox:
-      for (int k = 0; k < 8; ++k) local.emplace_back(k & 1 ? s.x() / 2 : -s.x() / 2, k & 2 ? s.y() / 2 : -s.y() / 2,
-                                                     k & 4 ? s.z() / 2 : -s.z() / 2);
+      for (int k = 0; k < 8; ++k)
+        local.emplace_back(k & 1 ? s.x() / 2 : -s.x() / 2, k & 2 ? s.y() / 2 : -s.y() / 2,
+                           k & 4 ? s.z() / 2 : -s.z() / 2);
       break;
     case UrdfShape::Kind::kCylinder:
       for (int k = 0; k < kRimPoints; ++k) {
@@ -205,7 +214,8 @@ std::vector<Eigen::Vector3d> Primitive::ExtentPoints() const {
       }
       for (const double sign : {-1.0, 1.0}) local.push_back(sign * s.x() * Eigen::Vector3d::UnitZ());
       break;
-    case UrdfShape::Kind::kMesh: break;
+    case UrdfShape::Kind::kMesh:
+      break;
   }
   for (auto& p : local) p = shape.X_LS * p;
   return local;

@@ -26,12 +26,12 @@ struct Primitive {
 };
 
 struct ObjectGeometry {
-  TriangleMesh visual;                 ///< Empty when the object has no visual geometry.
-  std::filesystem::path texture;       ///< The visual's texture image, if any (absolute).
-  std::vector<TriangleMesh> hulls;     ///< Convex collision pieces.
-  std::vector<Primitive> primitives;   ///< Collision primitives.
+  TriangleMesh visual;                ///< Empty when the object has no visual geometry.
+  std::filesystem::path texture;      ///< The visual's texture image, if any (absolute).
+  std::vector<TriangleMesh> hulls;    ///< Convex collision pieces.
+  std::vector<Primitive> primitives;  ///< Collision primitives.
   std::vector<std::string> warnings;
-  std::optional<double> urdf_mass;     ///< The URDF's <inertial> mass, if it gives one.
+  std::optional<double> urdf_mass;  ///< The URDF's <inertial> mass, if it gives one.
 
   /// Every collision hull vertex and primitive extent point.
   std::vector<Eigen::Vector3d> CollisionPoints() const;

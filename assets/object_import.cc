@@ -86,7 +86,8 @@ double MassOf(const ObjectSource& source, const std::optional<double>& urdf_mass
   if (!mass) mass = urdf_mass;
   if (!mass && source.density) mass = *source.density * volume;
   const std::string file = source.file().string();
-  if (!mass) throw std::invalid_argument("object '" + source.name + "' from '" + file + "': no mass (give mass: or density:)");
+  if (!mass)
+    throw std::invalid_argument("object '" + source.name + "' from '" + file + "': no mass (give mass: or density:)");
   if (!std::isfinite(*mass) || *mass <= 0) {
     throw std::invalid_argument("object '" + source.name + "' from '" + file + "': mass must be positive, got " +
                                 std::to_string(*mass));
@@ -147,14 +148,23 @@ ImportReport MakeReport(const ObjectSource& source, const ObjectGeometry& g, con
 }
 
 nlohmann::json ReportJson(const ImportReport& r) {
-  return {{"name", r.name}, {"source", r.source}, {"collision_pieces", r.collision_pieces}, {"volume_m3", r.volume},
-          {"mass_kg", r.mass}, {"size_m", {r.size.x(), r.size.y(), r.size.z()}},
+  return {{"name", r.name},
+          {"source", r.source},
+          {"collision_pieces", r.collision_pieces},
+          {"volume_m3", r.volume},
+          {"mass_kg", r.mass},
+          {"size_m", {r.size.x(), r.size.y(), r.size.z()}},
           {"com_m", {r.com.x(), r.com.y(), r.com.z()}},
           {"principal_inertia_kgm2", {r.principal_inertia.x(), r.principal_inertia.y(), r.principal_inertia.z()}},
-          {"grip_width_m", r.grip_width}, {"graspable", r.graspable}, {"texture", r.texture}, {"warnings", r.warnings}};
+          {"grip_width_m", r.grip_width},
+          {"graspable", r.graspable},
+          {"texture", r.texture},
+          {"warnings", r.warnings}};
 }
 
-Eigen::Vector3d Vec(const nlohmann::json& j) { return {j.at(0).get<double>(), j.at(1).get<double>(), j.at(2).get<double>()}; }
+Eigen::Vector3d Vec(const nlohmann::json& j) {
+  return {j.at(0).get<double>(), j.at(1).get<double>(), j.at(2).get<double>()};
+}
 
 ImportReport ReportFromJson(const nlohmann::json& j) {
   ImportReport r;
@@ -205,8 +215,14 @@ ImportReport WriteImport(const ObjectSource& source, const ImportLimits& limits,
 std::string SourceDigest(const ObjectSource& source) {
   std::ostringstream key;
   key.precision(17);
-  key << kImporterVersion << '\n' << source.name << '\n' << source.urdf << '\n' << source.mesh << '\n' << source.scale
-      << '\n' << source.mass.value_or(-1) << '\n' << source.density.value_or(-1) << '\n' << source.friction.value_or(-1);
+  key << kImporterVersion << '\n'
+      << source.name << '\n'
+      << source.urdf << '\n'
+      << source.mesh << '\n'
+      << source.scale << '\n'
+      << source.mass.value_or(-1) << '\n'
+      << source.density.value_or(-1) << '\n'
+      << source.friction.value_or(-1);
   std::string content = key.str();
   for (const auto& file : InputFiles(source)) content += '\n' + file.string() + '\n' + FileBytes(file);
   return ContentDigest(content);

@@ -19,12 +19,12 @@ namespace sortcell::assets {
 
 /// Where an object comes from and what the user says of it (an object set's entry).
 struct ObjectSource {
-  std::string name;              ///< The body's name in the scene.
-  std::filesystem::path urdf;    ///< A one-link URDF, or
-  std::filesystem::path mesh;    ///< an OBJ or STL mesh (then `mass` or `density` is required).
-  std::optional<double> mass;    ///< kg; overrides the URDF's.
-  std::optional<double> density; ///< kg/m^3, with the collision volume, when no mass is given.
-  double scale = 1;              ///< Applied to every mesh (e.g. 0.001 for a file in millimetres).
+  std::string name;                ///< The body's name in the scene.
+  std::filesystem::path urdf;      ///< A one-link URDF, or
+  std::filesystem::path mesh;      ///< an OBJ or STL mesh (then `mass` or `density` is required).
+  std::optional<double> mass;      ///< kg; overrides the URDF's.
+  std::optional<double> density;   ///< kg/m^3, with the collision volume, when no mass is given.
+  double scale = 1;                ///< Applied to every mesh (e.g. 0.001 for a file in millimetres).
   std::optional<double> friction;  ///< Sliding friction coefficient (default: the cell's objects').
 
   /// The file it comes from (the URDF or the mesh), for messages.
@@ -34,16 +34,16 @@ struct ObjectSource {
 /// What the import did, for the user (sortcell objects check) and the log.
 struct ImportReport {
   std::string name;
-  std::string source;           ///< The URDF or mesh file.
-  int collision_pieces = 0;     ///< Convex collision geoms (mesh pieces and primitives).
-  double volume = 0;            ///< Of the collision geometry (m^3).
-  double mass = 0;              ///< kg.
+  std::string source;                              ///< The URDF or mesh file.
+  int collision_pieces = 0;                        ///< Convex collision geoms (mesh pieces and primitives).
+  double volume = 0;                               ///< Of the collision geometry (m^3).
+  double mass = 0;                                 ///< kg.
   Eigen::Vector3d size = Eigen::Vector3d::Zero();  ///< Extent of the collision geometry, body axes (m).
   Eigen::Vector3d com = Eigen::Vector3d::Zero();   ///< Centre of mass in the body frame (m).
   Eigen::Vector3d principal_inertia = Eigen::Vector3d::Zero();  ///< kg m^2, ascending.
-  double grip_width = 0;        ///< Narrowest width across the upright footprint (m).
-  bool graspable = true;        ///< grip_width fits the gripper's stroke.
-  std::string texture;          ///< The texture file used, if any.
+  double grip_width = 0;                                        ///< Narrowest width across the upright footprint (m).
+  bool graspable = true;                                        ///< grip_width fits the gripper's stroke.
+  std::string texture;                                          ///< The texture file used, if any.
   std::vector<std::string> warnings;
 };
 
@@ -56,9 +56,9 @@ struct ImportedObject {
 /// What the importer checks an object against.
 struct ImportLimits {
   double max_grip_width = robot::kMaxGap;  ///< The gripper's stroke (m).
-  double min_size = 0.005;       ///< Largest extent below this: wrong units (m).
-  double max_size = 1.0;         ///< Largest extent above this: wrong units (m).
-  int max_pieces = 64;           ///< More disconnected pieces are hulled as one, with a warning.
+  double min_size = 0.005;                 ///< Largest extent below this: wrong units (m).
+  double max_size = 1.0;                   ///< Largest extent above this: wrong units (m).
+  int max_pieces = 64;                     ///< More disconnected pieces are hulled as one, with a warning.
 };
 
 /// Imports `source` into `cache_root`/<name>-<digest>/ (object.inc.xml, visual.msh, texture.png,

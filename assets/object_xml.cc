@@ -39,7 +39,8 @@ std::string Assets(const std::string& name, const ObjectGeometry& g, const Objec
   } else {
     xml << "    <material name=\"" << name << "_material\" rgba=\"0.7 0.7 0.7 1\" specular=\"0.3\"/>\n";
   }
-  if (!g.visual.triangles.empty()) xml << "    <mesh name=\"" << name << "_visual\" file=\"" << files.visual.string() << "\"/>\n";
+  if (!g.visual.triangles.empty())
+    xml << "    <mesh name=\"" << name << "_visual\" file=\"" << files.visual.string() << "\"/>\n";
   xml.precision(7);
   for (size_t i = 0; i < g.hulls.size(); ++i) {
     xml << "    <mesh name=\"" << name << "_piece" << i << "\" vertex=\"";
@@ -54,8 +55,8 @@ std::string Inertial(const ImportReport& r, const MassProperties& m) {
   const Eigen::Matrix3d I = m.inertia * (r.mass / m.volume);
   std::ostringstream xml;
   xml.precision(9);
-  xml << "      <inertial pos=\"" << Vector(m.centroid) << "\" mass=\"" << r.mass << "\" fullinertia=\"" << I(0, 0) << ' '
-      << I(1, 1) << ' ' << I(2, 2) << ' ' << I(0, 1) << ' ' << I(0, 2) << ' ' << I(1, 2) << "\"/>\n";
+  xml << "      <inertial pos=\"" << Vector(m.centroid) << "\" mass=\"" << r.mass << "\" fullinertia=\"" << I(0, 0)
+      << ' ' << I(1, 1) << ' ' << I(2, 2) << ' ' << I(0, 1) << ' ' << I(0, 2) << ' ' << I(1, 2) << "\"/>\n";
   return xml.str();
 }
 
@@ -65,10 +66,17 @@ std::string PrimitiveGeom(const std::string& name, const Primitive& p) {
   xml.precision(9);
   xml << "type=\"";
   switch (p.shape.kind) {
-    case UrdfShape::Kind::kBox: xml << "box\" size=\"" << Vector(s / 2); break;
-    case UrdfShape::Kind::kCylinder: xml << "cylinder\" size=\"" << s.x() << ' ' << s.y() / 2; break;
-    case UrdfShape::Kind::kSphere: xml << "sphere\" size=\"" << s.x(); break;
-    case UrdfShape::Kind::kMesh: throw std::logic_error("object '" + name + "': a mesh is not a primitive");
+    case UrdfShape::Kind::kBox:
+      xml << "box\" size=\"" << Vector(s / 2);
+      break;
+    case UrdfShape::Kind::kCylinder:
+      xml << "cylinder\" size=\"" << s.x() << ' ' << s.y() / 2;
+      break;
+    case UrdfShape::Kind::kSphere:
+      xml << "sphere\" size=\"" << s.x();
+      break;
+    case UrdfShape::Kind::kMesh:
+      throw std::logic_error("object '" + name + "': a mesh is not a primitive");
   }
   xml << "\" pos=\"" << Vector(p.shape.X_LS.translation()) << "\" quat=\"" << Quaternion(p.shape.X_LS.linear()) << "\"";
   return xml.str();
@@ -80,16 +88,16 @@ std::string Geoms(const ObjectSource& source, const ObjectGeometry& g) {
   const std::string collision_class = seen ? "object" : "object_collision";
   std::ostringstream friction;
   friction << source.friction.value_or(kDefaultFriction) << ' ' << kRollingFriction;
-  const std::string contact = "condim=\"6\" friction=\"" + friction.str() + "\"" +
-                              (seen ? " material=\"" + name + "_material\"" : "");
+  const std::string contact =
+      "condim=\"6\" friction=\"" + friction.str() + "\"" + (seen ? " material=\"" + name + "_material\"" : "");
   std::ostringstream xml;
   if (!seen) {
     xml << "      <geom name=\"" << name << "_visual\" class=\"object_visual\" type=\"mesh\" mesh=\"" << name
         << "_visual\" material=\"" << name << "_material\" mass=\"0\"/>\n";
   }
   for (size_t i = 0; i < g.hulls.size(); ++i) {
-    xml << "      <geom name=\"" << name << "_piece" << i << "\" class=\"" << collision_class << "\" type=\"mesh\" mesh=\""
-        << name << "_piece" << i << "\" " << contact << " mass=\"0\"/>\n";
+    xml << "      <geom name=\"" << name << "_piece" << i << "\" class=\"" << collision_class
+        << "\" type=\"mesh\" mesh=\"" << name << "_piece" << i << "\" " << contact << " mass=\"0\"/>\n";
   }
   for (size_t i = 0; i < g.primitives.size(); ++i) {
     xml << "      <geom name=\"" << name << "_primitive" << i << "\" class=\"" << collision_class << "\" "
@@ -106,8 +114,8 @@ std::string ParkingSpot(const std::string& name) {
   constexpr double kSpacing = 0.6;
   const size_t slot = std::hash<std::string>{}(name) % (kRows * kRows);
   std::ostringstream pos;
-  pos << -20.0 - kSpacing * static_cast<double>(slot % kRows) << ' ' << -20.0 - kSpacing * static_cast<double>(slot / kRows)
-      << " 0";
+  pos << -20.0 - kSpacing * static_cast<double>(slot % kRows) << ' '
+      << -20.0 - kSpacing * static_cast<double>(slot / kRows) << " 0";
   return pos.str();
 }
 
@@ -119,8 +127,9 @@ std::string ObjectXml(const ObjectSource& source, const ObjectGeometry& geometry
   xml << "<!-- " << source.name << ": imported by sortcell from " << report.source << " (" << report.collision_pieces
       << " convex collision pieces, " << report.mass << " kg, inertia from the collision volume). Generated: edit the "
       << "source, not this file. -->\n<mujoco>\n"
-      << Assets(source.name, geometry, files) << "  <worldbody>\n    <body name=\"" << source.name
-      << "\" pos=\"" << ParkingSpot(source.name) << "\" childclass=\"object\">\n      <freejoint name=\"" << source.name << "_free\"/>\n"
+      << Assets(source.name, geometry, files) << "  <worldbody>\n    <body name=\"" << source.name << "\" pos=\""
+      << ParkingSpot(source.name) << "\" childclass=\"object\">\n      <freejoint name=\"" << source.name
+      << "_free\"/>\n"
       << Inertial(report, unit_density) << Geoms(source, geometry) << "    </body>\n  </worldbody>\n</mujoco>\n";
   return xml.str();
 }
@@ -139,10 +148,16 @@ void WriteMsh(const TriangleMesh& mesh, const std::filesystem::path& file) {
   put_int(normals ? n : 0);
   put_int(uvs ? n : 0);
   put_int(static_cast<int32_t>(mesh.triangles.size()));
-  for (const auto& v : mesh.vertices) for (int k = 0; k < 3; ++k) put_float(v[k]);
-  if (normals) for (const auto& v : mesh.normals) for (int k = 0; k < 3; ++k) put_float(v[k]);
-  if (uvs) for (const auto& v : mesh.uvs) for (int k = 0; k < 2; ++k) put_float(v[k]);
-  for (const auto& t : mesh.triangles) for (int k = 0; k < 3; ++k) put_int(t[k]);
+  for (const auto& v : mesh.vertices)
+    for (int k = 0; k < 3; ++k) put_float(v[k]);
+  if (normals)
+    for (const auto& v : mesh.normals)
+      for (int k = 0; k < 3; ++k) put_float(v[k]);
+  if (uvs)
+    for (const auto& v : mesh.uvs)
+      for (int k = 0; k < 2; ++k) put_float(v[k]);
+  for (const auto& t : mesh.triangles)
+    for (int k = 0; k < 3; ++k) put_int(t[k]);
   out.close();
   if (!out) throw std::runtime_error("cannot write '" + file.string() + "'");
 }

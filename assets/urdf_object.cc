@@ -15,7 +15,9 @@ class UrdfReader {
  public:
   UrdfReader(std::filesystem::path folder, std::string name) : folder_(std::move(folder)), name_(std::move(name)) {}
 
-  [[noreturn]] void Fail(const std::string& what) const { throw std::invalid_argument("URDF '" + name_ + "': " + what); }
+  [[noreturn]] void Fail(const std::string& what) const {
+    throw std::invalid_argument("URDF '" + name_ + "': " + what);
+  }
 
   UrdfShape Shape(const urdf::Geometry& geometry, const urdf::Pose& origin, const std::string& where) const {
     UrdfShape shape;
@@ -119,12 +121,14 @@ UrdfObject ParseUrdfObject(const std::string& text, const std::filesystem::path&
   for (size_t i = 0; i < link.collision_array.size(); ++i) {
     const auto& collision = link.collision_array[i];
     if (!collision || !collision->geometry) reader.Fail("collision " + std::to_string(i) + " has no geometry");
-    object.collisions.push_back(reader.Shape(*collision->geometry, collision->origin, "collision " + std::to_string(i)));
+    object.collisions.push_back(
+        reader.Shape(*collision->geometry, collision->origin, "collision " + std::to_string(i)));
   }
   if (object.collisions.empty()) reader.Fail("link '" + link.name + "' has no <collision> geometry");
   if (link.inertial) {
     const double mass = link.inertial->mass;
-    if (!std::isfinite(mass) || mass <= 0) reader.Fail("mass " + std::to_string(mass) + " (expected a positive number)");
+    if (!std::isfinite(mass) || mass <= 0)
+      reader.Fail("mass " + std::to_string(mass) + " (expected a positive number)");
     object.mass = mass;
   }
   return object;

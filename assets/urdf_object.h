@@ -17,7 +17,7 @@ namespace sortcell::assets {
 struct UrdfShape {
   enum class Kind { kMesh, kBox, kCylinder, kSphere };
   Kind kind = Kind::kMesh;
-  std::filesystem::path mesh;  ///< Absolute (kMesh).
+  std::filesystem::path mesh;                       ///< Absolute (kMesh).
   Eigen::Vector3d scale = Eigen::Vector3d::Ones();  ///< Of the mesh.
   /// Box: full sizes; cylinder: (radius, length, 0) along z; sphere: (radius, 0, 0) (m).
   Eigen::Vector3d size = Eigen::Vector3d::Zero();

@@ -50,13 +50,15 @@ double RawSteppingRealTimeFactor(const std::string& scene, double steps) {
   sim::ResetToObserve(model, data);
   const std::vector<std::string> objects = sim::FreeBodyNames(model);
   for (size_t i = 0; i < objects.size(); ++i) {
-    sim::PlaceObject(model, data, model.Id(mjOBJ_BODY, objects[i]), 0.40 + 0.15 * (i % 3), -0.12 + 0.24 * (i / 3 % 2), 0.3 * i);
+    sim::PlaceObject(model, data, model.Id(mjOBJ_BODY, objects[i]), 0.40 + 0.15 * (i % 3), -0.12 + 0.24 * (i / 3 % 2),
+                     0.3 * i);
   }
   const mjModel* m = model.get();
   const auto start = std::chrono::steady_clock::now();
   for (long k = 0; k < static_cast<long>(steps); ++k) {
     for (int a = 0; a < m->nu; ++a) {
-      if (m->actuator_trntype[a] == mjTRN_JOINT && m->actuator_gainprm[a * mjNGAIN] == 1 && m->actuator_biastype[a] == mjBIAS_NONE) {
+      if (m->actuator_trntype[a] == mjTRN_JOINT && m->actuator_gainprm[a * mjNGAIN] == 1 &&
+          m->actuator_biastype[a] == mjBIAS_NONE) {
         data->ctrl[a] = data->qfrc_bias[m->jnt_dofadr[m->actuator_trnid[2 * a]]];  // A motor: hold its joint up.
       }
     }
@@ -74,7 +76,8 @@ int Run(int argc, char** argv) {
   cli.add_option("episodes", episodes, "episodes of the sweep")->check(WholeNumberAtLeast(1));
   if (const auto exit_code = ParseBenchmarkArgs(cli, argc, argv)) return *exit_code;
   const app::ObjectSet set = app::LoadObjectSet(std::string(SORTCELL_SOURCE_DIR) + "/scenes/objects/paper.yaml");
-  const std::string model = std::filesystem::absolute(model_path.empty() ? app::EnsureDefaultModel(set) : model_path).string();
+  const std::string model =
+      std::filesystem::absolute(model_path.empty() ? app::EnsureDefaultModel(set) : model_path).string();
   const std::filesystem::path out = BenchTempDir("sortcell_bench_episode");
 
   app::EpisodeOptions options;
@@ -108,24 +111,29 @@ int Run(int argc, char** argv) {
   // Inside the physics steps (MuJoCo's stage timers) and the load they work on.
   const auto& physics = headless["physics_profile"];
   const double step_s = physics["step_s"].get<double>();
-  std::printf("physics steps, headless: %.0f steps, %.1f us per step, %.1f contacts and %.1f constraint rows per step\n",
-              physics["steps"].get<double>(), 1e6 * step_s / std::max(1.0, physics["steps"].get<double>()),
-              physics["contacts_per_step"].get<double>(), physics["constraint_rows_per_step"].get<double>());
+  std::printf(
+      "physics steps, headless: %.0f steps, %.1f us per step, %.1f contacts and %.1f constraint rows per step\n",
+      physics["steps"].get<double>(), 1e6 * step_s / std::max(1.0, physics["steps"].get<double>()),
+      physics["contacts_per_step"].get<double>(), physics["constraint_rows_per_step"].get<double>());
   for (const char* stage : {"collision_s", "constraint_s", "smooth_s"}) {
     const double s = physics[stage].get<double>();
     std::printf("  %-14s %8.2f s (%4.1f %% of the steps)\n", stage, s, 100 * s / std::max(1e-9, step_s));
   }
   const double ceiling = RawSteppingRealTimeFactor(options.scene.string(), physics["steps"].get<double>());
-  std::printf("raw MuJoCo stepping of the same scene and objects, no controller (the ceiling): RTF %.1f; "
-              "the headless episode runs at %.0f %% of it\n",
-              ceiling, 100 * headless["real_time_factor"].get<double>() / ceiling);
-  std::printf("pick cycle (mean simulated s per attempt): %.2f over", headless["mean_cycle_time_s"].get<double>());
-  for (const auto& [phase, seconds] : headless["cycle_phases_s"].items()) std::printf(" %s %.2f", phase.c_str(), seconds.get<double>());
+  std::printf(
+      "raw MuJoCo stepping of the same scene and objects, no controller (the ceiling): RTF %.1f; "
+      "the headless episode runs at %.0f %% of it\n",
+      ceiling, 100 * headless["real_time_factor"].get<double>() / ceiling);
+  std::printf("pick cycle: %.2f s per item; by phase, mean simulated s per attempt:",
+              headless["mean_cycle_time_s"].get<double>());
+  for (const auto& [phase, seconds] : headless["cycle_phases_s"].items())
+    std::printf(" %s %.2f", phase.c_str(), seconds.get<double>());
   std::printf("; %.0f picks per hour\n", headless["picks_per_hour"].get<double>());
   if (headless["cycle_to_bound"].is_number()) {
-    std::printf("the arm's least time over the same paths (speeds and torque budget): %.2f s per item, the cycle %.2f "
-                "times it; by phase:",
-                headless["mean_cycle_bound_s"].get<double>(), headless["cycle_to_bound"].get<double>());
+    std::printf(
+        "the arm's least time over the same paths (speeds and torque budget): %.2f s per item, the cycle %.2f "
+        "times it; by phase:",
+        headless["mean_cycle_bound_s"].get<double>(), headless["cycle_to_bound"].get<double>());
     for (const auto& [phase, seconds] : headless["cycle_phases_bound_s"].items()) {
       std::printf(" %s %.2f", phase.c_str(), seconds.get<double>());
     }
@@ -134,10 +142,13 @@ int Run(int argc, char** argv) {
   std::printf("sweep of %d episodes (4-6 paper objects):\n", episodes);
   const double one = SweepEpisodesPerHour(model, episodes, 1);
   const double two = SweepEpisodesPerHour(model, episodes, 2);
-  std::printf("  1 worker:  %6.0f episodes/hour\n  2 workers: %6.0f episodes/hour (x%.2f)\n", one, two, one > 0 ? two / one : 0.0);
+  std::printf("  1 worker:  %6.0f episodes/hour\n  2 workers: %6.0f episodes/hour (x%.2f)\n", one, two,
+              one > 0 ? two / one : 0.0);
   return 0;
 }
 
 }  // namespace
 
-int main(int argc, char** argv) { return RunBenchmark("episode_benchmark", [&] { return Run(argc, argv); }); }
+int main(int argc, char** argv) {
+  return RunBenchmark("episode_benchmark", [&] { return Run(argc, argv); });
+}

@@ -145,8 +145,10 @@ Measured MeasureReal(const fs::path& dir) {
   Measured m;
   for (const auto& view : sortcell::app::FindRgbdObjectsViews(dir)) {
     cv::Mat bgr = sortcell::assets::ReadImage(view.crop, sortcell::assets::PixelFormat::kBgr8);
-    cv::Mat mask = sortcell::assets::ReadImage(sortcell::app::Partner(view, "maskcrop.png"), sortcell::assets::PixelFormat::kGrey8);
-    cv::Mat depth = sortcell::assets::ReadImage(sortcell::app::Partner(view, "depthcrop.png"), sortcell::assets::PixelFormat::kGrey16);
+    cv::Mat mask = sortcell::assets::ReadImage(sortcell::app::Partner(view, "maskcrop.png"),
+                                               sortcell::assets::PixelFormat::kGrey8);
+    cv::Mat depth = sortcell::assets::ReadImage(sortcell::app::Partner(view, "depthcrop.png"),
+                                                sortcell::assets::PixelFormat::kGrey16);
     if (bgr.empty() || mask.empty() || depth.empty() || mask.size() != bgr.size()) continue;
     cv::Mat rgb;
     cv::cvtColor(bgr, rgb, cv::COLOR_BGR2RGB);
@@ -190,15 +192,17 @@ Measured MeasureRender() {
 
 void Print(const char* what, const Measured& m) {
   const cv::Vec3d w = m.white.Rgb(), o = m.object.Rgb();
-  std::printf("%-22s white RGB (%5.1f %5.1f %5.1f) V %5.1f [%6.0f px] | object RGB (%5.1f %5.1f %5.1f) S %5.1f V %5.1f "
-              "[%6.0f px] | sharpness %.2f | noise %.2f levels\n",
-              what, w[0], w[1], w[2], m.white.V(), m.white.n, o[0], o[1], o[2], m.object.S(), m.object.V(), m.object.n,
-              Median(m.sharpness), Median(m.noises));
+  std::printf(
+      "%-22s white RGB (%5.1f %5.1f %5.1f) V %5.1f [%6.0f px] | object RGB (%5.1f %5.1f %5.1f) S %5.1f V %5.1f "
+      "[%6.0f px] | sharpness %.2f | noise %.2f levels\n",
+      what, w[0], w[1], w[2], m.white.V(), m.white.n, o[0], o[1], o[2], m.object.S(), m.object.V(), m.object.n,
+      Median(m.sharpness), Median(m.noises));
 }
 
 int Run(int argc, char** argv) {
   fs::path real_dir = fs::path(SORTCELL_SOURCE_DIR) / ".." / "shared" / "real" / "rgbd-object";
-  CLI::App cli("Compares the Kinect colour model's renders with real RGB-D Object Dataset views.", "kinect_colour_measure");
+  CLI::App cli("Compares the Kinect colour model's renders with real RGB-D Object Dataset views.",
+               "kinect_colour_measure");
   cli.add_option("folder", real_dir, "a folder of RGB-D Object Dataset views (default: ../shared/real/rgbd-object)");
   if (const auto exit_code = ParseBenchmarkArgs(cli, argc, argv)) return *exit_code;
   // Checked here, not by CLI11: the default folder is not a value CLI11 sees.
@@ -218,18 +222,22 @@ int Run(int argc, char** argv) {
   const cv::Vec3d wr = real.white.Rgb(), ws = render.white.Rgb();
   const double exposure = real.white.V() / render.white.V();
   const double mean_r = (wr[0] + wr[1] + wr[2]) / 3, mean_s = (ws[0] + ws[1] + ws[2]) / 3;
-  cv::Vec3d balance((wr[0] / mean_r) / (ws[0] / mean_s), (wr[1] / mean_r) / (ws[1] / mean_s), (wr[2] / mean_r) / (ws[2] / mean_s));
+  cv::Vec3d balance((wr[0] / mean_r) / (ws[0] / mean_s), (wr[1] / mean_r) / (ws[1] / mean_s),
+                    (wr[2] / mean_r) / (ws[2] / mean_s));
   balance /= (balance[0] + balance[1] + balance[2]) / 3;
   const double saturation = real.object.S() / render.object.S();
   const double blur = MatchingBlur(render.image, render.mask, Median(real.sharpness));
   const double nr = Median(real.noises), ns = Median(render.noises);
   const double noise = std::sqrt(std::max(0.0, nr * nr - ns * ns));
-  std::printf("implied colour model: exposure %.2f, white balance (%.2f %.2f %.2f), saturation %.2f, blur sigma %.2f px, "
-              "noise %.2f levels\n",
-              exposure, balance[0], balance[1], balance[2], saturation, blur, noise);
+  std::printf(
+      "implied colour model: exposure %.2f, white balance (%.2f %.2f %.2f), saturation %.2f, blur sigma %.2f px, "
+      "noise %.2f levels\n",
+      exposure, balance[0], balance[1], balance[2], saturation, blur, noise);
   return 0;
 }
 
 }  // namespace
 
-int main(int argc, char** argv) { return RunBenchmark("kinect_colour_measure", [&] { return Run(argc, argv); }); }
+int main(int argc, char** argv) {
+  return RunBenchmark("kinect_colour_measure", [&] { return Run(argc, argv); });
+}

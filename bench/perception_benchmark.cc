@@ -112,7 +112,8 @@ bool TimeOnce(const Frame& frame, const perception::Cloud& background, const per
   const auto start = Clock::now();
   const auto r = perception::SegmentObjects(*frame.cloud, frame.X_WC, &background, params);
   if (r.status != perception::SegmentationStatus::kOk) {
-    std::fprintf(stderr, "perception_benchmark: the frame '%s' does not segment: %s\n", frame.name.c_str(), r.detail.c_str());
+    std::fprintf(stderr, "perception_benchmark: the frame '%s' does not segment: %s\n", frame.name.c_str(),
+                 r.detail.c_str());
     return false;
   }
   std::vector<perception::DescriptorParts> parts;
@@ -145,7 +146,8 @@ bool TimeOnce(const Frame& frame, const perception::Cloud& background, const per
   std::vector<double>* times[3] = {&t.cluster_again, &t.cluster_unsplit, &t.cluster_pcl_normals};
   for (int k = 0; k < 3; ++k) {
     const int v = (t.round + k) % 3;
-    times[v]->push_back(perception::SegmentObjects(*frame.cloud, frame.X_WC, &background, variants[v]).timings.cluster_s);
+    times[v]->push_back(
+        perception::SegmentObjects(*frame.cloud, frame.X_WC, &background, variants[v]).timings.cluster_s);
   }
   ++t.round;
   t.crop.push_back(r.timings.crop_s);
@@ -163,32 +165,40 @@ bool TimeOnce(const Frame& frame, const perception::Cloud& background, const per
 }
 
 void PrintTable(const Frame& frame, const StageTimes& t, int repetitions, int support_vectors) {
-  std::printf("\nOne 640x480 Kinect frame of the cell's six objects, %s: %zu segments (%zu object points at full "
-              "resolution), segmented as the cell does (calibrated pose, background, convex clusters), one core, "
-              "median of %d runs, %d support vectors:\n\n",
-              frame.name.c_str(), t.objects, t.points, repetitions, support_vectors);
+  std::printf(
+      "\nOne 640x480 Kinect frame of the cell's six objects, %s: %zu segments (%zu object points at full "
+      "resolution), segmented as the cell does (calibrated pose, background, convex clusters), one core, "
+      "median of %d runs, %d support vectors:\n\n",
+      frame.name.c_str(), t.objects, t.points, repetitions, support_vectors);
   std::printf("| stage | ms per frame |\n|---|---:|\n");
   const std::pair<const char*, double> rows[] = {
-      {"crop (valid points, workspace box, background)", Median(t.crop)}, {"plane (RANSAC, points above it)", Median(t.plane)},
-      {"voxel grid (5 mm)", Median(t.voxel)},             {"convex clustering (supervoxels + LCCP + crease split)", Median(t.cluster)},
-      {"normals (all segments)", Median(t.normals)},      {"CVFH (all segments)", Median(t.cvfh)},
-      {"HSV histogram (all segments)", Median(t.hsv)},    {"SVM (all segments)", Median(t.svm)}};
+      {"crop (valid points, workspace box, background)", Median(t.crop)},
+      {"plane (RANSAC, points above it)", Median(t.plane)},
+      {"voxel grid (5 mm)", Median(t.voxel)},
+      {"convex clustering (supervoxels + LCCP + crease split)", Median(t.cluster)},
+      {"normals (all segments)", Median(t.normals)},
+      {"CVFH (all segments)", Median(t.cvfh)},
+      {"HSV histogram (all segments)", Median(t.hsv)},
+      {"SVM (all segments)", Median(t.svm)}};
   double sum = 0;
   for (const auto& [name, s] : rows) {
     std::printf("| %s | %.2f |\n", name, 1000 * s);
     sum += s;
   }
   std::printf("| **total (measured end to end)** | **%.2f** |\n", 1000 * Median(t.total));
-  std::printf("\nSum of the stages %.2f ms; the Kinect delivers a frame every 33.3 ms: the chain is %s.\n",
-              1000 * sum, Median(t.total) < 1.0 / 30 ? "inside one frame period" : "slower than the frame rate");
-  std::printf("Besides the chain, the cell's look into its bins from the same frame (height maps, cell::BinFill::See): "
-              "%.2f ms.\n", 1000 * Median(t.bins));
-  std::printf("The convex clustering timed again after the chain, in turn with two variants: as it is %.2f ms; without "
-              "its split at creases (split_at_creases off) %.2f ms (the split: %.2f ms); with PCL computing the "
-              "supervoxels' voxel normals itself (own_voxel_normals off) %.2f ms (ours save %.2f ms).\n",
-              1000 * Median(t.cluster_again), 1000 * Median(t.cluster_unsplit),
-              1000 * (Median(t.cluster_again) - Median(t.cluster_unsplit)), 1000 * Median(t.cluster_pcl_normals),
-              1000 * (Median(t.cluster_pcl_normals) - Median(t.cluster_again)));
+  std::printf("\nSum of the stages %.2f ms; the Kinect delivers a frame every 33.3 ms: the chain is %s.\n", 1000 * sum,
+              Median(t.total) < 1.0 / 30 ? "inside one frame period" : "slower than the frame rate");
+  std::printf(
+      "Besides the chain, the cell's look into its bins from the same frame (height maps, cell::BinFill::See): "
+      "%.2f ms.\n",
+      1000 * Median(t.bins));
+  std::printf(
+      "The convex clustering timed again after the chain, in turn with two variants: as it is %.2f ms; without "
+      "its split at creases (split_at_creases off) %.2f ms (the split: %.2f ms); with PCL computing the "
+      "supervoxels' voxel normals itself (own_voxel_normals off) %.2f ms (ours save %.2f ms).\n",
+      1000 * Median(t.cluster_again), 1000 * Median(t.cluster_unsplit),
+      1000 * (Median(t.cluster_again) - Median(t.cluster_unsplit)), 1000 * Median(t.cluster_pcl_normals),
+      1000 * (Median(t.cluster_pcl_normals) - Median(t.cluster_again)));
 }
 
 // Reads [--model MODEL.json] [--repetitions N]; runs every frame.
@@ -197,8 +207,10 @@ int Run(int argc, char** argv) {
   std::string model_path;
   CLI::App cli("Times the cell's perception chain (segment, describe, classify) on two Kinect frames, one core.",
                "perception_benchmark");
-  cli.add_option("--model", model_path, "a trained model (MODEL.json) instead of a stand-in SVM")->check(CLI::ExistingFile);
-  cli.add_option("--repetitions", repetitions, "timed runs per frame; the median is printed")->check(WholeNumberAtLeast(1));
+  cli.add_option("--model", model_path, "a trained model (MODEL.json) instead of a stand-in SVM")
+      ->check(CLI::ExistingFile);
+  cli.add_option("--repetitions", repetitions, "timed runs per frame; the median is printed")
+      ->check(WholeNumberAtLeast(1));
   if (const auto exit_code = ParseBenchmarkArgs(cli, argc, argv)) return *exit_code;
   const sim::Model model = sim::Model::FromFile(std::string(SORTCELL_SOURCE_DIR) + "/scenes/cell.xml");
   perception::Cloud::Ptr background;
@@ -220,4 +232,6 @@ int Run(int argc, char** argv) {
 
 }  // namespace
 
-int main(int argc, char** argv) { return RunBenchmark("perception_benchmark", [&] { return Run(argc, argv); }); }
+int main(int argc, char** argv) {
+  return RunBenchmark("perception_benchmark", [&] { return Run(argc, argv); });
+}

@@ -17,7 +17,7 @@ int main() {
     const char* bin;
     bool video;
   };
-  const Case cases[] = {{"bottle1", "bottle", false}, {"cup", "cup", false},       {"ball", "ball", false},
+  const Case cases[] = {{"bottle1", "bottle", false}, {"cup", "cup", false},        {"ball", "ball", false},
                         {"bottle2", "others", false}, {"bottle3", "others", false}, {"box", "others", false},
                         {"ball", "ball", true}};
   std::printf("| object | bin | video | status | slip (mm) | cycle (sim s) | wall (s) | real-time factor |\n");

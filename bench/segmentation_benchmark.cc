@@ -21,7 +21,6 @@
 #include <string>
 #include <vector>
 
-
 #include "bench_args.h"
 #include "assets/image_file.h"
 #include "cell/scene_observation.h"
@@ -40,9 +39,11 @@ namespace fs = std::filesystem;
 using namespace sortcell;
 
 void PrintScore(const char* name, const perception::SegmentationScore& s, double ms) {
-  std::printf("  %-14s objects %3d found %3d (%5.1f %%) merged %3d split %3d missed %3d | segments %3d | overlap P %5.1f R %5.1f F %5.1f | %6.1f ms\n",
-              name, s.objects, s.found, 100 * s.FoundRate(), s.merged, s.split, s.missed, s.segments,
-              100 * s.OverlapPrecision(), 100 * s.OverlapRecall(), 100 * s.OverlapF(), ms);
+  std::printf(
+      "  %-14s objects %3d found %3d (%5.1f %%) merged %3d split %3d missed %3d | segments %3d | overlap P %5.1f R "
+      "%5.1f F %5.1f | %6.1f ms\n",
+      name, s.objects, s.found, 100 * s.FoundRate(), s.merged, s.split, s.missed, s.segments,
+      100 * s.OverlapPrecision(), 100 * s.OverlapRecall(), 100 * s.OverlapF(), ms);
 }
 
 using Clustering = perception::SegmentationParams::Clustering;
@@ -136,8 +137,10 @@ void RunSim(const sim::Model& model, int scenes, bool verbose, const fs::path& o
   for (const sim::PlacementMode mode : {sim::PlacementMode::kDense, sim::PlacementMode::kClustered}) {
     perception::Cloud::Ptr background;
     const std::vector<SimFrame> frames = RenderScenes(model, mode, scenes, background);
-    std::printf("sim, %s scenes (%zu frames, 30 %% of bottles and boxes lying), cell segmentation "
-                "(calibrated pose, background):\n", sim::ToString(mode), frames.size());
+    std::printf(
+        "sim, %s scenes (%zu frames, 30 %% of bottles and boxes lying), cell segmentation "
+        "(calibrated pose, background):\n",
+        sim::ToString(mode), frames.size());
     for (const Clustering clustering : {Clustering::kEuclidean, Clustering::kConvex}) {
       perception::SegmentationParams params = cell::CellSegmentation(cell::CellLayout());
       params.clustering = clustering;
@@ -150,7 +153,8 @@ void RunSim(const sim::Model& model, int scenes, bool verbose, const fs::path& o
         std::vector<std::vector<int>> segments;
         for (const auto& segment : result.segments) segments.push_back(segment.indices);
         scores.push_back(perception::ScoreSegmentation(f.truth, segments, 100));
-        if (verbose && scores.back().found < scores.back().objects) PrintFailures(&f - frames.data(), f.truth, segments);
+        if (verbose && scores.back().found < scores.back().objects)
+          PrintFailures(&f - frames.data(), f.truth, segments);
         if (!overlays.empty() && clustering == Clustering::kConvex && scores.back().found < scores.back().objects) {
           const std::string name = sim::ToString(mode) + std::to_string(&f - frames.data()) + ".png";
           const fs::path file = overlays / name;
@@ -172,56 +176,62 @@ int Run(int argc, char** argv) {
   fs::path overlays;
   CLI::App cli("Scores the segmentation against the ground truth: random sim scenes and labelled real captures.",
                "segmentation_benchmark");
-  cli.add_option("folders", folders, "folders of labelled real captures (default: ../shared/real/mosd-learn, mosd-hard)");
+  cli.add_option("folders", folders,
+                 "folders of labelled real captures (default: ../shared/real/mosd-learn, mosd-hard)");
   cli.add_option("--scenes", scenes, "sim scenes of each placement (0: none)")->check(WholeNumberAtLeast(0));
   cli.add_flag("--verbose", verbose, "list the sim objects not found");
-  cli.add_option("--overlays", overlays, "write those frames' segments as images into this folder")->check(CLI::ExistingDirectory);
+  cli.add_option("--overlays", overlays, "write those frames' segments as images into this folder")
+      ->check(CLI::ExistingDirectory);
   if (const auto exit_code = ParseBenchmarkArgs(cli, argc, argv)) return *exit_code;
-  if (scenes > 0) RunSim(sim::Model::FromFile((fs::path(SORTCELL_SOURCE_DIR) / "scenes" / "cell.xml").string()), scenes, verbose, overlays);
+  if (scenes > 0)
+    RunSim(sim::Model::FromFile((fs::path(SORTCELL_SOURCE_DIR) / "scenes" / "cell.xml").string()), scenes, verbose,
+           overlays);
   if (folders.empty()) {
     const fs::path real = fs::path(SORTCELL_SOURCE_DIR) / ".." / "shared" / "real";
     folders = {real / "mosd-learn", real / "mosd-hard"};
   }
   for (const Clustering clustering : {Clustering::kEuclidean, Clustering::kConvex}) {
-  perception::SegmentationParams params;
-  params.clustering = clustering;
-  std::printf("real, %s clusters on the dominant plane (no camera pose), against the labels:\n", Name(clustering));
-  for (const fs::path& folder : folders) {
-    if (!fs::is_directory(folder)) {
-      std::fprintf(stderr, "segmentation_benchmark: '%s' is not a folder\n", folder.c_str());
-      return 2;
-    }
-    std::vector<fs::path> files;
-    for (const auto& entry : fs::directory_iterator(folder)) {
-      if (entry.path().extension() == ".pcd") files.push_back(entry.path());
-    }
-    std::sort(files.begin(), files.end());
-    std::printf("%s (%zu files)\n", folder.c_str(), files.size());
-    std::vector<perception::SegmentationScore> scores;
-    double total_ms = 0;
-    for (const fs::path& file : files) {
-      const std::vector<int> truth = perception::LoadMosdObjectIds(file);
-      const perception::Cloud::Ptr cloud = perception::LoadCloud(file, true);
-      if (truth.size() != cloud->size()) {
-        std::fprintf(stderr, "segmentation_benchmark: '%s': labels and points differ in number\n", file.c_str());
+    perception::SegmentationParams params;
+    params.clustering = clustering;
+    std::printf("real, %s clusters on the dominant plane (no camera pose), against the labels:\n", Name(clustering));
+    for (const fs::path& folder : folders) {
+      if (!fs::is_directory(folder)) {
+        std::fprintf(stderr, "segmentation_benchmark: '%s' is not a folder\n", folder.c_str());
         return 2;
       }
-      const auto start = std::chrono::steady_clock::now();
-      const perception::SegmentationResult result = perception::SegmentObjects(*cloud, std::nullopt, nullptr, params);
-      const double ms = 1000 * std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      total_ms += ms;
-      std::vector<std::vector<int>> segments;
-      for (const auto& segment : result.segments) segments.push_back(segment.indices);
-      // Objects of fewer than 100 labelled pixels (slivers behind others) are not counted.
-      scores.push_back(perception::ScoreSegmentation(truth, segments, 100));
-      PrintScore(file.filename().c_str(), scores.back(), ms);
+      std::vector<fs::path> files;
+      for (const auto& entry : fs::directory_iterator(folder)) {
+        if (entry.path().extension() == ".pcd") files.push_back(entry.path());
+      }
+      std::sort(files.begin(), files.end());
+      std::printf("%s (%zu files)\n", folder.c_str(), files.size());
+      std::vector<perception::SegmentationScore> scores;
+      double total_ms = 0;
+      for (const fs::path& file : files) {
+        const std::vector<int> truth = perception::LoadMosdObjectIds(file);
+        const perception::Cloud::Ptr cloud = perception::LoadCloud(file, true);
+        if (truth.size() != cloud->size()) {
+          std::fprintf(stderr, "segmentation_benchmark: '%s': labels and points differ in number\n", file.c_str());
+          return 2;
+        }
+        const auto start = std::chrono::steady_clock::now();
+        const perception::SegmentationResult result = perception::SegmentObjects(*cloud, std::nullopt, nullptr, params);
+        const double ms = 1000 * std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        total_ms += ms;
+        std::vector<std::vector<int>> segments;
+        for (const auto& segment : result.segments) segments.push_back(segment.indices);
+        // Objects of fewer than 100 labelled pixels (slivers behind others) are not counted.
+        scores.push_back(perception::ScoreSegmentation(truth, segments, 100));
+        PrintScore(file.filename().c_str(), scores.back(), ms);
+      }
+      PrintScore("pooled", perception::PoolScores(scores), files.empty() ? 0 : total_ms / files.size());
     }
-    PrintScore("pooled", perception::PoolScores(scores), files.empty() ? 0 : total_ms / files.size());
-  }
   }
   return 0;
 }
 
 }  // namespace
 
-int main(int argc, char** argv) { return RunBenchmark("segmentation_benchmark", [&] { return Run(argc, argv); }); }
+int main(int argc, char** argv) {
+  return RunBenchmark("segmentation_benchmark", [&] { return Run(argc, argv); });
+}

@@ -9,7 +9,7 @@
 namespace sortcell::cell {
 namespace {
 
-constexpr double kMargin = 0.02;         // Added to every capsule's radius (m).
+constexpr double kMargin = 0.02;  // Added to every capsule's radius (m).
 // Workspace surface samples this far apart (m): closer than the thinnest capsule's radius, so no
 // capsule's shadow slips between them.
 constexpr double kSurfaceSpacing = 0.03;
@@ -38,19 +38,22 @@ std::vector<Eigen::Vector3d> BoxSurface(const Eigen::Vector3d& lo, const Eigen::
 // upper arm lies 0.136 m along the joint axes from the D-H line, the forearm 0.016 m.
 std::vector<Capsule> ArmCapsules(const robot::Joints& q, const std::optional<HeldObject>& held) {
   const robot::LinkFrames X = robot::ForwardKinematicsAll(q);
-  auto at = [&](int frame, double x, double y, double z) { return Eigen::Vector3d(X[frame] * Eigen::Vector3d(x, y, z)); };
+  auto at = [&](int frame, double x, double y, double z) {
+    return Eigen::Vector3d(X[frame] * Eigen::Vector3d(x, y, z));
+  };
   std::vector<Capsule> capsules{
-      {at(0, 0, 0, 0), at(0, 0, 0, 0.12), 0.075},           // base and shoulder
-      {at(2, 0.425, 0, 0.136), at(2, 0, 0, 0.136), 0.06},  // upper arm
-      {at(2, 0, 0, 0.02), at(2, 0, 0, 0.18), 0.06},        // elbow
-      {at(3, 0.392, 0, 0.016), at(3, 0, 0, 0.016), 0.045},  // forearm
-      {at(3, 0, 0, -0.03), at(4, 0, 0, 0), 0.045},         // wrist 1
-      {at(4, 0, 0, 0), at(5, 0, 0, 0), 0.045},             // wrist 2
-      {at(5, 0, 0, 0), at(6, 0, 0, 0), 0.045},             // wrist 3
+      {at(0, 0, 0, 0), at(0, 0, 0, 0.12), 0.075},                                             // base and shoulder
+      {at(2, 0.425, 0, 0.136), at(2, 0, 0, 0.136), 0.06},                                     // upper arm
+      {at(2, 0, 0, 0.02), at(2, 0, 0, 0.18), 0.06},                                           // elbow
+      {at(3, 0.392, 0, 0.016), at(3, 0, 0, 0.016), 0.045},                                    // forearm
+      {at(3, 0, 0, -0.03), at(4, 0, 0, 0), 0.045},                                            // wrist 1
+      {at(4, 0, 0, 0), at(5, 0, 0, 0), 0.045},                                                // wrist 2
+      {at(5, 0, 0, 0), at(6, 0, 0, 0), 0.045},                                                // wrist 3
       {at(6, 0, 0, 0), at(6, 0, 0, robot::kTcpOffsetZ + robot::kFingerTipBeyondTcp), 0.075},  // gripper
   };
   if (held) {
-    capsules.push_back({at(6, 0, 0, robot::kTcpOffsetZ), at(6, 0, 0, robot::kTcpOffsetZ + held->below_tcp), held->radius});
+    capsules.push_back(
+        {at(6, 0, 0, robot::kTcpOffsetZ), at(6, 0, 0, robot::kTcpOffsetZ + held->below_tcp), held->radius});
   }
   for (auto& c : capsules) c.radius += kMargin;
   return capsules;

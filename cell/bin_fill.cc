@@ -15,8 +15,8 @@ constexpr double kTallest = 0.40;         // Higher points are not in the bin (t
 constexpr int kTopRank = 3;               // A cell's height: its 3rd-highest point (stray pixels aside).
 constexpr double kAboveContents = 0.015;  // Let go this far above what is already there (m).
 constexpr double kArmMargin = 0.02;       // Points this near the arm's capsules are the arm (m).
-constexpr double kLyingHalfWidth = 0.04;   // A lying bottle's radius and 5 mm (m): how far its axis stays from a wall.
-constexpr double kAxisHalfWidth = 0.02;    // The band along a diagonal's axis (m).
+constexpr double kLyingHalfWidth = 0.04;  // A lying bottle's radius and 5 mm (m): how far its axis stays from a wall.
+constexpr double kAxisHalfWidth = 0.02;   // The band along a diagonal's axis (m).
 
 // From p to the segment a-b, in 2D (a band's axis) or 3D (a capsule's).
 template <typename Vector>
@@ -56,7 +56,8 @@ void BinFill::See(const perception::Cloud& cloud, const Eigen::Isometry3d& X_WC,
     for (const auto& [name, bin] : layout_.bins) {
       const Eigen::Vector3d d = p_W - bin.p_W_floor;
       const Eigen::Vector2d inside = bin.inner_half.array() - kWallMargin;
-      if (std::abs(d.x()) > inside.x() || std::abs(d.y()) > inside.y() || d.z() < kBelowFloor || d.z() > kTallest) continue;
+      if (std::abs(d.x()) > inside.x() || std::abs(d.y()) > inside.y() || d.z() < kBelowFloor || d.z() > kTallest)
+        continue;
       if (!OnArm(p_W, arm)) {
         const Map& map = maps_.at(name);
         const int i = std::clamp(static_cast<int>((d.x() + map.half.x()) / (2 * map.half.x()) * map.nx), 0, map.nx - 1);

@@ -19,8 +19,8 @@ namespace sortcell::cell {
 /// Where and how high to let go of an object in its bin.
 struct BinRelease {
   Eigen::Vector3d p_W_floor = Eigen::Vector3d::Zero();  ///< Below the release point, on the bin's floor.
-  double clearance = 0;   ///< The object's bottom above the floor when let go (m).
-  double yaw_offset = 0;  ///< First placement yaw (rad); with yaw_step the yaws tried.
+  double clearance = 0;                                 ///< The object's bottom above the floor when let go (m).
+  double yaw_offset = 0;                                ///< First placement yaw (rad); with yaw_step the yaws tried.
   double yaw_step = 0;
   /// Where it will lie in the bin (bin frame: offsets from the floor centre, m): within half_width of
   /// the segment from..to, a disc around a slot for an upright object (from = to), the band along a
@@ -61,8 +61,8 @@ class BinFill {
  private:
   struct Map {
     Eigen::Vector2d half = Eigen::Vector2d::Zero();  // The bin's inner half extents (m).
-    int nx = 0, ny = 0;          // Cells along x and y.
-    std::vector<double> height;  // Row-major, nx x ny cells from the bin's (-x, -y) corner.
+    int nx = 0, ny = 0;                              // Cells along x and y.
+    std::vector<double> height;                      // Row-major, nx x ny cells from the bin's (-x, -y) corner.
     Eigen::Vector2d CellCentre(int i, int j) const;
   };
   const Map& MapOf(const std::string& bin) const;

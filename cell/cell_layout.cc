@@ -8,7 +8,8 @@ namespace sortcell::cell {
 std::vector<Eigen::Vector2d> BinWallOutlines(const CellLayout& layout, double spacing) {
   std::vector<Eigen::Vector2d> points;
   for (const auto& [name, bin] : layout.bins) {
-    for (const Eigen::Vector2d& half : {bin.inner_half, Eigen::Vector2d(bin.inner_half.array() + layout.bin_wall_thickness)}) {
+    for (const Eigen::Vector2d& half :
+         {bin.inner_half, Eigen::Vector2d(bin.inner_half.array() + layout.bin_wall_thickness)}) {
       for (int axis = 0; axis < 2; ++axis) {
         const int n = static_cast<int>(std::ceil(2 * half[axis] / spacing));
         for (int i = 0; i <= n; ++i) {

@@ -43,7 +43,7 @@ struct ArmSpeeds {
 
 /// A bin as the cell knows it (the world's x and y are its sides).
 struct Bin {
-  Eigen::Vector3d p_W_floor = Eigen::Vector3d::Zero();  ///< The centre of its floor (m).
+  Eigen::Vector3d p_W_floor = Eigen::Vector3d::Zero();           ///< The centre of its floor (m).
   Eigen::Vector2d inner_half = Eigen::Vector2d::Constant(0.10);  ///< Half its inside along x and y (m).
 };
 

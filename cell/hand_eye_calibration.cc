@@ -52,9 +52,12 @@ MarkerShowing Show(CellIo& io, std::optional<perception::Pinhole>& pinhole) {
 
 const char* ToString(HandEyeStatus status) {
   switch (status) {
-    case HandEyeStatus::kOk: return "ok";
-    case HandEyeStatus::kTooFewSightings: return "too_few_sightings";
-    case HandEyeStatus::kFault: return "fault";
+    case HandEyeStatus::kOk:
+      return "ok";
+    case HandEyeStatus::kTooFewSightings:
+      return "too_few_sightings";
+    case HandEyeStatus::kFault:
+      return "fault";
   }
   return "?";
 }
@@ -121,7 +124,8 @@ HandEyeCalibration CalibrateHandEye(CellIo& io, const CellLayout& layout, const 
   if (!fit) {
     if (result.status == HandEyeStatus::kOk) {
       result.status = HandEyeStatus::kTooFewSightings;
-      result.detail = std::to_string(result.sightings) + " sightings of the marker, too few agree or they do not spread out";
+      result.detail =
+          std::to_string(result.sightings) + " sightings of the marker, too few agree or they do not spread out";
     }
     return result;
   }

@@ -37,9 +37,9 @@ const char* ToString(HandEyeStatus status);
 
 /// One place the marker was shown at.
 struct MarkerShowing {
-  robot::Joints q = robot::Joints::Zero();            ///< The encoders at the capture.
+  robot::Joints q = robot::Joints::Zero();               ///< The encoders at the capture.
   Eigen::Vector3d p_W_marker = Eigen::Vector3d::Zero();  ///< Where forward kinematics puts the marker.
-  std::optional<perception::MarkerSighting> seen;     ///< Empty: not found (or the place unreachable).
+  std::optional<perception::MarkerSighting> seen;        ///< Empty: not found (or the place unreachable).
   bool reachable = true;
   bool inlier = false;
   double residual_m = -1;  ///< |X_WC p_C - p_W| of the fit (m); -1 where not seen.

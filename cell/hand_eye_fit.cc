@@ -27,8 +27,8 @@ std::optional<Eigen::Isometry3d> Fit(const std::vector<Eigen::Vector3d>& p_W, co
 
 }  // namespace
 
-std::optional<HandEyeFit> FitCameraPose(const std::vector<Eigen::Vector3d>& p_W, const std::vector<Eigen::Vector3d>& p_C,
-                                        const HandEyeFitParams& params) {
+std::optional<HandEyeFit> FitCameraPose(const std::vector<Eigen::Vector3d>& p_W,
+                                        const std::vector<Eigen::Vector3d>& p_C, const HandEyeFitParams& params) {
   if (p_W.size() != p_C.size()) throw std::invalid_argument("FitCameraPose: p_W and p_C differ in size");
   HandEyeFit fit;
   fit.inlier.assign(p_W.size(), true);

@@ -25,10 +25,10 @@ struct HandEyeFitParams {
 
 struct HandEyeFit {
   Eigen::Isometry3d X_WC = Eigen::Isometry3d::Identity();
-  std::vector<bool> inlier;         ///< Per sighting.
-  std::vector<double> residual_m;   ///< |X_WC p_C - p_W| per sighting (m), outliers included.
+  std::vector<bool> inlier;        ///< Per sighting.
+  std::vector<double> residual_m;  ///< |X_WC p_C - p_W| per sighting (m), outliers included.
   int inliers = 0;
-  double rms_m = 0, max_m = 0;      ///< Over the inliers (m).
+  double rms_m = 0, max_m = 0;  ///< Over the inliers (m).
 };
 
 /// The fit, or nullopt when fewer than min_inliers sightings agree or they do not spread out.

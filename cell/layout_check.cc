@@ -38,9 +38,9 @@ void CheckOne(const CellLayout& layout, const std::string& name, const Bin& bin)
   const Footprint outer = OuterOf(layout, bin);
   const Footprint pick_area{layout.workspace_min_W.head<2>(), layout.workspace_max_W.head<2>()};
   if (Overlap(outer, pick_area, 0)) {
-    throw std::invalid_argument(fmt::format(
-        "bin '{}' at {} reaches into the pick area the camera watches (x {}..{}, y {}..{} m)", name, Xy(bin.p_W_floor),
-        pick_area.min.x(), pick_area.max.x(), pick_area.min.y(), pick_area.max.y()));
+    throw std::invalid_argument(
+        fmt::format("bin '{}' at {} reaches into the pick area the camera watches (x {}..{}, y {}..{} m)", name,
+                    Xy(bin.p_W_floor), pick_area.min.x(), pick_area.max.x(), pick_area.min.y(), pick_area.max.y()));
   }
   // The arm must place into every slot as it will in an episode (robot::PlanPlacement from home).
   std::vector<Eigen::Vector3d> releases{bin.p_W_floor};
@@ -49,8 +49,8 @@ void CheckOne(const CellLayout& layout, const std::string& name, const Bin& bin)
   options.place_yaw_step = layout.place_yaw_step;
   for (const auto& p_W : releases) {
     if (!robot::PlanPlacement(p_W, kHeldAboveGrasp, layout.q_observe, options).ok) {
-      throw std::invalid_argument(fmt::format("bin '{}' at {}: the arm cannot reach down into it at {}", name,
-                                              Xy(bin.p_W_floor), Xy(p_W)));
+      throw std::invalid_argument(
+          fmt::format("bin '{}' at {}: the arm cannot reach down into it at {}", name, Xy(bin.p_W_floor), Xy(p_W)));
     }
   }
   // A lying object, along a diagonal, let go above the walls (BinFill::Lying of the empty bin).
@@ -59,8 +59,8 @@ void CheckOne(const CellLayout& layout, const std::string& name, const Bin& bin)
   options.place_yaw_offset = lying.yaw_offset;
   options.release_clearance = lying.clearance;
   if (!robot::PlanPlacement(lying.p_W_floor, kHeldAboveGrasp, layout.q_observe, options).ok) {
-    throw std::invalid_argument(fmt::format("bin '{}' at {}: the arm cannot lay a lying object along its diagonal",
-                                            name, Xy(bin.p_W_floor)));
+    throw std::invalid_argument(
+        fmt::format("bin '{}' at {}: the arm cannot lay a lying object along its diagonal", name, Xy(bin.p_W_floor)));
   }
 }
 
@@ -85,8 +85,8 @@ void CheckBins(const CellLayout& layout) {
   for (auto a = layout.bins.begin(); a != layout.bins.end(); ++a) {
     for (auto b = std::next(a); b != layout.bins.end(); ++b) {
       if (Overlap(OuterOf(layout, a->second), OuterOf(layout, b->second), kBinGap)) {
-        throw std::invalid_argument(fmt::format("bins '{}' and '{}' overlap (their walls must stay {} m apart)",
-                                                a->first, b->first, kBinGap));
+        throw std::invalid_argument(
+            fmt::format("bins '{}' and '{}' overlap (their walls must stay {} m apart)", a->first, b->first, kBinGap));
       }
     }
   }

@@ -9,7 +9,7 @@
 namespace sortcell::cell {
 namespace {
 
-constexpr double kGripperTimeout = 1.5;  // s, for the fingers to stop
+constexpr double kGripperTimeout = 1.5;   // s, for the fingers to stop
 constexpr double kFingersGetGoing = 0.1;  // s, before judging that the fingers stopped
 constexpr double kSqueezeTime = 0.2;      // s, for the squeeze to build up
 constexpr int kSlowerLines = 3;           // Times a line too fast for a joint is halved in speed.
@@ -82,8 +82,7 @@ bool MotionSequencer::MoveJ(const std::string& name, const robot::Joints& q_goal
   return Run(chain);
 }
 
-bool MotionSequencer::MoveL(const std::string& name, const Eigen::Isometry3d& X_WT, double speed,
-                            double acceleration) {
+bool MotionSequencer::MoveL(const std::string& name, const Eigen::Isometry3d& X_WT, double speed, double acceleration) {
   MotionChain chain(io_.CommandedJoints(), MotionChain::Load::kHolding);
   chain.Line(name, X_WT, speed, acceleration);
   return Run(chain);  // Reports a line that could not be planned.
@@ -115,7 +114,8 @@ bool MotionSequencer::Run(const MotionChain& chain, const ChainHooks& hooks) {
   }
   // The least time the arm needs between two samples of the chain; the planned time where the
   // bound cannot be computed (never, for a chain the planner made within the torque budget).
-  const robot::PathTiming fastest = robot::TimeOptimalTiming(t, robot::Ur5FastLimits().speed, robot::TorqueBudget{}, kBoundStride);
+  const robot::PathTiming fastest =
+      robot::TimeOptimalTiming(t, robot::Ur5FastLimits().speed, robot::TorqueBudget{}, kBoundStride);
   const auto bound = [&](int a, int b) { return fastest.feasible ? fastest.At(b) - fastest.At(a) : t.dt * (b - a); };
   bool watched = !hooks.when;  // Whether the `when` hook has fired (or there is none).
   int from = 0;
@@ -144,11 +144,15 @@ bool MotionSequencer::Run(const MotionChain& chain, const ChainHooks& hooks) {
       } while (k < b);
       return MotionResult{};
     };
-    if (!Phase(phase, [&] { return follow(from, split); }, bound(from, split))) return false;
+    if (!Phase(
+            phase, [&] { return follow(from, split); }, bound(from, split)))
+      return false;
     if (split < last) {
       watched = true;
       if (hooks.then) hooks.then();
-      if (!Phase(phase, [&] { return follow(split, last); }, bound(split, last))) return false;
+      if (!Phase(
+              phase, [&] { return follow(split, last); }, bound(split, last)))
+        return false;
     }
     from = last;
     if (hooks.after_phase && !hooks.after_phase(phase)) {
@@ -168,9 +172,8 @@ void MotionSequencer::StartFingers(double gap) {
 MotionResult MotionSequencer::MoveFingers(const std::string& name, double half_gap) {
   io_.CommandFingers(half_gap, half_gap);
   const double start = io_.Now();
-  return io_.HoldUntil(name, kGripperTimeout, [&] {
-    return io_.Now() - start >= kFingersGetGoing && Hold() != robot::HoldState::kMoving;
-  });
+  return io_.HoldUntil(name, kGripperTimeout,
+                       [&] { return io_.Now() - start >= kFingersGetGoing && Hold() != robot::HoldState::kMoving; });
 }
 
 bool MotionSequencer::Gripper(const std::string& name, double gap) {

@@ -43,7 +43,8 @@ E Parse(const Spellings<E, N>& table, std::string_view text, const char* what) {
     if (text == spelling) return v;
     expected += (expected.empty() ? "" : ", ") + std::string(spelling);
   }
-  throw std::invalid_argument("unknown " + std::string(what) + " '" + std::string(text) + "' (expected " + expected + ")");
+  throw std::invalid_argument("unknown " + std::string(what) + " '" + std::string(text) + "' (expected " + expected +
+                              ")");
 }
 
 }  // namespace

@@ -24,7 +24,14 @@ enum class AttemptResult {
 /// kUngraspable: wider than the gripper's stroke in every direction, as the cloud shows it (e.g. a
 /// cereal box lying on its face): left on the table, never attempted.
 enum class ItemOutcome {
-  kSorted, kWrongBin, kDropped, kGraspFailed, kUnreachable, kNotDetected, kLeftOnTable, kUngraspable
+  kSorted,
+  kWrongBin,
+  kDropped,
+  kGraspFailed,
+  kUnreachable,
+  kNotDetected,
+  kLeftOnTable,
+  kUngraspable
 };
 inline constexpr std::array<ItemOutcome, 8> kItemOutcomes{
     ItemOutcome::kSorted,      ItemOutcome::kWrongBin,    ItemOutcome::kDropped,     ItemOutcome::kGraspFailed,

@@ -111,7 +111,8 @@ void WatchTheGrip(MotionSequencer& run, const std::string& phase, PickReport& re
   const robot::GripperSensors fingers = run.io().ReadGripper();
   const double use = robot::FrictionUse(fingers);
   report.max_friction_use = std::max(report.max_friction_use, use);
-  if (use > robot::kSlipWarning && report.squeezed_harder_in.empty() && robot::DetectHold(fingers) != robot::HoldState::kEmpty) {
+  if (use > robot::kSlipWarning && report.squeezed_harder_in.empty() &&
+      robot::DetectHold(fingers) != robot::HoldState::kEmpty) {
     const auto [left, right] = robot::SqueezeTargets(fingers, robot::kFirmGripForce);
     run.io().CommandFingers(left, right);
     report.squeezed_harder_in = phase;
@@ -168,7 +169,8 @@ PickReport PickAndPlace(MotionSequencer& run, const PickRequest& request, const 
   place_options.place_yaw_step = release.place_yaw_step;
   place_options.place_yaw_offset = release.place_yaw_offset;
   place_options.release_clearance = release.release_clearance;
-  const robot::PlacePlan place = robot::PlanPlacement(release.p_W_release, plan.grasp_height, transfer.end(), place_options);
+  const robot::PlacePlan place =
+      robot::PlanPlacement(release.p_W_release, plan.grasp_height, transfer.end(), place_options);
   if (place.ok) {
     transfer.JointMove("carry", place.q_above);
     // Fast down to just above the release point; the last centimetres (below) are slow.

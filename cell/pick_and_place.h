@@ -24,12 +24,13 @@
 namespace sortcell::cell {
 
 struct PickRequest {
-  robot::GraspPlan grasp;  ///< A plan with status kOk.
+  robot::GraspPlan grasp;                                 ///< A plan with status kOk.
   Eigen::Vector3d p_W_release = Eigen::Vector3d::Zero();  ///< The floor point the object is released over.
   double place_yaw_step = CellLayout().place_yaw_step;    ///< Yaws tried for the placement (robot::PlanPlacement).
   double place_yaw_offset = 0;                            ///< The first of them (robot::GraspOptions).
-  double release_clearance = robot::GraspOptions().release_clearance;  ///< Object bottom above the floor at the release (m).
-  robot::Joints q_home = CellLayout().q_observe;          ///< Where the arm goes after a miss or a failure.
+  double release_clearance =
+      robot::GraspOptions().release_clearance;    ///< Object bottom above the floor at the release (m).
+  robot::Joints q_home = CellLayout().q_observe;  ///< Where the arm goes after a miss or a failure.
   /// Where the last attempt left the arm: it first goes straight up to here (out of a bin); empty:
   /// the arm is free to move (at home).
   std::optional<Eigen::Isometry3d> X_WT_exit;
@@ -55,10 +56,10 @@ struct PickHooks {
 
 struct PickReport {
   AttemptResult result = AttemptResult::kMotionFailed;
-  bool grasped = false;  ///< Something held when the fingers closed.
-  bool lifted = false;   ///< Still held after the lift.
+  bool grasped = false;      ///< Something held when the fingers closed.
+  bool lifted = false;       ///< Still held after the lift.
   bool reached_bin = false;  ///< Carried to the bin and opened there (the slot is used, held or not).
-  std::string detail;    ///< Why a motion failed (MotionSequencer::failure()), else empty.
+  std::string detail;        ///< Why a motion failed (MotionSequencer::failure()), else empty.
   /// The most of the pads' friction the hold used during the lift and carry (robot::FrictionUse).
   double max_friction_use = 0;
   /// How far off the TCP's axis the fingers found the object's middle when it was grasped again over

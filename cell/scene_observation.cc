@@ -37,7 +37,8 @@ Observation ObserveScene(const perception::Cloud& cloud, const CameraCalibration
                          const perception::SegmentationParams& params, const perception::RecognitionModel& model) {
   // The cell's Kinect gives one point per pixel, and the occlusion check looks at pixels' neighbours.
   if (!cloud.isOrganized()) {
-    throw std::invalid_argument("scene observation: the cloud is not organized (height " + std::to_string(cloud.height) +
+    throw std::invalid_argument("scene observation: the cloud is not organized (height " +
+                                std::to_string(cloud.height) +
                                 "): expected one point per pixel from the cell's Kinect");
   }
   Observation observation;

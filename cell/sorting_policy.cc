@@ -44,7 +44,7 @@ double HeldReach(const Detection& d) {
 // Everything seen but detection `target`, as obstacles of the fingers and the gripper's body; the
 // bins' walls (fixed_xy) reach wall_top_z.
 robot::Neighbours NeighboursOf(const std::vector<Detection>& detections, size_t target,
-                                const std::vector<Eigen::Vector2d>& fixed_xy, double wall_top_z) {
+                               const std::vector<Eigen::Vector2d>& fixed_xy, double wall_top_z) {
   robot::Neighbours neighbours;
   neighbours.p_xy = fixed_xy;
   neighbours.p_z.assign(fixed_xy.size(), wall_top_z);
@@ -77,8 +77,14 @@ robot::ClearGrasp ClearestGraspOf(const std::vector<Detection>& detections, size
 SortingPolicy::SortingPolicy(CellIo& io, const CellLayout& layout, const CameraCalibration& calibration,
                              const perception::RecognitionModel& model, const PolicyOptions& options,
                              PolicyObserver* observer)
-    : io_(io), layout_(layout), calibration_(calibration), model_(model), options_(options),
-      observer_(observer ? *observer : no_observer_), motions_(io), segmentation_(CellSegmentation(layout)),
+    : io_(io),
+      layout_(layout),
+      calibration_(calibration),
+      model_(model),
+      options_(options),
+      observer_(observer ? *observer : no_observer_),
+      motions_(io),
+      segmentation_(CellSegmentation(layout)),
       view_(calibration, layout.workspace_min_W, layout.workspace_max_W),
       bins_(layout),
       bin_walls_xy_(BinWallOutlines(layout)) {
@@ -116,8 +122,7 @@ BinRelease SortingPolicy::ChooseRelease(const Detection& seen, int filled, doubl
   return bins_.Upright(seen.bin, filled, radius, min_clearance);
 }
 
-int SortingPolicy::Choose(const std::vector<Detection>& detections, robot::PickMemory& memory,
-                          robot::GraspPlan& plan) {
+int SortingPolicy::Choose(const std::vector<Detection>& detections, robot::PickMemory& memory, robot::GraspPlan& plan) {
   // Candidates: every described cluster; the undescribed ones still count as neighbours.
   std::vector<robot::ObjectFootprint> footprints;
   for (const auto& d : detections) footprints.push_back(d.footprint);
@@ -142,7 +147,8 @@ int SortingPolicy::Choose(const std::vector<Detection>& detections, robot::PickM
     if (i >= 0) {
       grasp = ClearestGraspOf(detections, i, bin_walls_xy_, layout_.bin_wall_height);
       if (grasp.clearance < kFreeFingers) {
-        for (robot::PickMemory* m : {&free, &free_hidden}) m->Skip(footprints[i].centre_xy, robot::SkipReason::kUnreachable);
+        for (robot::PickMemory* m : {&free, &free_hidden})
+          m->Skip(footprints[i].centre_xy, robot::SkipReason::kUnreachable);
         blocked.emplace_back(i, grasp);
         continue;
       }
@@ -184,9 +190,7 @@ AttemptReport SortingPolicy::Attempt(const Detection& seen, int index, int attem
   request.speeds = layout_.speeds;
   PickHooks hooks;
   const HeldObject held{plan.grasp_height, HeldReach(seen)};
-  hooks.out_of_view = [&](const robot::Joints& q) {
-    return !view_.ArmInView(q, held);
-  };
+  hooks.out_of_view = [&](const robot::Joints& q) { return !view_.ArmInView(q, held); };
   hooks.left_view = [&] { next_view = Observe(held); };
   hooks.grasped = [&] { observer_.Grasped(); };
   hooks.lowered = [&] { observer_.Lowered(); };

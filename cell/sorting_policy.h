@@ -40,12 +40,12 @@ struct PolicyOptions {
 
 /// One attempt, as the policy saw it go.
 struct AttemptReport {
-  int detection = -1;      ///< Index into the last observation's detections.
+  int detection = -1;               ///< Index into the last observation's detections.
   const Detection* seen = nullptr;  ///< That detection (valid during the callback).
-  int attempt = 0;         ///< 1 for the first attempt at this position.
-  double start_s = 0, end_s = 0;  ///< The cell's clock from leaving where the arm was (home or the last
-                                  ///< bin) to the release into the bin (or back home after a miss).
-  BinRelease release;  ///< Where in its bin it was to be let go.
+  int attempt = 0;                  ///< 1 for the first attempt at this position.
+  double start_s = 0, end_s = 0;    ///< The cell's clock from leaving where the arm was (home or the last
+                                    ///< bin) to the release into the bin (or back home after a miss).
+  BinRelease release;               ///< Where in its bin it was to be let go.
   PickReport pick;
   std::vector<PhaseSpan> phases;  ///< The attempt's motion phases, in order (filled when it ended).
 };
@@ -110,7 +110,7 @@ class SortingPolicy {
   PolicyObserver& observer_;
   MotionSequencer motions_;
   perception::SegmentationParams segmentation_;
-  WorkspaceView view_;  // Whether the arm hides the workspace from the camera.
+  WorkspaceView view_;                        // Whether the arm hides the workspace from the camera.
   std::map<std::string, int> released_into_;  // Objects released into each bin so far.
   // Captures only to see into the bins (no perception of the table).
   void LookIntoBins(const HeldObject& held);

@@ -14,7 +14,7 @@ struct SortingRules {
   std::map<std::string, std::string> bin_of;  ///< Category -> bin.
   std::string otherwise;                      ///< The bin of every other category ("*"); empty: none.
   std::string reject_bin;                     ///< Where unsure objects go; empty: none.
-  double reject_below = 0;  ///< Recognised less surely than this (0-1): to the reject bin (0: never).
+  double reject_below = 0;                    ///< Recognised less surely than this (0-1): to the reject bin (0: never).
 
   /// Whether an object recognised with `confidence` goes to the reject bin.
   bool Rejects(double confidence) const { return !reject_bin.empty() && confidence < reject_below; }

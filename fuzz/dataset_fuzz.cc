@@ -7,7 +7,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const std::filesystem::path dir = sortcell_fuzz::ScratchDir() / "dataset";
   const auto [manifest, descriptors] = sortcell_fuzz::SplitAt(data, size, "\n--descriptors.csv--\n");
   sortcell_fuzz::WriteInput(dir / "manifest.json", reinterpret_cast<const uint8_t*>(manifest.data()), manifest.size());
-  sortcell_fuzz::WriteInput(dir / "descriptors.csv", reinterpret_cast<const uint8_t*>(descriptors.data()), descriptors.size());
+  sortcell_fuzz::WriteInput(dir / "descriptors.csv", reinterpret_cast<const uint8_t*>(descriptors.data()),
+                            descriptors.size());
   sortcell_fuzz::ExpectReadOrRefusal(dir, [&] { sortcell::app::LoadDataset(dir); });
   return 0;
 }

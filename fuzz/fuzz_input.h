@@ -63,8 +63,8 @@ void ExpectReadOrRefusal(const std::filesystem::path& culprit, Read&& read, cons
     read();
   } catch (const std::exception& e) {
     const std::string what = e.what();
-    const bool named = what.find(culprit.string()) != std::string::npos ||
-                       (!option.empty() && what.find(option) != std::string::npos);
+    const bool named =
+        what.find(culprit.string()) != std::string::npos || (!option.empty() && what.find(option) != std::string::npos);
     if (!named) {
       std::fprintf(stderr, "sortcell fuzz: the refusal does not name '%s': %s\n", culprit.c_str(), what.c_str());
       std::abort();

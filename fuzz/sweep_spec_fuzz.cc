@@ -6,7 +6,8 @@
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const std::filesystem::path root = sortcell_fuzz::ScratchDir();
-  for (const char* name : {"models", "scenes/cell.xml", "scenes/produce.xml", "scenes/flange_tool.inc.xml", "scenes/objects"}) {
+  for (const char* name :
+       {"models", "scenes/cell.xml", "scenes/produce.xml", "scenes/flange_tool.inc.xml", "scenes/objects"}) {
     sortcell_fuzz::LinkFromSource(root, name);
   }
   const std::filesystem::path file = root / "scenes/sweeps/input.yaml";
@@ -17,6 +18,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   });
   const std::string text(reinterpret_cast<const char*>(data), size);
   const std::string first_line = text.substr(0, text.find('\n'));
-  sortcell_fuzz::ExpectReadOrRefusal(file, [&] { sortcell::app::LoadSweepSpec(file, {first_line}); }, "--set");
+  sortcell_fuzz::ExpectReadOrRefusal(
+      file, [&] { sortcell::app::LoadSweepSpec(file, {first_line}); }, "--set");
   return 0;
 }

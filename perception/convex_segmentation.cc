@@ -96,8 +96,8 @@ void FitFootprintCircle(const std::vector<cv::Point2f>& points, Volume& volume) 
     if (delta.norm() < 1e-6) break;
   }
   if (!(radius > 0) || !centre.allFinite()) return;
-  volume.circle_centre = cv::Point2f(static_cast<float>(centre.x() + mean.x()),
-                                     static_cast<float>(centre.y() + mean.y()));
+  volume.circle_centre =
+      cv::Point2f(static_cast<float>(centre.x() + mean.x()), static_cast<float>(centre.y() + mean.y()));
   volume.circle_radius = static_cast<float>(radius);
   std::vector<float> residuals;
   for (const auto& p : q) residuals.push_back(static_cast<float>(std::abs((p - centre).norm() - radius)));
@@ -129,7 +129,8 @@ Volume VolumeOf(const Cloud& voxels, const pcl::PointIndices& cluster, const Pla
 float Diameter(const std::vector<cv::Point2f>& hull) {
   float diameter = 0;
   for (size_t i = 0; i < hull.size(); ++i) {
-    for (size_t j = i + 1; j < hull.size(); ++j) diameter = std::max(diameter, static_cast<float>(cv::norm(hull[i] - hull[j])));
+    for (size_t j = i + 1; j < hull.size(); ++j)
+      diameter = std::max(diameter, static_cast<float>(cv::norm(hull[i] - hull[j])));
   }
   return diameter;
 }
@@ -181,7 +182,8 @@ bool IsNeckOf(const Volume& piece, size_t piece_voxels, const Volume& base, size
   const cv::RotatedRect box = cv::minAreaRect(base.hull);
   const float length = std::max(box.size.width, box.size.height), width = std::min(box.size.width, box.size.height);
   if (length < params.lying_elongation * width) return false;
-  const float angle = static_cast<float>(box.angle * M_PI / 180) + (box.size.width >= box.size.height ? 0.0f : static_cast<float>(M_PI / 2));
+  const float angle = static_cast<float>(box.angle * M_PI / 180) +
+                      (box.size.width >= box.size.height ? 0.0f : static_cast<float>(M_PI / 2));
   const cv::Point2f along(std::cos(angle), std::sin(angle));
   cv::Point2f middle(0, 0);
   for (const auto& p : piece.hull) middle += p;
@@ -191,7 +193,8 @@ bool IsNeckOf(const Volume& piece, size_t piece_voxels, const Volume& base, size
 }
 
 bool BoxesOverlap(const Volume& a, const Volume& b) {
-  return a.lowest.x <= b.highest.x && b.lowest.x <= a.highest.x && a.lowest.y <= b.highest.y && b.lowest.y <= a.highest.y;
+  return a.lowest.x <= b.highest.x && b.lowest.x <= a.highest.x && a.lowest.y <= b.highest.y &&
+         b.lowest.y <= a.highest.y;
 }
 
 // Joins each cluster that lies mostly inside a larger one's volume to it (smallest first).
@@ -200,7 +203,8 @@ void JoinPiecesInsideOthers(const Cloud& voxels, const PlaneFrame& frame, const 
   std::vector<Volume> volumes;
   for (const auto& c : clusters) volumes.push_back(VolumeOf(voxels, c, frame));
   std::vector<bool> joined(clusters.size(), false);
-  for (size_t a = clusters.size(); a-- > 1;) {  // Smallest first (clusters are sorted largest first); a piece joins a larger one.
+  for (size_t a = clusters.size();
+       a-- > 1;) {  // Smallest first (clusters are sorted largest first); a piece joins a larger one.
     size_t best = a;
     double best_fraction = params.inside_fraction;
     for (size_t b = 0; b < a; ++b) {
@@ -293,7 +297,7 @@ void NameBySmallestSupervoxel(SegmentOf& segment_of) {
 
 // The segments each segment touches across the (cut) supervoxel adjacency.
 std::map<std::uint32_t, std::set<std::uint32_t>> SegmentNeighbours(const SegmentOf& segment_of,
-                                                                  const Adjacency& adjacency) {
+                                                                   const Adjacency& adjacency) {
   std::map<std::uint32_t, std::set<std::uint32_t>> neighbours;
   for (const auto& [a, b] : adjacency) {
     const auto sa = segment_of.find(a), sb = segment_of.find(b);
@@ -354,8 +358,8 @@ std::vector<std::uint32_t> LccpLabels(const Cloud::Ptr& voxels, const ConvexClus
   clustering.setUseSingleCameraTransform(false);
   clustering.setInputCloud(voxels);
   if (params.own_voxel_normals) {  // The voxel normals PCL would compute, computed faster.
-    const auto voxel_normals =
-        std::make_shared<pcl::PointCloud<pcl::Normal>>(SupervoxelVoxelNormals(*voxels, static_cast<float>(params.voxel_m)));
+    const auto voxel_normals = std::make_shared<pcl::PointCloud<pcl::Normal>>(
+        SupervoxelVoxelNormals(*voxels, static_cast<float>(params.voxel_m)));
     if (!voxel_normals->empty()) clustering.setNormalCloud(voxel_normals);
   }
   clustering.setColorImportance(static_cast<float>(params.colour_importance));
@@ -418,9 +422,8 @@ struct Parts {
   std::vector<int> size;
 };
 
-Parts PartsOutsideCreases(const Cloud& voxels, const NeighbourLists& neighbours,
-                          const std::vector<bool>& crease, const std::vector<std::uint32_t>& labels,
-                          const ConvexClusteringParams& params) {
+Parts PartsOutsideCreases(const Cloud& voxels, const NeighbourLists& neighbours, const std::vector<bool>& crease,
+                          const std::vector<std::uint32_t>& labels, const ConvexClusteringParams& params) {
   const float link2 = static_cast<float>(params.split_link_m * params.split_link_m);
   Parts parts;
   parts.of_voxel.assign(voxels.size(), -1);
@@ -437,7 +440,8 @@ Parts PartsOutsideCreases(const Cloud& voxels, const NeighbourLists& neighbours,
       ++parts.size[id];
       for (int j : neighbours.Of(i)) {
         if (crease[j] || parts.of_voxel[j] >= 0 || labels[j] != labels[i] ||
-            (voxels[j].getVector3fMap() - voxels[i].getVector3fMap()).squaredNorm() > link2) continue;
+            (voxels[j].getVector3fMap() - voxels[i].getVector3fMap()).squaredNorm() > link2)
+          continue;
         parts.of_voxel[j] = id;
         stack.push_back(j);
       }
@@ -451,7 +455,9 @@ Parts PartsOutsideCreases(const Cloud& voxels, const NeighbourLists& neighbours,
 // grown breadth first over the segment.
 void SplitSegmentsWithLargeParts(const NeighbourLists& neighbours, const Parts& parts,
                                  const ConvexClusteringParams& params, std::vector<std::uint32_t>& labels) {
-  const auto large = [&](size_t i) { return parts.of_voxel[i] >= 0 && parts.size[parts.of_voxel[i]] >= params.split_min_voxels; };
+  const auto large = [&](size_t i) {
+    return parts.of_voxel[i] >= 0 && parts.size[parts.of_voxel[i]] >= params.split_min_voxels;
+  };
   std::map<std::uint32_t, std::set<int>> large_parts_of_segment;
   for (size_t i = 0; i < labels.size(); ++i) {
     if (large(i)) large_parts_of_segment[labels[i]].insert(parts.of_voxel[i]);
@@ -459,7 +465,8 @@ void SplitSegmentsWithLargeParts(const NeighbourLists& neighbours, const Parts& 
   std::vector<int> owner(labels.size(), -1);
   std::vector<int> frontier, next;
   for (size_t i = 0; i < labels.size(); ++i) {
-    if (large(i) && large_parts_of_segment[labels[i]].size() >= 2) owner[i] = parts.of_voxel[i], frontier.push_back(static_cast<int>(i));
+    if (large(i) && large_parts_of_segment[labels[i]].size() >= 2)
+      owner[i] = parts.of_voxel[i], frontier.push_back(static_cast<int>(i));
   }
   while (!frontier.empty()) {
     next.clear();
@@ -485,7 +492,8 @@ void SplitAtCreases(const Cloud& voxels, const ConvexClusteringParams& params, s
   const Neighbourhoods around = GridNeighbourhoods(voxels, params.crease_radius_m);
   const NeighbourLists& neighbours = around.neighbours;
   const std::vector<bool> crease = CreaseVoxels(voxels, neighbours, around.normals, params);
-  SplitSegmentsWithLargeParts(neighbours, PartsOutsideCreases(voxels, neighbours, crease, labels, params), params, labels);
+  SplitSegmentsWithLargeParts(neighbours, PartsOutsideCreases(voxels, neighbours, crease, labels, params), params,
+                              labels);
 }
 
 }  // namespace
@@ -501,7 +509,9 @@ std::vector<pcl::PointIndices> ConvexClusters(const Cloud::Ptr& voxels, const Ei
   }
   std::vector<pcl::PointIndices> out;
   for (auto& [label, indices] : by_label) out.push_back(std::move(indices));
-  const auto larger = [](const pcl::PointIndices& a, const pcl::PointIndices& b) { return a.indices.size() > b.indices.size(); };
+  const auto larger = [](const pcl::PointIndices& a, const pcl::PointIndices& b) {
+    return a.indices.size() > b.indices.size();
+  };
   // Stable: clusters of one size stay in the order of their names, so the order is the same every run.
   std::stable_sort(out.begin(), out.end(), larger);
   JoinPiecesInsideOthers(*voxels, MakePlaneFrame(plane_C), params, out);

@@ -27,9 +27,9 @@
 namespace sortcell::perception {
 
 struct ConvexClusteringParams {
-  double voxel_m = 0.0075;       ///< Supervoxel voxel resolution.
-  double seed_m = 0.03;          ///< Supervoxel seed resolution.
-  double concavity_deg = 25;     ///< Connections more concave than this are cut.
+  double voxel_m = 0.0075;    ///< Supervoxel voxel resolution.
+  double seed_m = 0.03;       ///< Supervoxel seed resolution.
+  double concavity_deg = 25;  ///< Connections more concave than this are cut.
   /// Colour edges: supervoxels whose mean colours differ by more than this CIE76 delta E (L*a*b*)...
   double colour_edge_delta_e = 10;
   /// ...are cut apart at a connection more concave than this (tighter than concavity_deg).
@@ -54,8 +54,8 @@ struct ConvexClusteringParams {
   int split_min_voxels = 60;
   /// Smaller and larger segments are dropped; SegmentObjects sets both from SegmentationParams.
   int min_cluster_voxels = 25, max_cluster_voxels = 20000;
-  double inside_fraction = 0.8;  ///< A piece with this share of its voxels inside another cluster's volume joins it.
-  double top_tolerance_m = 0.01; ///< "Below the top": at most this much above the other cluster's highest voxel.
+  double inside_fraction = 0.8;   ///< A piece with this share of its voxels inside another cluster's volume joins it.
+  double top_tolerance_m = 0.01;  ///< "Below the top": at most this much above the other cluster's highest voxel.
   /// The inside of a hollow object seen over its rim joins the wall it is seen over when:
   /// - the wall stands on the plane (its lowest voxel at most hollow_lift_m above it);
   /// - the wall is round: its footprint's median distance from the circle fitted through it is at most

@@ -30,9 +30,12 @@ const CvfhResult& Unusable(CvfhResult& result, DescriptorStatus status, std::str
 
 const char* ToString(DescriptorStatus status) {
   switch (status) {
-    case DescriptorStatus::kOk: return "ok";
-    case DescriptorStatus::kTooFewPoints: return "too_few_points";
-    case DescriptorStatus::kNoHistogram: return "no_histogram";
+    case DescriptorStatus::kOk:
+      return "ok";
+    case DescriptorStatus::kTooFewPoints:
+      return "too_few_points";
+    case DescriptorStatus::kNoHistogram:
+      return "no_histogram";
   }
   return "unknown";
 }

@@ -23,9 +23,9 @@ inline constexpr std::array<std::array<int, 2>, 5> kCvfhBlocks{{{0, 45}, {45, 45
 
 /// CVFH parameters, all explicit. Lengths scale with the voxel leaf.
 struct CvfhParams {
-  double voxel_leaf_m = 0.005;       ///< Downsampling before normals and CVFH.
-  double normal_radius_m = 0.015;    ///< Normal estimation radius (3 leaves).
-  double eps_angle_rad = 0.13;       ///< Region growing: largest normal deviation (7.5 degrees).
+  double voxel_leaf_m = 0.005;         ///< Downsampling before normals and CVFH.
+  double normal_radius_m = 0.015;      ///< Normal estimation radius (3 leaves).
+  double eps_angle_rad = 0.13;         ///< Region growing: largest normal deviation (7.5 degrees).
   double curvature_threshold = 0.025;  ///< Region growing: seeds flatter than this (of the 1/3 maximum).
   double cluster_tolerance_m = 0.015;  ///< Region growing: neighbour distance.
   int min_region_points = 50;          ///< Smallest smooth region that gets its own histogram.
@@ -44,10 +44,10 @@ const char* ToString(DescriptorStatus status);
 
 struct CvfhResult {
   DescriptorStatus status = DescriptorStatus::kOk;
-  std::string detail;         ///< Why, for a person, when not ok (numbers included); empty when ok.
-  Eigen::VectorXf histogram;  ///< 308 bins, raw counts, mean over the regions; empty when not ok.
-  int regions = 0;            ///< K, the number of region histograms PCL returned.
-  int points = 0;             ///< Points after NaN removal and downsampling.
+  std::string detail;                ///< Why, for a person, when not ok (numbers included); empty when ok.
+  Eigen::VectorXf histogram;         ///< 308 bins, raw counts, mean over the regions; empty when not ok.
+  int regions = 0;                   ///< K, the number of region histograms PCL returned.
+  int points = 0;                    ///< Points after NaN removal and downsampling.
   double normals_s = 0, cvfh_s = 0;  ///< Wall time of the two steps.
 };
 

@@ -26,18 +26,24 @@ Eigen::VectorXf NormalisedCvfh(const Eigen::VectorXf& raw) {
 
 std::string DescriptorName(DescriptorKind kind) {
   switch (kind) {
-    case DescriptorKind::kCvfh: return "cvfh";
-    case DescriptorKind::kColorCvfh: return "color-cvfh";
-    case DescriptorKind::kColorCvfhNorm: return "color-cvfh-norm";
+    case DescriptorKind::kCvfh:
+      return "cvfh";
+    case DescriptorKind::kColorCvfh:
+      return "color-cvfh";
+    case DescriptorKind::kColorCvfhNorm:
+      return "color-cvfh-norm";
   }
   return "";
 }
 
 std::string DescriptorTitle(DescriptorKind kind) {
   switch (kind) {
-    case DescriptorKind::kCvfh: return "CVFH";
-    case DescriptorKind::kColorCvfh: return "Color-CVFH";
-    case DescriptorKind::kColorCvfhNorm: return "Color-CVFH (normalization)";
+    case DescriptorKind::kCvfh:
+      return "CVFH";
+    case DescriptorKind::kColorCvfh:
+      return "Color-CVFH";
+    case DescriptorKind::kColorCvfhNorm:
+      return "Color-CVFH (normalization)";
   }
   return "";
 }

@@ -61,8 +61,8 @@ bool SameDescriptorParams(const DescriptorParams& a, const DescriptorParams& b);
 /// The two raw parts of an object's descriptor.
 struct DescriptorParts {
   DescriptorStatus status = DescriptorStatus::kOk;  ///< CVFH's: whether the object could be described.
-  std::string detail;    ///< Why not, for a person (CVFH's detail); empty when ok.
-  Eigen::VectorXf hsv;   ///< 192 raw counts; empty when not ok.
+  std::string detail;                               ///< Why not, for a person (CVFH's detail); empty when ok.
+  Eigen::VectorXf hsv;                              ///< 192 raw counts; empty when not ok.
   Eigen::VectorXf cvfh;  ///< 308, mean of the CVFH region histograms, raw counts; empty when not ok.
   int cvfh_regions = 0;
   double hsv_s = 0, normals_s = 0, cvfh_s = 0;  ///< Wall time of each step.

@@ -19,7 +19,8 @@ struct Block {
 };
 // Hue; saturation and value; CVFH shape. Hue alone because it is what tells most unknown objects
 // apart (measured: with one colour block, simulated lemons, peaches and pears came out as familiar).
-constexpr std::array<Block, 3> kBlocks{{{0, kHueBins}, {kHueBins, kSaturationBins + kValueBins}, {kHsvBins, kCvfhBins}}};
+constexpr std::array<Block, 3> kBlocks{
+    {{0, kHueBins}, {kHueBins, kSaturationBins + kValueBins}, {kHsvBins, kCvfhBins}}};
 constexpr double kScaleQuantile = 0.95;
 // At most this many calibration views: each is compared with every reference view.
 constexpr int kMaxCalibration = 2000;
@@ -66,8 +67,7 @@ Familiarity Familiarity::Fit(const Eigen::MatrixXf& raw_parts, const std::vector
   if (raw_parts.cols() != kRawSize || n != static_cast<int>(groups.size())) {
     throw std::invalid_argument("familiarity: expected one group per row of " + std::to_string(kRawSize) +
                                 " raw parts, got " + std::to_string(n) + " rows of " +
-                                std::to_string(raw_parts.cols()) + " and " + std::to_string(groups.size()) +
-                                " groups");
+                                std::to_string(raw_parts.cols()) + " and " + std::to_string(groups.size()) + " groups");
   }
   if (n == 0 || std::all_of(groups.begin(), groups.end(), [&](int g) { return g == groups.front(); })) {
     throw std::invalid_argument("familiarity: needs training views of at least two groups");
@@ -85,7 +85,8 @@ Familiarity Familiarity::Fit(const Eigen::MatrixXf& raw_parts, const std::vector
       usable.push_back(row);
     }
   }
-  if (usable.empty()) throw std::invalid_argument("familiarity: no training view has one of another group to compare with");
+  if (usable.empty())
+    throw std::invalid_argument("familiarity: no training view has one of another group to compare with");
   calibration_rows = usable;
   const Eigen::MatrixXf calibration = rooted(calibration_rows, Eigen::all);
 
@@ -109,7 +110,8 @@ Familiarity Familiarity::Fit(const Eigen::MatrixXf& raw_parts, const std::vector
   }
   for (size_t i = 0; i < calibration_rows.size(); ++i) {
     float score = 0;
-    for (size_t b = 0; b < kBlocks.size(); ++b) score = std::max(score, nearest[b][i] / f.block_scale[static_cast<Eigen::Index>(b)]);
+    for (size_t b = 0; b < kBlocks.size(); ++b)
+      score = std::max(score, nearest[b][i] / f.block_scale[static_cast<Eigen::Index>(b)]);
     f.held_out.push_back(score);
   }
   std::sort(f.held_out.begin(), f.held_out.end());
@@ -135,7 +137,8 @@ double Familiarity::Of(const Eigen::VectorXf& raw_parts) const {
 
 void Familiarity::Check() const {
   if (empty()) return;
-  if (reference.rows() == 0 || reference.cols() != kRawSize || block_scale.size() != static_cast<Eigen::Index>(kBlocks.size())) {
+  if (reference.rows() == 0 || reference.cols() != kRawSize ||
+      block_scale.size() != static_cast<Eigen::Index>(kBlocks.size())) {
     throw std::invalid_argument("familiarity: expected a reference of " + std::to_string(kRawSize) + " columns and " +
                                 std::to_string(kBlocks.size()) + " block scales");
   }

@@ -27,8 +27,8 @@ struct Familiarity {
   /// The model's training views kept for the distance (square-rooted raw parts [HSV | CVFH], one per
   /// row): at most kMaxReference, evenly spaced over the training rows.
   Eigen::MatrixXf reference;
-  Eigen::VectorXf block_scale;    ///< Per block: the 95th percentile of the held-out distances.
-  std::vector<float> held_out;    ///< The calibration views' scores, ascending.
+  Eigen::VectorXf block_scale;  ///< Per block: the 95th percentile of the held-out distances.
+  std::vector<float> held_out;  ///< The calibration views' scores, ascending.
 
   static constexpr int kMaxReference = 2000;
 

@@ -103,7 +103,8 @@ std::vector<Eigen::Vector3d> PointsInside(const Cloud& cloud, const std::array<E
 std::optional<MarkerSighting> FindMarker(const Cloud& cloud, const Pinhole& pinhole, int id,
                                          const MarkerSightingParams& params) {
   if (!cloud.isOrganized()) throw std::invalid_argument("FindMarker: the cloud is not organized");
-  if (id < 0 || id >= 50) throw std::invalid_argument("FindMarker: marker id " + std::to_string(id) + " is not in 4x4_50");
+  if (id < 0 || id >= 50)
+    throw std::invalid_argument("FindMarker: marker id " + std::to_string(id) + " is not in 4x4_50");
   const auto corners = DetectCorners(GreyImage(cloud), id);
   if (!corners) return std::nullopt;
   const auto plane = FitPlane(PointsInside(cloud, *corners, params.plane_region_scale), params.min_plane_points);

@@ -23,23 +23,26 @@ class Grid {
   Grid(const Cloud& points, double radius_m) : cell_(static_cast<float>(radius_m)) {
     lowest_ = points[0].getVector3fMap();
     Eigen::Vector3f highest = lowest_;
-    for (const PointT& p : points) lowest_ = lowest_.cwiseMin(p.getVector3fMap()), highest = highest.cwiseMax(p.getVector3fMap());
+    for (const PointT& p : points)
+      lowest_ = lowest_.cwiseMin(p.getVector3fMap()), highest = highest.cwiseMax(p.getVector3fMap());
     constexpr float kCellsPerAxis = 1 << 21;
     usable_ = radius_m > 0 && (highest - lowest_).maxCoeff() / cell_ < kCellsPerAxis - 2;
     if (!usable_) return;
     std::vector<std::pair<std::uint64_t, int>> keyed;
     keyed.reserve(points.size());
-    for (size_t i = 0; i < points.size(); ++i) keyed.emplace_back(Key(CellOf(points[i].getVector3fMap())), static_cast<int>(i));
+    for (size_t i = 0; i < points.size(); ++i)
+      keyed.emplace_back(Key(CellOf(points[i].getVector3fMap())), static_cast<int>(i));
     std::sort(keyed.begin(), keyed.end());
     keys_.reserve(points.size());
     original_.reserve(points.size());
     sorted_.reserve(points.size());
-    for (const auto& [k, i] : keyed) keys_.push_back(k), original_.push_back(i), sorted_.push_back(points[i].getVector3fMap());
+    for (const auto& [k, i] : keyed)
+      keys_.push_back(k), original_.push_back(i), sorted_.push_back(points[i].getVector3fMap());
   }
 
-  bool usable() const { return usable_; }                               // False: spread over too many cells.
+  bool usable() const { return usable_; }  // False: spread over too many cells.
   int size() const { return static_cast<int>(sorted_.size()); }
-  int original(int k) const { return original_[k]; }                     // The input index of sorted point k.
+  int original(int k) const { return original_[k]; }  // The input index of sorted point k.
   const Eigen::Vector3f& point(int k) const { return sorted_[k]; }
   Eigen::Vector3d FromLowest(int k) const { return (sorted_[k] - lowest_).cast<double>(); }
 
@@ -67,7 +70,8 @@ class Grid {
         if (column.y() < 0) continue;
         const bool own = dx == 0 && dy == 0;
         const size_t from = own ? first : first_at_or_after(from_cursor[o], Key(column));
-        const size_t to = first_at_or_after(to_cursor[o], Key(column) + static_cast<std::uint64_t>(c.z() + 2 - column.z()));
+        const size_t to =
+            first_at_or_after(to_cursor[o], Key(column) + static_cast<std::uint64_t>(c.z() + 2 - column.z()));
         for (size_t a = first; a < last; ++a) {
           for (size_t b = own ? a + 1 : from; b < to; ++b) {
             if ((sorted_[b] - sorted_[a]).squaredNorm() <= radius2) visit(static_cast<int>(a), static_cast<int>(b));
@@ -80,7 +84,8 @@ class Grid {
  private:
   Eigen::Array3i CellOf(const Eigen::Vector3f& p) const { return ((p - lowest_) / cell_).array().floor().cast<int>(); }
   static std::uint64_t Key(const Eigen::Array3i& c) {
-    return (static_cast<std::uint64_t>(c.x()) << 42) | (static_cast<std::uint64_t>(c.y()) << 21) | static_cast<std::uint64_t>(c.z());
+    return (static_cast<std::uint64_t>(c.x()) << 42) | (static_cast<std::uint64_t>(c.y()) << 21) |
+           static_cast<std::uint64_t>(c.z());
   }
 
   float cell_;
@@ -145,7 +150,8 @@ std::vector<std::vector<int>> RadiusNeighbours(const Cloud& points, double radiu
   xyz.reserve(3 * points.size());
   for (const PointT& p : points) xyz.insert(xyz.end(), {p.x, p.y, p.z});
   const flann::Matrix<float> matrix(xyz.data(), points.size(), 3);
-  flann::KDTreeSingleIndex<flann::L2_Simple<float>> index(matrix, flann::KDTreeSingleIndexParams(15));  // PCL's leaf size.
+  flann::KDTreeSingleIndex<flann::L2_Simple<float>> index(matrix,
+                                                          flann::KDTreeSingleIndexParams(15));  // PCL's leaf size.
   index.buildIndex();
   flann::SearchParams search(-1, 0, false);  // Unlimited checks, exact, unsorted (as the unsorted KdTree).
   search.max_neighbors = -1;
@@ -166,15 +172,15 @@ Neighbourhoods GridNeighbourhoods(const Cloud& points, double radius_m) {
   }
   std::vector<std::pair<int, int>> pairs;  // In input indices, in the order the grid finds them.
   pairs.reserve(16 * points.size());
-  const std::vector<Moments> moments = NeighbourhoodMoments(grid, [&](int a, int b) {
-    pairs.emplace_back(grid.original(a), grid.original(b));
-  });
+  const std::vector<Moments> moments =
+      NeighbourhoodMoments(grid, [&](int a, int b) { pairs.emplace_back(grid.original(a), grid.original(b)); });
   out.neighbours = ListsFromPairs(points.size(), pairs);
   out.normals = NormalsInInputOrder(grid, moments);
   return out;
 }
 
-pcl::PointCloud<pcl::Normal> NormalsFromNeighbours(const Cloud& points, const std::vector<std::vector<int>>& neighbours) {
+pcl::PointCloud<pcl::Normal> NormalsFromNeighbours(const Cloud& points,
+                                                   const std::vector<std::vector<int>>& neighbours) {
   pcl::PointCloud<pcl::Normal> normals;
   normals.resize(points.size());
   if (points.empty()) return normals;

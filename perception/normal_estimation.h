@@ -56,7 +56,8 @@ Neighbourhoods GridNeighbourhoods(const Cloud& points, double radius_m);
 /// Normals of `points` from `neighbours` (RadiusNeighbours), facing the camera at the origin; NaN where
 /// fewer than 3 neighbours. PCL's plane fit (solvePlaneParameters) of the neighbours' covariance, summed
 /// in double about a common origin (so the order of the neighbours changes nothing but the last bits).
-pcl::PointCloud<pcl::Normal> NormalsFromNeighbours(const Cloud& points, const std::vector<std::vector<int>>& neighbours);
+pcl::PointCloud<pcl::Normal> NormalsFromNeighbours(const Cloud& points,
+                                                   const std::vector<std::vector<int>>& neighbours);
 
 /// GridNeighbourhoods(points, radius_m).normals without keeping the neighbour lists: pcl::NormalEstimation's
 /// normals up to rounding.

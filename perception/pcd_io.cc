@@ -20,7 +20,8 @@ namespace sortcell::perception {
 namespace {
 
 bool HasField(const pcl::PCLPointCloud2& blob, const std::string& name) {
-  return std::any_of(blob.fields.begin(), blob.fields.end(), [&](const pcl::PCLPointField& f) { return f.name == name; });
+  return std::any_of(blob.fields.begin(), blob.fields.end(),
+                     [&](const pcl::PCLPointField& f) { return f.name == name; });
 }
 
 // DATA binary_compressed starts with the compressed and the uncompressed sizes, which PCL allocates
@@ -31,7 +32,8 @@ void CheckCompressedSizes(const std::string& bytes, unsigned int data_start, dou
   uint32_t sizes[2] = {0, 0};
   if (data_start + 8.0 <= bytes.size()) std::memcpy(sizes, bytes.data() + data_start, sizeof sizes);
   if (data_start + 8.0 > bytes.size() || sizes[1] != claimed_bytes || data_start + 8.0 + sizes[0] > bytes.size()) {
-    throw std::invalid_argument(where + "not a readable PCD file (damaged compressed data: sizes do not match the header)");
+    throw std::invalid_argument(where +
+                                "not a readable PCD file (damaged compressed data: sizes do not match the header)");
   }
 }
 
@@ -44,8 +46,8 @@ void CheckCompressedSizes(const std::string& bytes, unsigned int data_start, dou
 // twice anywhere is refused (data lines are numbers or binary, which never spell a keyword in practice).
 struct HeaderText {
   std::vector<std::string> fields;  ///< FIELDS.
-  double points = 0;       ///< POINTS, else WIDTH x HEIGHT.
-  double point_bytes = 0;  ///< The sum of SIZE x COUNT over the fields.
+  double points = 0;                ///< POINTS, else WIDTH x HEIGHT.
+  double point_bytes = 0;           ///< The sum of SIZE x COUNT over the fields.
 };
 
 std::vector<std::string> Words(std::istringstream& line) {
@@ -75,7 +77,8 @@ void CheckFieldLines(std::map<std::string, std::vector<std::string>>& lines, con
     if (type != "I" && type != "U" && type != "F") fail("TYPE '" + type + "': expected I, U or F");
   }
   for (const std::string& count : lines["COUNT"]) {
-    if (count.empty() || count.size() > 7 || count.find_first_not_of("0123456789") != std::string::npos || std::stoi(count) < 1) {
+    if (count.empty() || count.size() > 7 || count.find_first_not_of("0123456789") != std::string::npos ||
+        std::stoi(count) < 1) {
       fail("COUNT '" + count + "': expected a whole number of at least 1");
     }
   }
@@ -83,8 +86,9 @@ void CheckFieldLines(std::map<std::string, std::vector<std::string>>& lines, con
 
 HeaderText ScanHeaderText(const std::string& bytes, const std::string& where) {
   static const std::vector<std::pair<std::string, std::string>> kPrefixes{
-      {"VERSION", "VERSION"}, {"FIELDS", "FIELDS"}, {"COLUMNS", "FIELDS"}, {"SIZE", "SIZE"}, {"TYPE", "TYPE"}, {"COUNT", "COUNT"},
-      {"WIDTH", "WIDTH"},   {"HEIGHT", "HEIGHT"},  {"VIEWPOINT", "VIEWPOINT"}, {"POINTS", "POINTS"}, {"DATA", "DATA"}};
+      {"VERSION", "VERSION"},     {"FIELDS", "FIELDS"}, {"COLUMNS", "FIELDS"}, {"SIZE", "SIZE"},
+      {"TYPE", "TYPE"},           {"COUNT", "COUNT"},   {"WIDTH", "WIDTH"},    {"HEIGHT", "HEIGHT"},
+      {"VIEWPOINT", "VIEWPOINT"}, {"POINTS", "POINTS"}, {"DATA", "DATA"}};
   std::istringstream in(bytes);
   std::map<std::string, std::vector<std::string>> values;
   for (std::string line; std::getline(in, line);) {
@@ -102,7 +106,8 @@ HeaderText ScanHeaderText(const std::string& bytes, const std::string& where) {
   CheckFieldLines(values, where);
   HeaderText h;
   h.fields = values["FIELDS"];
-  h.points = values.count("POINTS") ? Number(values["POINTS"], 0) : Number(values["WIDTH"], 0) * Number(values["HEIGHT"], 0);
+  h.points =
+      values.count("POINTS") ? Number(values["POINTS"], 0) : Number(values["WIDTH"], 0) * Number(values["HEIGHT"], 0);
   // Without SIZE or COUNT lines PCL takes 4-byte fields of one value each.
   const std::vector<std::string>& sizes = values["SIZE"];
   const std::vector<std::string>& counts = values["COUNT"];
@@ -136,7 +141,9 @@ void CheckField(const pcl::PCLPointCloud2& blob, const std::string& name, std::i
     const bool type_ok = std::find(types.begin(), types.end(), f.datatype) != types.end();
     if (!type_ok || f.count != 1 || f.offset + 4 > blob.point_step) {
       throw std::invalid_argument(where + "field '" + name + "': expected one 4-byte " +
-                                  (name == "label" ? "unsigned integer" : name == "rgb" ? "packed colour" : "float") +
+                                  (name == "label" ? "unsigned integer"
+                                   : name == "rgb" ? "packed colour"
+                                                   : "float") +
                                   " per point");
     }
   }
@@ -150,7 +157,8 @@ std::string ReadFileBytes(const std::filesystem::path& file, const std::string& 
   std::ifstream in(file, std::ios::binary | std::ios::ate);
   const std::streamoff size = in ? static_cast<std::streamoff>(in.tellg()) : -1;
   std::string bytes(size > 0 ? static_cast<size_t>(size) : 0, '\0');
-  if (size < 0 || !in.seekg(0) || !in.read(bytes.data(), size)) throw std::invalid_argument(where + "cannot read the file");
+  if (size < 0 || !in.seekg(0) || !in.read(bytes.data(), size))
+    throw std::invalid_argument(where + "cannot read the file");
   return bytes;
 }
 
@@ -170,7 +178,8 @@ PcdLayout ReadCheckedHeader(const std::string& bytes, const HeaderText& text, pc
   std::istringstream in(bytes);
   int header = -1;
   try {
-    header = pcl::PCDReader().readHeader(in, blob, origin, orientation, layout.version, layout.data_type, layout.data_start);
+    header =
+        pcl::PCDReader().readHeader(in, blob, origin, orientation, layout.version, layout.data_type, layout.data_start);
   } catch (const std::exception& e) {  // PCL 1.13 throws std::out_of_range for some malformed headers.
     throw std::invalid_argument(where + "not a readable PCD file (damaged header: " + e.what() + ")");
   }
@@ -193,7 +202,8 @@ void ReadBody(const std::string& bytes, const PcdLayout& layout, pcl::PCLPointCl
   const double claimed_bytes = static_cast<double>(blob.width) * blob.height * blob.point_step;
   // PCL takes the end of the stream (-1) for the data's start when DATA is the file's last line; its
   // ASCII parser would then wait forever on a stream that failed without reaching its end.
-  if (layout.data_start >= bytes.size()) throw std::invalid_argument(where + "not a readable PCD file (no data after DATA)");
+  if (layout.data_start >= bytes.size())
+    throw std::invalid_argument(where + "not a readable PCD file (no data after DATA)");
   if (layout.data_type == 2) CheckCompressedSizes(bytes, layout.data_start, claimed_bytes, where);
   if (layout.data_type == 1 && layout.data_start + claimed_bytes > bytes.size()) {
     throw std::invalid_argument(where + "not a readable PCD file (the data is shorter than the header says)");
@@ -258,7 +268,8 @@ Cloud::Ptr LoadCloud(const std::filesystem::path& file, bool organized) {
   }
   if (!HasField(blob, "rgb")) {
     auto rgba = std::find_if(blob.fields.begin(), blob.fields.end(), [](const auto& f) { return f.name == "rgba"; });
-    if (rgba == blob.fields.end()) throw std::invalid_argument(where + "missing field 'rgb' (or 'rgba'): colour is needed");
+    if (rgba == blob.fields.end())
+      throw std::invalid_argument(where + "missing field 'rgb' (or 'rgba'): colour is needed");
     rgba->name = "rgb";  // Same packing; PCL matches fields by name.
   }
   CheckField(blob, "rgb", {pcl::PCLPointField::FLOAT32, pcl::PCLPointField::UINT32, pcl::PCLPointField::INT32}, where);

@@ -20,7 +20,8 @@ struct Moments {
 
   static Moments Of(const Eigen::Vector3d& p) {
     Moments m;
-    m.sums << 1, p.x(), p.y(), p.z(), p.x() * p.x(), p.x() * p.y(), p.x() * p.z(), p.y() * p.y(), p.y() * p.z(), p.z() * p.z();
+    m.sums << 1, p.x(), p.y(), p.z(), p.x() * p.x(), p.x() * p.y(), p.x() * p.z(), p.y() * p.y(), p.y() * p.z(),
+        p.z() * p.z();
     return m;
   }
   void Add(const Moments& other) { sums += other.sums; }
@@ -40,8 +41,8 @@ inline pcl::Normal NormalOf(const Moments& m, const Eigen::Vector3f& p_C) {
   Eigen::Matrix3d covariance;
   covariance << e[4], e[5], e[6], e[5], e[7], e[8], e[6], e[8], e[9];
   covariance -= mean * mean.transpose();
-  pcl::solvePlaneParameters(Eigen::Matrix3f(covariance.cast<float>()), normal.normal_x, normal.normal_y, normal.normal_z,
-                            normal.curvature);
+  pcl::solvePlaneParameters(Eigen::Matrix3f(covariance.cast<float>()), normal.normal_x, normal.normal_y,
+                            normal.normal_z, normal.curvature);
   pcl::flipNormalTowardsViewpoint(PointT(p_C.x(), p_C.y(), p_C.z()), 0.0f, 0.0f, 0.0f, normal.normal_x, normal.normal_y,
                                   normal.normal_z);
   return normal;

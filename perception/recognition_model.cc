@@ -78,7 +78,8 @@ struct Reader {
 
 // The descriptor parameters as a FileStorage map: one entry per VisitDescriptorParams key.
 void WriteDescriptorParams(cv::FileStorage& fs, const DescriptorParams& params) {
-  fs << "descriptor_params" << "{";
+  fs << "descriptor_params"
+     << "{";
   VisitDescriptorParams(params, [&](const char* key, auto value) { fs << key << value; });
   fs << "}";
 }
@@ -136,8 +137,8 @@ void ReadClasses(const Reader& r, std::optional<DescriptorKind> expected, Recogn
     r.Fail(e.what());
   }
   if (expected && *expected != model.descriptor) {
-    r.Fail("trained for descriptor '" + DescriptorName(model.descriptor) + "', expected '" +
-           DescriptorName(*expected) + "'");
+    r.Fail("trained for descriptor '" + DescriptorName(model.descriptor) + "', expected '" + DescriptorName(*expected) +
+           "'");
   }
   const cv::FileNode classes = r.Node(r.root, "classes");
   if (!classes.isSeq()) r.Fail("key 'classes' is not a list");
@@ -188,8 +189,10 @@ void WriteFamiliarity(cv::FileStorage& fs, const Familiarity& f) {
   cv::Mat reference, scale;
   cv::eigen2cv(f.reference, reference);
   cv::eigen2cv(f.block_scale, scale);
-  fs << "familiarity" << "{" << "reference" << reference << "block_scale" << scale << "held_out"
-     << cv::Mat(f.held_out, true).reshape(1, 1) << "}";
+  fs << "familiarity"
+     << "{"
+     << "reference" << reference << "block_scale" << scale << "held_out" << cv::Mat(f.held_out, true).reshape(1, 1)
+     << "}";
 }
 
 // Optional: a model file of before has none (every view is then familiar).
@@ -216,8 +219,10 @@ Familiarity ReadFamiliarity(const Reader& r) {
 
 const char* ToString(LabelKind kind) {
   switch (kind) {
-    case LabelKind::kCategory: return "category";
-    case LabelKind::kInstance: return "instance";
+    case LabelKind::kCategory:
+      return "category";
+    case LabelKind::kInstance:
+      return "instance";
   }
   return "unknown";
 }
@@ -251,19 +256,25 @@ void SaveModel(const std::filesystem::path& file, const RecognitionModel& model)
   std::string text;
   try {  // Into memory first: OpenCV does not check its own file writes.
     cv::FileStorage fs(".json", cv::FileStorage::WRITE | cv::FileStorage::MEMORY | cv::FileStorage::FORMAT_JSON |
-                       cv::FileStorage::WRITE_BASE64);
+                                    cv::FileStorage::WRITE_BASE64);
     fs << "format" << kFormat << "version" << kModelFormatVersion;
     fs << "descriptor" << DescriptorName(model.descriptor) << "label_kind" << ToString(model.label_kind);
-    fs << "classes" << "[";
+    fs << "classes"
+       << "[";
     for (const auto& c : model.classes) fs << c;
     fs << "]";
     WriteDescriptorParams(fs, model.params);
-    fs << "training" << "{" << "samples" << model.train_samples << "cv_accuracy" << model.cv_accuracy << "}";
-    fs << "scaling" << "{" << "min" << ToMat(model.classifier.scaling().min) << "scale"
-       << ToMat(model.classifier.scaling().scale) << "}";
-    fs << "svm" << "{" << "C" << a.C << "gamma" << a.gamma << "label" << IntOrDoubleRow(a.label) << "nSV"
-       << IntOrDoubleRow(a.nSV) << "rho" << IntOrDoubleRow(a.rho) << "probA" << IntOrDoubleRow(a.probA) << "probB"
-       << IntOrDoubleRow(a.probB) << "sv_coef" << sv_coef << "sv" << sv << "}";
+    fs << "training"
+       << "{"
+       << "samples" << model.train_samples << "cv_accuracy" << model.cv_accuracy << "}";
+    fs << "scaling"
+       << "{"
+       << "min" << ToMat(model.classifier.scaling().min) << "scale" << ToMat(model.classifier.scaling().scale) << "}";
+    fs << "svm"
+       << "{"
+       << "C" << a.C << "gamma" << a.gamma << "label" << IntOrDoubleRow(a.label) << "nSV" << IntOrDoubleRow(a.nSV)
+       << "rho" << IntOrDoubleRow(a.rho) << "probA" << IntOrDoubleRow(a.probA) << "probB" << IntOrDoubleRow(a.probB)
+       << "sv_coef" << sv_coef << "sv" << sv << "}";
     if (!model.familiarity.empty()) WriteFamiliarity(fs, model.familiarity);
     text = fs.releaseAndGetString();
   } catch (const cv::Exception& e) {
@@ -294,8 +305,7 @@ RecognitionModel LoadModel(const std::filesystem::path& file, std::optional<Desc
     const SvmClassifier::Arrays arrays = ReadSvmArrays(r);
     model.familiarity = ReadFamiliarity(r);
     try {
-      model.classifier =
-          SvmClassifier::FromArrays(arrays, std::move(scaling), static_cast<int>(model.classes.size()));
+      model.classifier = SvmClassifier::FromArrays(arrays, std::move(scaling), static_cast<int>(model.classes.size()));
     } catch (const std::invalid_argument& e) {
       r.Fail(e.what());
     }

@@ -32,8 +32,8 @@ struct RecognitionModel {
   SvmClassifier classifier;
   /// How like its training views a view is (empty in a model file of before: every view familiar).
   Familiarity familiarity;
-  int train_samples = 0;     ///< Rows it was trained on.
-  double cv_accuracy = 0;    ///< Grouped cross-validation accuracy of the chosen (C, gamma).
+  int train_samples = 0;   ///< Rows it was trained on.
+  double cv_accuracy = 0;  ///< Grouped cross-validation accuracy of the chosen (C, gamma).
 
   struct Ranked {
     std::string name;
@@ -45,8 +45,8 @@ struct RecognitionModel {
     /// about uniform below the class probability, so a reject threshold of 0.05 rejects about 5 % of
     /// them; an object unlike every training view gets a small one whatever the SVM says.
     double confidence = 0;
-    double probability = 0;   ///< The SVM's probability of the class (Platt, pairwise coupling).
-    double familiarity = 1;   ///< Familiarity::Of the view.
+    double probability = 0;  ///< The SVM's probability of the class (Platt, pairwise coupling).
+    double familiarity = 1;  ///< Familiarity::Of the view.
     int label = -1;
     std::vector<Ranked> ranked;  ///< Every class, most probable first.
   };

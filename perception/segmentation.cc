@@ -37,8 +37,9 @@ void CheckInput(const Cloud& cloud, const Cloud* background) {
                                 std::to_string(cloud.width) + "x" + std::to_string(cloud.height));
   }
   if (background != nullptr && !cloud.isOrganized()) {
-    throw std::invalid_argument("segmentation: background subtraction needs an organized cloud (one point per "
-                                "pixel); this one is unorganized (height 1)");
+    throw std::invalid_argument(
+        "segmentation: background subtraction needs an organized cloud (one point per "
+        "pixel); this one is unorganized (height 1)");
   }
   if (background != nullptr && (background->width != cloud.width || background->height != cloud.height)) {
     throw std::invalid_argument("segmentation: the background cloud is " + std::to_string(background->width) + "x" +
@@ -136,8 +137,7 @@ std::optional<PlaneFit> FitSupportingPlane(const Cloud& cloud, const std::vector
              std::to_string(params.min_plane_points) + "): expected objects standing on a table or floor";
     return std::nullopt;
   }
-  Eigen::Vector4d plane(coefficients.values[0], coefficients.values[1], coefficients.values[2],
-                        coefficients.values[3]);
+  Eigen::Vector4d plane(coefficients.values[0], coefficients.values[1], coefficients.values[2], coefficients.values[3]);
   plane /= plane.head<3>().norm();
   if (plane[3] < 0) plane = -plane;  // n.0 + d = d: positive on the camera's side.
   fit.plane_C = plane;
@@ -275,9 +275,12 @@ void ClusterObjects(const Cloud& cloud, const std::vector<int>& above, const std
 
 const char* ToString(SegmentationStatus status) {
   switch (status) {
-    case SegmentationStatus::kOk: return "ok";
-    case SegmentationStatus::kNoValidPoints: return "no_valid_points";
-    case SegmentationStatus::kNoPlane: return "no_plane";
+    case SegmentationStatus::kOk:
+      return "ok";
+    case SegmentationStatus::kNoValidPoints:
+      return "no_valid_points";
+    case SegmentationStatus::kNoPlane:
+      return "no_plane";
   }
   return "unknown";
 }

@@ -34,7 +34,7 @@ struct SegmentationParams {
   double above_plane_m = 0.010;
   /// Without a camera pose: objects are what stands on the plane's inlier area up to this height.
   double max_object_height_m = 0.5;
-  double voxel_leaf_m = 0.005;       ///< Voxel grid leaf for clustering.
+  double voxel_leaf_m = 0.005;  ///< Voxel grid leaf for clustering.
   /// How the voxels are clustered: by Euclidean distance (touching objects merge), or into convex
   /// clusters (perception/convex_segmentation.h: touching objects come apart at concave creases).
   enum class Clustering { kEuclidean, kConvex } clustering = Clustering::kEuclidean;
@@ -46,8 +46,9 @@ struct SegmentationParams {
 
 /// One segmented object.
 struct Segment {
-  std::vector<int> indices;  ///< Pixels (row * width + col) of an organized input cloud; point indices of an unorganized one.
-  Cloud::Ptr cloud_C;        ///< Those points, full resolution, camera optical frame.
+  std::vector<int>
+      indices;         ///< Pixels (row * width + col) of an organized input cloud; point indices of an unorganized one.
+  Cloud::Ptr cloud_C;  ///< Those points, full resolution, camera optical frame.
   /// Centroid, bounding box and principal axes (columns, largest variance first) in the output frame:
   /// the world with a camera pose, else the camera frame.
   Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
@@ -74,9 +75,10 @@ const char* ToString(SegmentationStatus status);
 
 struct SegmentationResult {
   SegmentationStatus status = SegmentationStatus::kOk;
-  std::string detail;  ///< Why, for a person, when not ok (numbers included); empty when ok.
+  std::string detail;        ///< Why, for a person, when not ok (numbers included); empty when ok.
   bool world_frame = false;  ///< Whether centroids and boxes are in the world (camera pose given).
-  Eigen::Vector4d plane_C = Eigen::Vector4d::Zero();  ///< Supporting plane n.p + d = 0, camera frame, n towards the camera.
+  Eigen::Vector4d plane_C =
+      Eigen::Vector4d::Zero();    ///< Supporting plane n.p + d = 0, camera frame, n towards the camera.
   std::vector<Segment> segments;  ///< Largest first; empty when not ok.
   SegmentationTimings timings;
 };

@@ -67,8 +67,9 @@ SegmentationScore ScoreSegmentation(const std::vector<int>& truth, const std::ve
   }
   // Largest IoU first; ties by segment, then object (a fixed order, so equal IoUs always match alike).
   std::sort(pairs.begin(), pairs.end(), [](const auto& a, const auto& b) {
-    return std::get<0>(a) != std::get<0>(b) ? std::get<0>(a) > std::get<0>(b)
-                                            : std::tie(std::get<1>(a), std::get<2>(a)) < std::tie(std::get<1>(b), std::get<2>(b));
+    return std::get<0>(a) != std::get<0>(b)
+               ? std::get<0>(a) > std::get<0>(b)
+               : std::tie(std::get<1>(a), std::get<2>(a)) < std::tie(std::get<1>(b), std::get<2>(b));
   });
   std::vector<bool> segment_used(segments.size(), false);
   std::map<int, double> matched_iou;  // Object -> the IoU of its one-to-one match.

@@ -19,7 +19,9 @@ struct SegmentationScore {
   /// Pixels: of the true objects, of the segments, and shared by matched pairs (segments matched one to
   /// one to objects, largest IoU first). Pooled over frames by adding them up.
   long true_pixels = 0, predicted_pixels = 0, matched_pixels = 0;
-  double OverlapPrecision() const { return predicted_pixels > 0 ? static_cast<double>(matched_pixels) / predicted_pixels : 0; }
+  double OverlapPrecision() const {
+    return predicted_pixels > 0 ? static_cast<double>(matched_pixels) / predicted_pixels : 0;
+  }
   double OverlapRecall() const { return true_pixels > 0 ? static_cast<double>(matched_pixels) / true_pixels : 0; }
   double OverlapF() const;
   double FoundRate() const { return objects > 0 ? static_cast<double>(found) / objects : 0; }

@@ -3,7 +3,6 @@
 #include "perception/normal_estimation.h"
 #include "perception/plane_moments.h"
 
-
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -25,7 +24,8 @@ Eigen::Vector3d OctreeCorner(const Cloud& points, double resolution) {
   const Eigen::Vector3d min = low.cast<double>(), max = high.cast<double>();
   std::uint32_t max_voxels = 2;
   for (int a = 0; a < 3; ++a) {
-    max_voxels = std::max(max_voxels, static_cast<std::uint32_t>(std::ceil((max[a] - min[a] - min_value) / resolution)));
+    max_voxels =
+        std::max(max_voxels, static_cast<std::uint32_t>(std::ceil((max[a] - min[a] - min_value) / resolution)));
   }
   const auto depth = static_cast<std::uint32_t>(std::ceil(std::log2(max_voxels) - min_value));
   const double side = static_cast<double>(1u << depth) * resolution;
@@ -39,7 +39,9 @@ Eigen::Vector3d OctreeCorner(const Cloud& points, double resolution) {
 
 constexpr int kKeyBits = 21;  // Per axis in a packed key: 2^21 voxels (15 km at 7.5 mm).
 
-std::uint64_t Pack(std::uint64_t x, std::uint64_t y, std::uint64_t z) { return (x << (2 * kKeyBits)) | (y << kKeyBits) | z; }
+std::uint64_t Pack(std::uint64_t x, std::uint64_t y, std::uint64_t z) {
+  return (x << (2 * kKeyBits)) | (y << kKeyBits) | z;
+}
 
 // PCL's voxels: their keys (sorted), each point's voxel, and each voxel's centroid (the float mean of
 // its points in input order, as the octree's leaf container sums them).

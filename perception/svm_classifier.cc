@@ -222,10 +222,10 @@ SvmClassifier SvmClassifier::Train(const Eigen::MatrixXf& samples, const std::ve
   worker();
   for (auto& thread : threads) thread.join();
   // The best held-out accuracy; among equals, the largest held-out margin.
-  const CvScore best = *std::max_element(result.cv_scores_.begin(), result.cv_scores_.end(),
-                                         [](const CvScore& a, const CvScore& b) {
-                                           return a.accuracy < b.accuracy || (a.accuracy == b.accuracy && a.margin < b.margin);
-                                         });
+  const CvScore best =
+      *std::max_element(result.cv_scores_.begin(), result.cv_scores_.end(), [](const CvScore& a, const CvScore& b) {
+        return a.accuracy < b.accuracy || (a.accuracy == b.accuracy && a.margin < b.margin);
+      });
 
   const svm_parameter param = RbfParameter(best.C, best.gamma, true);
   svm_problem problem{static_cast<int>(n), y.data(), const_cast<svm_node**>(x.rows.data())};
@@ -296,7 +296,8 @@ Prediction SvmClassifier::Predict(const Eigen::VectorXf& x) const {
   Prediction p;
   p.probabilities.assign(classes_, 0.0);
   for (int i = 0; i < k; ++i) p.probabilities[storage_->arrays.label[i]] = by_model_label[i];
-  p.label = static_cast<int>(std::max_element(p.probabilities.begin(), p.probabilities.end()) - p.probabilities.begin());
+  p.label =
+      static_cast<int>(std::max_element(p.probabilities.begin(), p.probabilities.end()) - p.probabilities.begin());
   p.confidence = p.probabilities[p.label];
   return p;
 }

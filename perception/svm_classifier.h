@@ -35,8 +35,8 @@ struct CvScore {
 };
 
 struct Prediction {
-  int label = -1;            ///< Class index, argmax of the probabilities.
-  double confidence = 0;     ///< Its probability.
+  int label = -1;                     ///< Class index, argmax of the probabilities.
+  double confidence = 0;              ///< Its probability.
   std::vector<double> probabilities;  ///< Per class index.
 };
 
@@ -68,7 +68,7 @@ class SvmClassifier {
     std::vector<int> label, nSV;
     std::vector<double> rho, probA, probB;
     Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> sv_coef;  ///< (classes - 1) x l.
-    Eigen::MatrixXd sv;       ///< l x features, scaled features (dense).
+    Eigen::MatrixXd sv;  ///< l x features, scaled features (dense).
   };
   Arrays ToArrays() const;
   /// @throws std::invalid_argument naming the inconsistent array.

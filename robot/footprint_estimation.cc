@@ -44,7 +44,8 @@ double YawOf(const Eigen::Vector2d& d) {
 void Narrowest(const std::vector<Eigen::Vector3d>& p_W, const FootprintOptions& options, std::vector<double>& scratch,
                double& width, double& yaw) {
   for (double candidate = 0; candidate < M_PI; candidate += options.yaw_step) {
-    const double w = ExtentAlong(p_W, Eigen::Vector2d(std::cos(candidate), std::sin(candidate)), options, scratch).width();
+    const double w =
+        ExtentAlong(p_W, Eigen::Vector2d(std::cos(candidate), std::sin(candidate)), options, scratch).width();
     if (w < width) {
       width = w;
       yaw = candidate;
@@ -164,11 +165,12 @@ FootprintEstimate EstimateFootprint(const std::vector<Eigen::Vector3d>& p_W, con
   const Extent across = ExtentAlong(p_W, u, options, scratch);
   // A prism (box, cup) shows its whole footprint in its top face; a tapered object (bottle, ball)
   // shows only a cap there, and its back stays hidden.
-  const bool prism = top.size() >= 10 && ExtentAlong(top, u, options, scratch).width() >= options.prism_ratio * across.width();
+  const bool prism =
+      top.size() >= 10 && ExtentAlong(top, u, options, scratch).width() >= options.prism_ratio * across.width();
   double narrowest = across.width(), narrowest_yaw = YawOf(u);
   if (prism) Narrowest(p_W, options, scratch, narrowest, narrowest_yaw);
-  const bool use_across = across.width() <= options.max_width &&
-                          (!prism || across.width() <= options.across_preference * narrowest);
+  const bool use_across =
+      across.width() <= options.max_width && (!prism || across.width() <= options.across_preference * narrowest);
   if (use_across) {
     const Extent along = ExtentAlong(p_W, v, options, scratch);
     const double depth = std::max(along.width(), across.width());

@@ -11,10 +11,14 @@ namespace sortcell::robot {
 
 const char* ToString(GraspStatus status) {
   switch (status) {
-    case GraspStatus::kOk: return "ok";
-    case GraspStatus::kTooWide: return "too_wide";
-    case GraspStatus::kTooLow: return "too_low";
-    case GraspStatus::kUnreachable: return "unreachable";
+    case GraspStatus::kOk:
+      return "ok";
+    case GraspStatus::kTooWide:
+      return "too_wide";
+    case GraspStatus::kTooLow:
+      return "too_low";
+    case GraspStatus::kUnreachable:
+      return "unreachable";
   }
   return "?";
 }
@@ -33,8 +37,8 @@ Eigen::Isometry3d TopDownTcpPose(const Eigen::Vector3d& p_W, double pinch_yaw) {
 double GraspHeight(const ObjectFootprint& object, const GraspOptions& options) {
   const double height = object.top_z - object.base_z;
   const double lowest = kFingerTipBeyondTcp + options.table_clearance - object.base_z;
-  const double over_neighbours = std::min({options.min_tcp_z - object.base_z, height - options.min_pad_overlap,
-                                            object.full_width_top_z - object.base_z});
+  const double over_neighbours = std::min(
+      {options.min_tcp_z - object.base_z, height - options.min_pad_overlap, object.full_width_top_z - object.base_z});
   return std::max({0.5 * height, height - kPalmBeforeTcp + options.palm_clearance, over_neighbours, lowest});
 }
 
@@ -113,8 +117,8 @@ PlacePlan PlanPlacement(const Eigen::Vector3d& p_W_floor, double grasp_height, c
   PlacePlan first;  // The nearest reachable placement, taken when no line down is smooth.
   for (double clearance = options.lift_clearance; clearance >= options.min_lift_clearance - 1e-9; clearance -= 0.02) {
     const Eigen::Vector3d p_above = p_W_floor + Eigen::Vector3d(0, 0, clearance + grasp_height);
-    for (const TopDownCandidate& c :
-         TopDownPosesByDistance(p_above, q_current, options.selection, options.place_yaw_step, options.place_yaw_offset)) {
+    for (const TopDownCandidate& c : TopDownPosesByDistance(p_above, q_current, options.selection,
+                                                            options.place_yaw_step, options.place_yaw_offset)) {
       PlacePlan plan;
       plan.X_WT_above = plan.X_WT_release = c.X_WT;
       plan.q_above = c.q;
@@ -135,7 +139,8 @@ PlacePlan PlanPlacement(const Eigen::Vector3d& p_W_floor, double grasp_height, c
 
 bool NearestTopDownPose(const Eigen::Vector3d& p_W, const Joints& q_current, const SelectionOptions& selection,
                         Eigen::Isometry3d& X_WT, Joints& q, double yaw_step, double yaw_offset) {
-  const std::vector<TopDownCandidate> candidates = TopDownPosesByDistance(p_W, q_current, selection, yaw_step, yaw_offset);
+  const std::vector<TopDownCandidate> candidates =
+      TopDownPosesByDistance(p_W, q_current, selection, yaw_step, yaw_offset);
   if (candidates.empty()) return false;
   X_WT = candidates.front().X_WT;
   q = candidates.front().q;

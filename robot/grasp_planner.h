@@ -34,8 +34,8 @@ struct GraspOptions {
   /// the object's top and no higher than its full_width_top_z.
   double min_tcp_z = -INFINITY;
   double min_pad_overlap = 0.02;
-  double table_clearance = 0.010;    ///< Between finger tips and the table (m).
-  double approach_height = 0.03;     ///< Finger tips above the object's top where the slow descent starts (m).
+  double table_clearance = 0.010;  ///< Between finger tips and the table (m).
+  double approach_height = 0.03;   ///< Finger tips above the object's top where the slow descent starts (m).
   /// Lift the object's bottom this high above the table before carrying it anywhere (m): above the
   /// tallest objects of the sets (0.224 m bottles) and the bins' 0.10 m walls.
   double lift_clearance = 0.30;
@@ -65,8 +65,8 @@ struct GraspPlan {
   Eigen::Isometry3d X_WT_lift = Eigen::Isometry3d::Identity();      ///< Straight above, object lifted.
   Joints q_lift = Joints::Zero();  ///< IK of the lift pose nearest to the current joints: the arm
                                    ///< arrives there first (above everything) and descends in lines.
-  double open_gap = 0;                 ///< Gap to open to before the descent (m).
-  double grasp_height = 0;             ///< TCP height above the object's base (m).
+  double open_gap = 0;             ///< Gap to open to before the descent (m).
+  double grasp_height = 0;         ///< TCP height above the object's base (m).
 };
 
 /// The TCP's height above the object's base for a top-down grasp of `object` (PlanTopDownGrasp's):

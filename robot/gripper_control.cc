@@ -13,15 +13,19 @@ HoldState DetectHold(const GripperSensors& s, const HoldDetection& d) {
 
 const char* ToString(HoldState state) {
   switch (state) {
-    case HoldState::kMoving: return "moving";
-    case HoldState::kEmpty: return "empty";
-    case HoldState::kHolding: return "holding";
+    case HoldState::kMoving:
+      return "moving";
+    case HoldState::kEmpty:
+      return "empty";
+    case HoldState::kHolding:
+      return "holding";
   }
   return "?";
 }
 
 bool CaughtAfterOpening(const GripperSensors& s, double gap, double tolerance, double min_force) {
-  return s.gap() < std::fmin(gap, kMaxGap) - tolerance || s.left_pad_force >= min_force || s.right_pad_force >= min_force;
+  return s.gap() < std::fmin(gap, kMaxGap) - tolerance || s.left_pad_force >= min_force ||
+         s.right_pad_force >= min_force;
 }
 
 double SqueezeTarget(double half_gap_at_contact, double grip_force) {

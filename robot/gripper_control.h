@@ -12,9 +12,9 @@ namespace sortcell::robot {
 
 /// What the gripper's sensors report.
 struct GripperSensors {
-  double left_half_gap = 0;   ///< Finger joint positions (m): pad surface to the TCP plane.
+  double left_half_gap = 0;  ///< Finger joint positions (m): pad surface to the TCP plane.
   double right_half_gap = 0;
-  double left_speed = 0;      ///< Finger joint speeds (m/s).
+  double left_speed = 0;  ///< Finger joint speeds (m/s).
   double right_speed = 0;
   double left_pad_force = 0;  ///< Normal contact force on each finger's pads (N).
   double right_pad_force = 0;
@@ -32,9 +32,9 @@ enum class HoldState {
 };
 
 struct HoldDetection {
-  double min_gap = 0.004;           ///< A gap below this is "closed on nothing" (m).
-  double min_pad_force = 5.0;       ///< Each side must squeeze with at least this much (N).
-  double settled_speed = 0.002;     ///< Fingers slower than this have stopped (m/s).
+  double min_gap = 0.004;        ///< A gap below this is "closed on nothing" (m).
+  double min_pad_force = 5.0;    ///< Each side must squeeze with at least this much (N).
+  double settled_speed = 0.002;  ///< Fingers slower than this have stopped (m/s).
 };
 
 /// Judges the hold from one sensor reading.

@@ -78,8 +78,7 @@ JointTrajectory PlanJointMove(const Joints& q_start, const Joints& q_goal, doubl
   return PlanJointMove(q_start, q_goal, {Joints::Constant(speed), Joints::Constant(acceleration)}, dt);
 }
 
-JointTrajectory PlanJointMove(const Joints& q_start, const Joints& q_goal, const JointMotionLimits& limits,
-                              double dt) {
+JointTrajectory PlanJointMove(const Joints& q_start, const Joints& q_goal, const JointMotionLimits& limits, double dt) {
   for (int i = 0; i < 6; ++i) CheckMotionParameters("joint move", limits.speed[i], limits.acceleration[i], dt);
   if (limits.speed.maxCoeff() > kUr5MaxJointSpeed + 1e-12) {
     throw std::invalid_argument("joint move: speed " + std::to_string(limits.speed.maxCoeff()) +
@@ -157,8 +156,8 @@ bool WithinLimits(const JointTrajectory& sum, const JointTrajectory& first, cons
 
 }  // namespace
 
-JointTrajectory BlendMoves(const JointTrajectory& first, const JointTrajectory& second,
-                           const JointMotionLimits& limits, int* seam, const SampleCheck& fits) {
+JointTrajectory BlendMoves(const JointTrajectory& first, const JointTrajectory& second, const JointMotionLimits& limits,
+                           int* seam, const SampleCheck& fits) {
   if (first.q.empty() || second.q.empty()) {
     JointTrajectory t = first.q.empty() ? second : first;
     if (seam) *seam = first.q.empty() ? 0 : first.size() - 1;

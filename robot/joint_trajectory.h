@@ -86,8 +86,8 @@ using SampleCheck = std::function<bool(const Joints& q, const Joints& qd, const 
 /// `fits` given, a blended sample's accelerations are judged by it (the torques they need) instead of
 /// by limits.acceleration.
 /// @throws std::invalid_argument if dt differs or the segments do not join.
-JointTrajectory BlendMoves(const JointTrajectory& first, const JointTrajectory& second,
-                           const JointMotionLimits& limits, int* seam = nullptr, const SampleCheck& fits = {});
+JointTrajectory BlendMoves(const JointTrajectory& first, const JointTrajectory& second, const JointMotionLimits& limits,
+                           int* seam = nullptr, const SampleCheck& fits = {});
 
 enum class CartesianPlanStatus { kOk, kUnreachable, kTooFast, kOverTorqueBudget };
 

@@ -10,9 +10,12 @@ namespace sortcell::robot {
 
 const char* ToString(SkipReason reason) {
   switch (reason) {
-    case SkipReason::kNone: return "none";
-    case SkipReason::kUnreachable: return "unreachable";
-    case SkipReason::kGraspFailed: return "grasp_failed";
+    case SkipReason::kNone:
+      return "none";
+    case SkipReason::kUnreachable:
+      return "unreachable";
+    case SkipReason::kGraspFailed:
+      return "grasp_failed";
   }
   return "?";
 }

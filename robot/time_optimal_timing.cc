@@ -77,9 +77,12 @@ Interval FeasibleX(const UBounds& b) {
   for (int k = 0; k < b.n_lower; ++k) {
     for (int m = 0; m < b.n_upper; ++m) {
       const double coefficient = b.lower[k].p - b.upper[m].p, rhs = b.upper[m].r - b.lower[k].r;
-      if (coefficient > 0) x.hi = std::min(x.hi, rhs / coefficient);
-      else if (coefficient < 0) x.lo = std::max(x.lo, rhs / coefficient);
-      else if (rhs < 0) return {1, 0};
+      if (coefficient > 0)
+        x.hi = std::min(x.hi, rhs / coefficient);
+      else if (coefficient < 0)
+        x.lo = std::max(x.lo, rhs / coefficient);
+      else if (rhs < 0)
+        return {1, 0};
     }
   }
   return x;
@@ -117,7 +120,8 @@ std::vector<int> Grid(int size, int stride) {
 }
 
 PathTiming Solve(const JointTrajectory& path, int stride, const LimitsAt& limits_at) {
-  if (stride < 1) throw std::invalid_argument("TimeOptimalTiming: stride must be >= 1 (got " + std::to_string(stride) + ")");
+  if (stride < 1)
+    throw std::invalid_argument("TimeOptimalTiming: stride must be >= 1 (got " + std::to_string(stride) + ")");
   if (!(path.dt > 0)) throw std::invalid_argument("TimeOptimalTiming: the path's dt must be positive");
   PathTiming timing;
   timing.samples = Grid(path.size(), stride);

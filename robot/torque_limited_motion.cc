@@ -54,14 +54,13 @@ double TorqueTimeScale(const JointTrajectory& trajectory, const TorqueBudget& bu
   return std::sqrt(k2);
 }
 
-TorqueLimitedMove PlanTorqueLimitedJointMove(const Joints& q_start, const Joints& q_goal,
-                                             const JointMotionLimits& caps, const TorqueBudget& budget, double dt) {
-  return StretchUntilItFits(budget, PlanJointMove(q_start, q_goal, caps, dt),
-                            [&](double stretch, JointTrajectory* move) {
-                              *move = PlanJointMove(q_start, q_goal,
-                                                    {caps.speed / stretch, caps.acceleration / (stretch * stretch)}, dt);
-                              return true;
-                            });
+TorqueLimitedMove PlanTorqueLimitedJointMove(const Joints& q_start, const Joints& q_goal, const JointMotionLimits& caps,
+                                             const TorqueBudget& budget, double dt) {
+  return StretchUntilItFits(
+      budget, PlanJointMove(q_start, q_goal, caps, dt), [&](double stretch, JointTrajectory* move) {
+        *move = PlanJointMove(q_start, q_goal, {caps.speed / stretch, caps.acceleration / (stretch * stretch)}, dt);
+        return true;
+      });
 }
 
 CartesianPlan PlanTorqueLimitedLine(const Joints& q_start, const Eigen::Isometry3d& X_BT_goal, double speed,
@@ -77,8 +76,8 @@ CartesianPlan PlanTorqueLimitedLine(const Joints& q_start, const Eigen::Isometry
   plan.trajectory = move.trajectory;
   if (plan.status == CartesianPlanStatus::kOk && move.fit == TorqueFit::kOverBudget) {
     plan.status = CartesianPlanStatus::kOverTorqueBudget;
-    plan.detail = "the line needs more than the torque budget even " +
-                  std::to_string(static_cast<int>(kMaxStretch)) + " times slower";
+    plan.detail = "the line needs more than the torque budget even " + std::to_string(static_cast<int>(kMaxStretch)) +
+                  " times slower";
   }
   return plan;
 }

@@ -71,8 +71,7 @@ MassProperties GripperMassProperties() {
 }
 
 Ur5Dynamics::Ur5Dynamics(const MassProperties& tool_F) : links_(Ur5Links()) {
-  if (!(tool_F.mass >= 0) || !std::isfinite(tool_F.mass) || !tool_F.p_com.allFinite() ||
-      !tool_F.inertia.allFinite()) {
+  if (!(tool_F.mass >= 0) || !std::isfinite(tool_F.mass) || !tool_F.p_com.allFinite() || !tool_F.inertia.allFinite()) {
     throw std::invalid_argument("Ur5Dynamics: the tool's mass " + std::to_string(tool_F.mass) +
                                 " kg and centre of mass must be finite and not negative");
   }

@@ -13,9 +13,9 @@ namespace sortcell::robot {
 
 /// A rigid body's mass properties in the frame it is fixed to.
 struct MassProperties {
-  double mass = 0;                                       ///< kg
-  Eigen::Vector3d p_com = Eigen::Vector3d::Zero();       ///< centre of mass (m)
-  Eigen::Matrix3d inertia = Eigen::Matrix3d::Zero();     ///< about the centre of mass (kg m^2)
+  double mass = 0;                                    ///< kg
+  Eigen::Vector3d p_com = Eigen::Vector3d::Zero();    ///< centre of mass (m)
+  Eigen::Matrix3d inertia = Eigen::Matrix3d::Zero();  ///< about the centre of mass (kg m^2)
 };
 
 /// Two bodies fixed to the same frame as one (parallel-axis theorem).

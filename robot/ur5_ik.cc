@@ -37,7 +37,7 @@ bool SameModulo2Pi(const Joints& a, const Joints& b) {
 
 // R46 and p46 (frame 6 in frame 4) from the sines and cosines of q5, q6 (see FlangePose).
 void WristTransform(double c5, double s5, double c6, double s6, Eigen::Matrix3d& R46, Eigen::Vector3d& p46) {
-  using namespace ur5_lengths;  // NOLINT(google-build-using-namespace): the formulas' own names.
+  using namespace ur5_lengths;    // NOLINT(google-build-using-namespace): the formulas' own names.
   R46 << c5 * c6, -c5 * s6, -s5,  //
       s5 * c6, -s5 * s6, c5,      //
       -s6, -c6, 0;

@@ -63,9 +63,7 @@ Eigen::Isometry3d FlangePose(const Joints& q) {
   return X;
 }
 
-Eigen::Isometry3d TcpInFlange() {
-  return Eigen::Isometry3d(Eigen::Translation3d(0, 0, kTcpOffsetZ));
-}
+Eigen::Isometry3d TcpInFlange() { return Eigen::Isometry3d(Eigen::Translation3d(0, 0, kTcpOffsetZ)); }
 
 Eigen::Isometry3d TcpPose(const Joints& q) { return FlangePose(q) * TcpInFlange(); }
 

@@ -16,8 +16,8 @@ namespace sortcell::sim {
 using Vector6 = Eigen::Matrix<double, 6, 1>;
 
 struct GripperReading {
-  double left_half_gap = 0, right_half_gap = 0;  ///< m
-  double left_speed = 0, right_speed = 0;        ///< m/s
+  double left_half_gap = 0, right_half_gap = 0;    ///< m
+  double left_speed = 0, right_speed = 0;          ///< m/s
   double left_pad_force = 0, right_pad_force = 0;  ///< Sum of normal contact forces on the pads (N).
   /// Sum of the contacts' tangential forces (N) and torsional moments about their normals (N m): what
   /// the pads' friction carries.

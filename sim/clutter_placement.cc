@@ -6,7 +6,7 @@
 namespace sortcell::sim {
 namespace {
 
-constexpr int kBisections = 30;    // Sliding an object against another: 2^-30 of the start distance.
+constexpr int kBisections = 30;      // Sliding an object against another: 2^-30 of the start distance.
 constexpr double kTouching = 0.001;  // Footprints this much beyond the contact gap still touch (m).
 
 // Whether an object is laid on its side: only one that can lie, with the options' chance (no draw at
@@ -83,8 +83,8 @@ std::optional<Eigen::Vector2d> DrawFree(const Arrangement& arrangement, const Re
 // Against a member of its group: from that member's centre outwards in a random direction, slid in
 // until it just clears everything.
 std::optional<Eigen::Vector2d> DrawTouching(const Arrangement& arrangement, const std::vector<int>& members,
-                                            const RestingShape& shape, double yaw, int group,
-                                            const PlacementArea& area, std::mt19937_64& rng) {
+                                            const RestingShape& shape, double yaw, int group, const PlacementArea& area,
+                                            std::mt19937_64& rng) {
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   const Placed& base = arrangement.at(members[std::uniform_int_distribution<size_t>(0, members.size() - 1)(rng)]);
   const double angle = 2 * M_PI * unit(rng);
@@ -162,7 +162,9 @@ std::optional<std::vector<TablePose>> SampleSparse(const std::vector<ObjectShape
                                                    const PlacementOptions& options, std::mt19937_64& rng,
                                                    int max_tries) {
   std::uniform_real_distribution<double> unit(0.0, 1.0);
-  const auto radius = [&](size_t i, bool lying) { return lying ? shapes[i].lying->middle_radius : shapes[i].disc_radius; };
+  const auto radius = [&](size_t i, bool lying) {
+    return lying ? shapes[i].lying->middle_radius : shapes[i].disc_radius;
+  };
   // Where a lying object's disc is centred, from its origin.
   const auto middle = [&](size_t i, const TablePose& p) -> Eigen::Vector2d {
     return p.lying ? Eigen::Rotation2Dd(p.yaw) * shapes[i].lying->middle : Eigen::Vector2d::Zero();
@@ -209,9 +211,12 @@ std::optional<std::vector<TablePose>> SampleSparse(const std::vector<ObjectShape
 
 const char* ToString(PlacementMode mode) {
   switch (mode) {
-    case PlacementMode::kSparse: return "sparse";
-    case PlacementMode::kDense: return "dense";
-    case PlacementMode::kClustered: return "clustered";
+    case PlacementMode::kSparse:
+      return "sparse";
+    case PlacementMode::kDense:
+      return "dense";
+    case PlacementMode::kClustered:
+      return "clustered";
   }
   return "?";
 }
@@ -231,7 +236,8 @@ std::vector<int> ClusterSizes(int count, std::mt19937_64& rng) {
     for (int size = 2; size <= 4; ++size) {
       if (size <= left && left - size != 1) allowed.push_back(size);
     }
-    const int size = allowed.empty() ? left : allowed[std::uniform_int_distribution<size_t>(0, allowed.size() - 1)(rng)];
+    const int size =
+        allowed.empty() ? left : allowed[std::uniform_int_distribution<size_t>(0, allowed.size() - 1)(rng)];
     sizes.push_back(size);
     left -= size;
   }

@@ -95,10 +95,10 @@ FfmpegPipe::FfmpegPipe(const std::filesystem::path& path, int width, int height,
   if (pipe2(fds, O_CLOEXEC) != 0) throw Failure(path, std::string("no pipe: ") + std::strerror(errno));
   const std::string size = fmt::format("{}x{}", width, height), rate = fmt::format("{}", fps);
   // libx264 in yuv420p (what browsers and players take), the index at the front (plays while loading).
-  std::vector<std::string> args = {"ffmpeg", "-nostdin", "-loglevel", "error", "-y", "-f", "rawvideo",
-                                   "-pix_fmt", "bgr24", "-s", size, "-r", rate, "-i", "pipe:0",
-                                   "-c:v", "libx264", "-pix_fmt", "yuv420p", "-movflags", "+faststart",
-                                   path.string()};
+  std::vector<std::string> args = {"ffmpeg",   "-nostdin",  "-loglevel",  "error",      "-y",      "-f",
+                                   "rawvideo", "-pix_fmt",  "bgr24",      "-s",         size,      "-r",
+                                   rate,       "-i",        "pipe:0",     "-c:v",       "libx264", "-pix_fmt",
+                                   "yuv420p",  "-movflags", "+faststart", path.string()};
   const int spawned = StartFfmpeg(args, fds[0], child_, messages_);
   close(fds[0]);
   if (spawned != 0) {
@@ -143,13 +143,30 @@ void FfmpegPipe::Close() {
 }
 
 void CutVideo(const std::filesystem::path& in, const std::filesystem::path& out, double start_s, double length_s) {
-  std::vector<std::string> args = {"ffmpeg", "-nostdin", "-loglevel", "error", "-y", "-ss", fmt::format("{:.3f}", start_s),
-                                   "-i", in.string(), "-t", fmt::format("{:.3f}", length_s), "-an", "-c:v", "libx264",
-                                   "-pix_fmt", "yuv420p", "-movflags", "+faststart", out.string()};
+  std::vector<std::string> args = {"ffmpeg",
+                                   "-nostdin",
+                                   "-loglevel",
+                                   "error",
+                                   "-y",
+                                   "-ss",
+                                   fmt::format("{:.3f}", start_s),
+                                   "-i",
+                                   in.string(),
+                                   "-t",
+                                   fmt::format("{:.3f}", length_s),
+                                   "-an",
+                                   "-c:v",
+                                   "libx264",
+                                   "-pix_fmt",
+                                   "yuv420p",
+                                   "-movflags",
+                                   "+faststart",
+                                   out.string()};
   pid_t child = -1;
   std::filesystem::path messages;
   const int spawned = StartFfmpeg(args, -1, child, messages);
-  if (spawned != 0) throw Failure(out, std::string("cannot start ffmpeg (install Debian's ffmpeg): ") + std::strerror(spawned));
+  if (spawned != 0)
+    throw Failure(out, std::string("cannot start ffmpeg (install Debian's ffmpeg): ") + std::strerror(spawned));
   try {
     FinishFfmpeg(child, messages, out);
   } catch (const std::runtime_error& e) {

@@ -18,17 +18,23 @@ double SupportHalfExtent(const mjModel* m, const mjData* d, int g, const Eigen::
   const Eigen::Vector3d v = R.transpose() * u;  // u in the geom frame
   const double* s = m->geom_size + 3 * g;
   switch (m->geom_type[g]) {
-    case mjGEOM_SPHERE: return s[0];
-    case mjGEOM_CAPSULE: return s[0] + s[1] * std::abs(v.z());
-    case mjGEOM_CYLINDER: return s[0] * std::sqrt(std::fmax(0.0, 1.0 - v.z() * v.z())) + s[1] * std::abs(v.z());
-    case mjGEOM_ELLIPSOID: return Eigen::Vector3d(s[0] * v.x(), s[1] * v.y(), s[2] * v.z()).norm();
-    case mjGEOM_BOX: return s[0] * std::abs(v.x()) + s[1] * std::abs(v.y()) + s[2] * std::abs(v.z());
-    default: return m->geom_rbound[g];  // meshes and others: the bounding sphere
+    case mjGEOM_SPHERE:
+      return s[0];
+    case mjGEOM_CAPSULE:
+      return s[0] + s[1] * std::abs(v.z());
+    case mjGEOM_CYLINDER:
+      return s[0] * std::sqrt(std::fmax(0.0, 1.0 - v.z() * v.z())) + s[1] * std::abs(v.z());
+    case mjGEOM_ELLIPSOID:
+      return Eigen::Vector3d(s[0] * v.x(), s[1] * v.y(), s[2] * v.z()).norm();
+    case mjGEOM_BOX:
+      return s[0] * std::abs(v.x()) + s[1] * std::abs(v.y()) + s[2] * std::abs(v.z());
+    default:
+      return m->geom_rbound[g];  // meshes and others: the bounding sphere
   }
 }
 
-void ExtentAlong(const mjModel* m, const mjData* d, const std::vector<int>& geoms, const Eigen::Vector3d& u,
-                 double& lo, double& hi) {
+void ExtentAlong(const mjModel* m, const mjData* d, const std::vector<int>& geoms, const Eigen::Vector3d& u, double& lo,
+                 double& hi) {
   lo = std::numeric_limits<double>::infinity();
   hi = -lo;
   for (const int g : geoms) {

@@ -19,15 +19,15 @@ namespace sortcell::sim {
 
 /// One capture, as the sensor gives it: colour and depth registered (same pinhole, same pixel grid).
 struct KinectFrame {
-  cv::Mat rgb;     ///< CV_8UC3, RGB order, top row first.
-  cv::Mat depth;   ///< CV_32FC1, planar depth in metres, NaN where the sensor gives none.
+  cv::Mat rgb;    ///< CV_8UC3, RGB order, top row first.
+  cv::Mat depth;  ///< CV_32FC1, planar depth in metres, NaN where the sensor gives none.
   CameraIntrinsics intrinsics;
 };
 
 /// What the simulator knows of the same capture and the sensor does not give: for scoring, training
 /// labels and tests only, handed out through its own channel (KinectCamera::Capture's `truth`).
 struct FrameTruth {
-  cv::Mat labels;  ///< CV_16UC1: 0 = no object, i = object_names()[i - 1].
+  cv::Mat labels;                                          ///< CV_16UC1: 0 = no object, i = object_names()[i - 1].
   Eigen::Isometry3d X_WC = Eigen::Isometry3d::Identity();  ///< Where the optical frame C truly is.
 };
 

@@ -21,8 +21,9 @@ void Check(bool ok, const std::string& what) {
 std::string ToString(const KinectColourParams& p) {
   if (!p.enabled) return "off";
   char text[200];
-  std::snprintf(text, sizeof text, "exposure %g, white balance %g %g %g, saturation %g, blur %g px, noise %g", p.exposure,
-                p.white_balance_r, p.white_balance_g, p.white_balance_b, p.saturation, p.blur_sigma_px, p.noise_sigma);
+  std::snprintf(text, sizeof text, "exposure %g, white balance %g %g %g, saturation %g, blur %g px, noise %g",
+                p.exposure, p.white_balance_r, p.white_balance_g, p.white_balance_b, p.saturation, p.blur_sigma_px,
+                p.noise_sigma);
   return text;
 }
 
@@ -39,12 +40,16 @@ KinectColourParams JitterColour(const KinectColourParams& params, std::mt19937_6
 
 cv::Mat ApplyKinectColour(const cv::Mat& rgb, const KinectColourParams& p, std::mt19937_64& rng) {
   Check(rgb.type() == CV_8UC3, "expected an 8-bit RGB image");
-  const std::pair<const char*, double> fields[] = {
-      {"exposure", p.exposure},         {"white_balance_r", p.white_balance_r}, {"white_balance_g", p.white_balance_g},
-      {"white_balance_b", p.white_balance_b}, {"saturation", p.saturation},   {"blur_sigma_px", p.blur_sigma_px},
-      {"noise_sigma", p.noise_sigma}};
+  const std::pair<const char*, double> fields[] = {{"exposure", p.exposure},
+                                                   {"white_balance_r", p.white_balance_r},
+                                                   {"white_balance_g", p.white_balance_g},
+                                                   {"white_balance_b", p.white_balance_b},
+                                                   {"saturation", p.saturation},
+                                                   {"blur_sigma_px", p.blur_sigma_px},
+                                                   {"noise_sigma", p.noise_sigma}};
   for (const auto& [name, value] : fields) {
-    Check(value >= 0 && std::isfinite(value), std::string(name) + " must be finite and >= 0, got " + std::to_string(value));
+    Check(value >= 0 && std::isfinite(value),
+          std::string(name) + " must be finite and >= 0, got " + std::to_string(value));
   }
   if (!p.enabled) return rgb.clone();
   // Gains, then saturation about the luma (Rec. 601 weights), as one 3x3 map: out = S * G * in.

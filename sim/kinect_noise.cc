@@ -34,10 +34,14 @@ bool Tangent(const cv::Mat& depth, const CameraIntrinsics& k, int u, int v, int 
   Eigen::Vector3d plus = Eigen::Vector3d::Zero(), minus = Eigen::Vector3d::Zero();
   const bool has_plus = sample(1, plus), has_minus = sample(-1, minus);
   const Eigen::Vector3d centre = BackProject(k, u, v, z0);
-  if (has_plus && has_minus) t = plus - minus;
-  else if (has_plus) t = plus - centre;
-  else if (has_minus) t = centre - minus;
-  else return false;
+  if (has_plus && has_minus)
+    t = plus - minus;
+  else if (has_plus)
+    t = plus - centre;
+  else if (has_minus)
+    t = centre - minus;
+  else
+    return false;
   return true;
 }
 
@@ -95,19 +99,21 @@ cv::Mat ProjectorShadowMask(const cv::Mat& depth, const CameraIntrinsics& k, dou
 }
 
 std::string ToString(const KinectNoiseParams& p) {
-  return fmt::format("range {:g}-{:g} m, axial {:g} {:g} {:g}, steep {:g} {:g}, lateral {:g} {:g}, quantize {:d} {:g} {:g} {:g}, "
-                     "grazing {:g}-{:g}, shadows {:d}, scale {:g}, window {} px {:g} m",
-                     p.min_range_m, p.max_range_m, p.axial_a_m, p.axial_b_per_m, p.axial_c_m, p.steep_gain, p.steep_angle_rad,
-                     p.lateral_a_px, p.lateral_b_px, p.quantize, p.ir_focal_px, p.baseline_m, p.subpixel, p.grazing_start_rad,
-                     p.grazing_end_rad, p.shadows, p.noise_scale, p.correlation_window_px, p.window_surface_m);
+  return fmt::format(
+      "range {:g}-{:g} m, axial {:g} {:g} {:g}, steep {:g} {:g}, lateral {:g} {:g}, quantize {:d} {:g} {:g} {:g}, "
+      "grazing {:g}-{:g}, shadows {:d}, scale {:g}, window {} px {:g} m",
+      p.min_range_m, p.max_range_m, p.axial_a_m, p.axial_b_per_m, p.axial_c_m, p.steep_gain, p.steep_angle_rad,
+      p.lateral_a_px, p.lateral_b_px, p.quantize, p.ir_focal_px, p.baseline_m, p.subpixel, p.grazing_start_rad,
+      p.grazing_end_rad, p.shadows, p.noise_scale, p.correlation_window_px, p.window_surface_m);
 }
 
 cv::Mat CorrelationWindowDepth(const cv::Mat& depth, int window, double surface_m) {
   if (window <= 1) return depth;
   if (depth.type() != CV_32FC1) throw std::invalid_argument("correlation window: expected a CV_32FC1 depth image");
   if (window % 2 == 0 || !(surface_m > 0)) {
-    throw std::invalid_argument(fmt::format("correlation window: expected an odd window and a surface tolerance > 0, got {} px and {} m",
-                                            window, surface_m));
+    throw std::invalid_argument(
+        fmt::format("correlation window: expected an odd window and a surface tolerance > 0, got {} px and {} m",
+                    window, surface_m));
   }
   const int half = window / 2;
   const float tolerance = static_cast<float>(surface_m);
@@ -143,8 +149,8 @@ cv::Mat ApplyKinectNoise(const cv::Mat& ideal, const CameraIntrinsics& k, const 
   }
   const cv::Mat windowed = CorrelationWindowDepth(ideal, p.correlation_window_px, p.window_surface_m);
   const cv::Mat theta = IncidenceAngles(ideal, k);  // Dropouts follow the real surface.
-  const cv::Mat shadow = p.shadows ? ProjectorShadowMask(ideal, k, p.baseline_m)
-                                   : cv::Mat(windowed.size(), CV_8UC1, cv::Scalar(0));
+  const cv::Mat shadow =
+      p.shadows ? ProjectorShadowMask(ideal, k, p.baseline_m) : cv::Mat(windowed.size(), CV_8UC1, cv::Scalar(0));
   std::normal_distribution<double> gauss(0.0, 1.0);
   std::uniform_real_distribution<double> uniform(0.0, 1.0);
   const double disparity_scale = p.ir_focal_px * p.baseline_m;  // disparity (px) = scale / z
@@ -157,7 +163,8 @@ cv::Mat ApplyKinectNoise(const cv::Mat& ideal, const CameraIntrinsics& k, const 
       const double n_u = gauss(rng), n_v = gauss(rng), n_z = gauss(rng), drop = uniform(rng);
       const float t0 = theta.at<float>(v, u);
       const double t_here = std::isfinite(t0) ? t0 : 0.0;
-      const double sigma_l = p.noise_scale * (p.lateral_a_px + p.lateral_b_px * t_here / std::max(M_PI / 2 - t_here, 1e-3));
+      const double sigma_l =
+          p.noise_scale * (p.lateral_a_px + p.lateral_b_px * t_here / std::max(M_PI / 2 - t_here, 1e-3));
       const int su = std::clamp(static_cast<int>(std::lround(u + sigma_l * n_u)), 0, windowed.cols - 1);
       const int sv = std::clamp(static_cast<int>(std::lround(v + sigma_l * n_v)), 0, windowed.rows - 1);
       const float z = windowed.at<float>(sv, su);

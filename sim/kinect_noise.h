@@ -67,10 +67,10 @@ cv::Mat CorrelationWindowDepth(const cv::Mat& depth, int window, double surface_
 
 /// Returns the noisy depth (CV_32FC1, metres, NaN where the sensor gives no depth) for an ideal
 /// planar depth image (CV_32FC1, NaN = nothing there) seen through intrinsics `k`. Steps: the
-/// correlation window (when on); incidence angles from the clean surface; projector shadows (the projector sits baseline_m to the camera's
-/// +x, so shadows fall to the left of foreground edges, ~ f b (1/z_fg - 1/z_bg) px wide); lateral
-/// jitter; range and grazing dropouts; axial Gaussian noise; disparity quantisation.
-/// Deterministic for a given rng state.
+/// correlation window (when on); incidence angles from the clean surface; projector shadows (the projector sits
+/// baseline_m to the camera's +x, so shadows fall to the left of foreground edges, ~ f b (1/z_fg - 1/z_bg) px wide);
+/// lateral jitter; range and grazing dropouts; axial Gaussian noise; disparity quantisation. Deterministic for a given
+/// rng state.
 /// @throws std::invalid_argument if the image is not CV_32FC1 of k's size.
 cv::Mat ApplyKinectNoise(const cv::Mat& clean_depth, const CameraIntrinsics& k, const KinectNoiseParams& params,
                          std::mt19937_64& rng);

@@ -30,7 +30,8 @@ std::string OneLine(std::string text) {
 }
 
 // MuJoCo's virtual file system holding `files`; null when there are none.
-std::unique_ptr<mjVFS, void (*)(mjVFS*)> MakeVfs(const std::vector<Model::VirtualFile>& files, const std::string& name) {
+std::unique_ptr<mjVFS, void (*)(mjVFS*)> MakeVfs(const std::vector<Model::VirtualFile>& files,
+                                                 const std::string& name) {
   std::unique_ptr<mjVFS, void (*)(mjVFS*)> vfs(nullptr, [](mjVFS* v) {
     mj_deleteVFS(v);
     delete v;
@@ -136,8 +137,8 @@ StepStatus Step(const Model& model, Data& data, int n) {
     if (data->time <= t) reset_at = t;
   }
 
-  static constexpr std::array<const char*, mjNWARNING> kNames = {
-      "inertia", "contactfull", "cnstrfull", "vgeomfull", "badqpos", "badqvel", "badqacc", "badctrl"};
+  static constexpr std::array<const char*, mjNWARNING> kNames = {"inertia", "contactfull", "cnstrfull", "vgeomfull",
+                                                                 "badqpos", "badqvel",     "badqacc",   "badctrl"};
   StepStatus status;
   for (int i = 0; i < mjNWARNING; ++i) {
     const int grew = data->warning[i].number - before[i];
@@ -146,8 +147,8 @@ StepStatus Step(const Model& model, Data& data, int n) {
     const bool diverged = i == mjWARN_BADQPOS || i == mjWARN_BADQVEL || i == mjWARN_BADQACC;
     if (diverged || status.code == StepStatus::kOk) {
       status.code = diverged ? StepStatus::kDiverged : StepStatus::kWarning;
-      status.detail = std::string(kNames[i]) + " x" + std::to_string(grew) + " at t=" +
-                      std::to_string(data->time) + " s";
+      status.detail =
+          std::string(kNames[i]) + " x" + std::to_string(grew) + " at t=" + std::to_string(data->time) + " s";
     }
     if (diverged) break;
   }

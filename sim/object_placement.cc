@@ -53,7 +53,8 @@ void PlaceObject(const Model& model, Data& data, int body, const TablePose& pose
                                 " cannot lie on its side (not taller than it is narrow)");
   }
   const RestingShape& resting = shape.Resting(pose.lying);
-  const Eigen::Quaterniond q_WB = Eigen::Quaterniond(Eigen::AngleAxisd(pose.yaw, Eigen::Vector3d::UnitZ())) * resting.q_tilt;
+  const Eigen::Quaterniond q_WB =
+      Eigen::Quaterniond(Eigen::AngleAxisd(pose.yaw, Eigen::Vector3d::UnitZ())) * resting.q_tilt;
   SetFreePose(model, data, body, Eigen::Vector3d(pose.x, pose.y, resting.origin_z), q_WB.normalized());
 }
 

@@ -27,7 +27,8 @@ constexpr double kLyingAspect = 1.3;
 
 void AddGeom(const mjModel* m, int g, std::vector<Swollen>& parts) {
   const Eigen::Vector3d c(m->geom_pos[3 * g], m->geom_pos[3 * g + 1], m->geom_pos[3 * g + 2]);
-  const Eigen::Quaterniond q(m->geom_quat[4 * g], m->geom_quat[4 * g + 1], m->geom_quat[4 * g + 2], m->geom_quat[4 * g + 3]);
+  const Eigen::Quaterniond q(m->geom_quat[4 * g], m->geom_quat[4 * g + 1], m->geom_quat[4 * g + 2],
+                             m->geom_quat[4 * g + 3]);
   const double* s = m->geom_size + 3 * g;
   const auto local = [&](const Eigen::Vector3d& p) -> Eigen::Vector3d { return c + q * p; };
   switch (m->geom_type[g]) {
@@ -47,7 +48,9 @@ void AddGeom(const mjModel* m, int g, std::vector<Swollen>& parts) {
     case mjGEOM_CAPSULE:
       for (const double z : {-s[1], s[1]}) parts.push_back({local({0, 0, z}), s[0]});
       break;
-    case mjGEOM_SPHERE: parts.push_back({c, s[0]}); break;
+    case mjGEOM_SPHERE:
+      parts.push_back({c, s[0]});
+      break;
     case mjGEOM_ELLIPSOID:  // Its surface on a latitude-longitude grid: within 0.3 mm for the sets' sizes.
       for (int lat = 0; lat <= kEllipsoidLatitudes; ++lat) {
         const double polar = M_PI * lat / kEllipsoidLatitudes;
@@ -62,10 +65,13 @@ void AddGeom(const mjModel* m, int g, std::vector<Swollen>& parts) {
     case mjGEOM_MESH: {
       const int mesh = m->geom_dataid[g];
       const float* v = m->mesh_vert + 3 * m->mesh_vertadr[mesh];
-      for (int k = 0; k < m->mesh_vertnum[mesh]; ++k) parts.push_back({local({v[3 * k], v[3 * k + 1], v[3 * k + 2]}), 0});
+      for (int k = 0; k < m->mesh_vertnum[mesh]; ++k)
+        parts.push_back({local({v[3 * k], v[3 * k + 1], v[3 * k + 2]}), 0});
       break;
     }
-    default: parts.push_back({c, m->geom_rbound[g]}); break;  // The rest: bounding sphere.
+    default:
+      parts.push_back({c, m->geom_rbound[g]});
+      break;  // The rest: bounding sphere.
   }
 }
 
@@ -167,11 +173,21 @@ double DiscRadius(const mjModel* m, int body) {
     const double* s = m->geom_size + 3 * g;
     double r = m->geom_rbound[g];
     switch (m->geom_type[g]) {
-      case mjGEOM_SPHERE: case mjGEOM_CYLINDER: case mjGEOM_CAPSULE: r = s[0]; break;
-      case mjGEOM_ELLIPSOID: r = std::fmax(s[0], s[1]); break;
-      case mjGEOM_BOX: r = std::hypot(s[0], s[1]); break;
-      case mjGEOM_PLANE: continue;
-      default: break;
+      case mjGEOM_SPHERE:
+      case mjGEOM_CYLINDER:
+      case mjGEOM_CAPSULE:
+        r = s[0];
+        break;
+      case mjGEOM_ELLIPSOID:
+        r = std::fmax(s[0], s[1]);
+        break;
+      case mjGEOM_BOX:
+        r = std::hypot(s[0], s[1]);
+        break;
+      case mjGEOM_PLANE:
+        continue;
+      default:
+        break;
     }
     radius = std::fmax(radius, std::hypot(m->geom_pos[3 * g], m->geom_pos[3 * g + 1]) + r);
   }

@@ -54,10 +54,10 @@ struct OffscreenRenderer::Impl {
 
   void CheckViewSize(int width, int height) const {
     if (width <= 0 || height <= 0 || width > context.offWidth || height > context.offHeight) {
-      throw std::invalid_argument(
-          "scene '" + model->source() + "': a " + std::to_string(width) + "x" + std::to_string(height) +
-          " render needs <visual><global offwidth offheight> at least that large, found " +
-          std::to_string(context.offWidth) + "x" + std::to_string(context.offHeight));
+      throw std::invalid_argument("scene '" + model->source() + "': a " + std::to_string(width) + "x" +
+                                  std::to_string(height) +
+                                  " render needs <visual><global offwidth offheight> at least that large, found " +
+                                  std::to_string(context.offWidth) + "x" + std::to_string(context.offHeight));
     }
   }
 
@@ -72,7 +72,8 @@ struct OffscreenRenderer::Impl {
       }
       light.dir[0] += static_cast<float>(lighting.tilt_x);
       light.dir[1] += static_cast<float>(lighting.tilt_y);
-      const float n = std::sqrt(light.dir[0] * light.dir[0] + light.dir[1] * light.dir[1] + light.dir[2] * light.dir[2]);
+      const float n =
+          std::sqrt(light.dir[0] * light.dir[0] + light.dir[1] * light.dir[1] + light.dir[2] * light.dir[2]);
       if (n > 0) {
         for (float& d : light.dir) d /= n;
       }
@@ -96,8 +97,7 @@ struct OffscreenRenderer::Impl {
     scene.flags[mjRND_SHADOW] = view.shadows ? 1 : 0;
     scene.flags[mjRND_REFLECTION] = view.reflections ? 1 : 0;
     // mjv_updateScene only reads the simulation state, but its signature is not const-correct.
-    mjv_updateScene(model->get(), const_cast<mjData*>(data.get()), &option, nullptr, &camera, mjCAT_ALL,
-                    &scene);
+    mjv_updateScene(model->get(), const_cast<mjData*>(data.get()), &option, nullptr, &camera, mjCAT_ALL, &scene);
     ApplyLighting();
     const mjrRect viewport = {0, 0, view.width, view.height};
     mjr_render(viewport, &scene, &context);
@@ -147,7 +147,6 @@ OffscreenRenderer::~OffscreenRenderer() {
 void OffscreenRenderer::SetLighting(const Lighting& lighting) { impl_->lighting = lighting; }
 
 void OffscreenRenderer::CheckViewSize(int width, int height) const { impl_->CheckViewSize(width, height); }
-
 
 void OffscreenRenderer::Render(const Data& data, const RenderView& view, cv::Mat& rgb, cv::Mat& depth_buffer) {
   impl_->Draw(data, view, /*segmentation=*/false, /*want_depth=*/true);

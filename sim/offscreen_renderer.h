@@ -26,7 +26,7 @@ struct RenderView {
 /// Lighting variation applied to every light of the scene (headlight included) at render time,
 /// leaving the model untouched: datasets randomise it per capture.
 struct Lighting {
-  double intensity = 1.0;  ///< Scales ambient, diffuse and specular.
+  double intensity = 1.0;             ///< Scales ambient, diffuse and specular.
   double tilt_x = 0.0, tilt_y = 0.0;  ///< Added to each light direction's x and y before normalising.
 };
 

@@ -23,7 +23,8 @@ std::map<std::string, double> PhysicsStageSeconds(const Data& data) {
   const double constraint =
       t[mjTIMER_POS_MAKE].duration + t[mjTIMER_POS_PROJECT].duration + t[mjTIMER_CONSTRAINT].duration;
   const double step = t[mjTIMER_STEP].duration;
-  return {{"collision", collision}, {"constraint", constraint}, {"smooth", step - collision - constraint}, {"step", step}};
+  return {
+      {"collision", collision}, {"constraint", constraint}, {"smooth", step - collision - constraint}, {"step", step}};
 }
 
 }  // namespace sortcell::sim

@@ -61,9 +61,8 @@ std::vector<Model::VirtualFile> ModelTextures(const std::filesystem::path& model
   return files;
 }
 
-Model LoadComposedCell(const std::filesystem::path& models_dir,
-                       const std::vector<std::filesystem::path>& object_models, const std::string& name,
-                       const std::vector<CameraSpec>& cameras, const std::string& bins_xml) {
+Model LoadComposedCell(const std::filesystem::path& models_dir, const std::vector<std::filesystem::path>& object_models,
+                       const std::string& name, const std::vector<CameraSpec>& cameras, const std::string& bins_xml) {
   for (const auto& object : object_models) {
     std::error_code ec;
     if (!std::filesystem::is_regular_file(object, ec)) {

@@ -36,8 +36,8 @@ std::vector<Model::VirtualFile> ModelTextures(const std::filesystem::path& model
 /// Compiles ComposeCell(...) with ModelTextures(models_dir).
 /// `name` names the scene in errors (e.g. the object set file).
 /// @throws std::invalid_argument naming a missing model file, or the scene with MuJoCo's message.
-Model LoadComposedCell(const std::filesystem::path& models_dir,
-                       const std::vector<std::filesystem::path>& object_models, const std::string& name,
-                       const std::vector<CameraSpec>& cameras = {}, const std::string& bins_xml = {});
+Model LoadComposedCell(const std::filesystem::path& models_dir, const std::vector<std::filesystem::path>& object_models,
+                       const std::string& name, const std::vector<CameraSpec>& cameras = {},
+                       const std::string& bins_xml = {});
 
 }  // namespace sortcell::sim

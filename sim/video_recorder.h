@@ -79,7 +79,7 @@ class VideoRecorder {
   OffscreenRenderer renderer_;
   RenderView view_;
   std::unique_ptr<FfmpegPipe> encoder_pipe_;
-  std::string encoder_error_;  // The encoder thread's failure, reported by Close().
+  std::string encoder_error_;   // The encoder thread's failure, reported by Close().
   cv::Mat bgr_, inset_scaled_;  // The encoder thread's.
   std::string caption_;
   std::vector<std::string> overlay_;

@@ -66,8 +66,7 @@ inline std::string TempPath(const std::string& name) { return TestTempDir() + na
 /// A fresh, empty folder "<TestTempDir()><prefix>_XXXXXX".
 class TempDir {
  public:
-  explicit TempDir(const std::string& prefix = "test")
-      : path_(internal::MakeUniqueDir(TestTempDir() + prefix + "_")) {}
+  explicit TempDir(const std::string& prefix = "test") : path_(internal::MakeUniqueDir(TestTempDir() + prefix + "_")) {}
 
   const std::filesystem::path& path() const { return path_; }
   std::string str() const { return path_.string(); }

@@ -39,7 +39,9 @@ void AddCalibrateCommand(CLI::App& app, std::function<int()>& run, const std::ve
       "The simulator's true camera pose only scores the result. Writes calibration.json and run.json.");
   cmd->add_option("--scene", o.scene, "MJCF cell, e.g. scenes/cell.xml")->required();
   cmd->add_option("--cell", o.cell, "Cell layout: bins and rules (default: scenes/cells/default.yaml)");
-  cmd->add_option("--seed", o.seed, "Seed (uint64): the camera's displacement, noise")->check(kUnsignedInteger)->capture_default_str();
+  cmd->add_option("--seed", o.seed, "Seed (uint64): the camera's displacement, noise")
+      ->check(kUnsignedInteger)
+      ->capture_default_str();
   cmd->add_option("--video", o.video, "Also write an H.264 MP4 from the review camera");
   cmd->add_option("--video-size", cli->video_size, "The video's WIDTHxHEIGHT (at most 1280x960)")
       ->check(kVideoSize)
@@ -49,7 +51,8 @@ void AddCalibrateCommand(CLI::App& app, std::function<int()>& run, const std::ve
   AddSetOption(*cmd, cli->sets);
   cmd->callback([&run, cli, command_line] {
     run = [cli, command_line] {
-      if (!cli->sets.empty()) throw std::logic_error("calibrate: --set reached the parser (ExpandEpisodeSets not applied)");
+      if (!cli->sets.empty())
+        throw std::logic_error("calibrate: --set reached the parser (ExpandEpisodeSets not applied)");
       EpisodeOptions options = cli->options;
       std::tie(options.video_options.width, options.video_options.height) = ParseVideoSize(cli->video_size);
       const CalibrationFigures figures = RunCalibration(options, command_line);

@@ -46,7 +46,8 @@ cv::Mat DepthMillimetres(const cv::Mat& depth) {
 CaptureSummary RunCapture(const CaptureOptions& options, const std::vector<std::string>& command_line) {
   const auto start = Clock::now();
   PrepareOutputDir(options.out);
-  const sim::Model model = options.cell.empty() ? LoadScene(options.scene) : LoadCellScene(options.scene, ReadCellFile(options.cell));
+  const sim::Model model =
+      options.cell.empty() ? LoadScene(options.scene) : LoadCellScene(options.scene, ReadCellFile(options.cell));
   sim::Data data(model);
   sim::ResetToObserve(model, data);
   mj_forward(model.get(), data.get());
@@ -85,13 +86,12 @@ CaptureSummary RunCapture(const CaptureOptions& options, const std::vector<std::
   WriteJson(options.out / "labels.json", {{"labels", labels}, {"pixels", pixels}});
   WriteJson(options.out / "camera.json", CameraJson(options.camera, frame, truth.X_WC));
   summary.capture_wall_s = Seconds(start);
-  WriteJson(options.out / "run.json",
-            RunRecord(command_line, options.seed,
-                      {{"command", "capture"},
-                       {"scene", options.scene.string()},
-                       {"noise", !options.no_noise},
-                       {"render_wall_s", summary.render_wall_s},
-                       {"capture_wall_s", summary.capture_wall_s}}));
+  WriteJson(options.out / "run.json", RunRecord(command_line, options.seed,
+                                                {{"command", "capture"},
+                                                 {"scene", options.scene.string()},
+                                                 {"noise", !options.no_noise},
+                                                 {"render_wall_s", summary.render_wall_s},
+                                                 {"capture_wall_s", summary.capture_wall_s}}));
   return summary;
 }
 
@@ -114,8 +114,9 @@ void AddCaptureCommand(CLI::App& app, std::function<int()>& run, const std::vect
     run = [options, command_line] {
       const CaptureSummary s = RunCapture(*options, command_line);
       std::cout << "Captured " << options->scene.string() << " with camera '" << options->camera << "' at " << s.width
-                << "x" << s.height << (options->no_noise ? " without noise" : " with Kinect noise (seed " +
-                                                                              std::to_string(options->seed) + ")")
+                << "x" << s.height
+                << (options->no_noise ? " without noise"
+                                      : " with Kinect noise (seed " + std::to_string(options->seed) + ")")
                 << ": " << std::lround(100 * s.valid_depth_fraction) << " % of pixels have depth, "
                 << s.visible_objects.size() << " objects visible (";
       for (size_t i = 0; i < s.visible_objects.size(); ++i) {

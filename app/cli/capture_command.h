@@ -25,8 +25,8 @@ struct CaptureSummary {
   int width = 0, height = 0;
   double valid_depth_fraction = 0;
   std::vector<std::pair<std::string, int>> visible_objects;  ///< Name and pixel count, if > 0.
-  double render_wall_s = 0;   ///< Colour + depth + labels render.
-  double capture_wall_s = 0;  ///< Load to files written.
+  double render_wall_s = 0;                                  ///< Colour + depth + labels render.
+  double capture_wall_s = 0;                                 ///< Load to files written.
 };
 
 /// Loads the scene at its "observe" keyframe (or its default state), captures and writes rgb.png,

@@ -30,9 +30,9 @@ std::string Describe(const CellFile& cell) {
   for (const auto& [category, bin] : cell.rules.bin_of) text += fmt::format(" {} -> {};", category, bin);
   if (!cell.rules.otherwise.empty()) text += fmt::format(" anything else -> {};", cell.rules.otherwise);
   if (!cell.rules.reject_bin.empty()) {
-    text += cell.rules.reject_below > 0 ? fmt::format(" unsure (confidence below {}) -> {}", cell.rules.reject_below,
-                                                      cell.rules.reject_bin)
-                                        : fmt::format(" unsure (with --reject-below) -> {}", cell.rules.reject_bin);
+    text += cell.rules.reject_below > 0
+                ? fmt::format(" unsure (confidence below {}) -> {}", cell.rules.reject_below, cell.rules.reject_bin)
+                : fmt::format(" unsure (with --reject-below) -> {}", cell.rules.reject_bin);
   }
   return text + "\n";
 }
@@ -100,8 +100,8 @@ void AddCellCommand(CLI::App& app, std::function<int()>& run, const std::vector<
       }
       if (!cli->out.empty()) {
         WriteScene(file, cli->out);
-        WriteJson(cli->out / "run.json", RunRecord(command_line, 0, {{"command", "cell check"},
-                                                                     {"layout", cli->layout.string()}}));
+        WriteJson(cli->out / "run.json",
+                  RunRecord(command_line, 0, {{"command", "cell check"}, {"layout", cli->layout.string()}}));
         std::cout << "Scene: mujoco-simulate " << (cli->out / "scene.xml").string() << "\n";
       }
       return ok ? 0 : 1;

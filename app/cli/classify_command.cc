@@ -50,9 +50,11 @@ void AddClassifyCommand(CLI::App& app, std::function<int()>& run) {
   cmd->add_option("--pcd", o->pcd, "The object's cloud (PCD with x y z rgb/rgba, camera frame)")->required();
   cmd->add_option("--model", o->model, "Model file from sortcell train")->required();
   cmd->add_option("--reject-below", o->reject_below, "Call the object 'unknown' below this confidence (0-1)")
-      ->check(CLI::Range(0.0, 1.0))->capture_default_str();
+      ->check(CLI::Range(0.0, 1.0))
+      ->capture_default_str();
   cmd->add_option("--top", o->top, "How many classes to list, most probable first")
-      ->check(CLI::Range(1, 1000))->capture_default_str();
+      ->check(CLI::Range(1, 1000))
+      ->capture_default_str();
   cmd->callback([&run, o] {
     run = [o] {
       const perception::RecognitionModel model = perception::LoadModel(o->model);

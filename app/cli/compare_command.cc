@@ -26,7 +26,8 @@ void AddCompareCommand(CLI::App& app, std::function<int()>& run, const std::vect
       "compare.json.");
   cmd->add_option("a", cli->a, "Sweep folder before (A)")->required();
   cmd->add_option("b", cli->b, "Sweep folder after (B)")->required();
-  cmd->add_option("--out", cli->out, "Output folder for compare.html and compare.json (created if missing)")->required();
+  cmd->add_option("--out", cli->out, "Output folder for compare.html and compare.json (created if missing)")
+      ->required();
   cmd->callback([&run, cli, command_line] {
     run = [cli, command_line] {
       const SweepComparison c = CompareSweepFolders(cli->a, cli->b);

@@ -76,7 +76,8 @@ std::vector<std::string> SetKeys(const CLI::App& episode) {
 // "KEY=VALUE" -> "--KEY=VALUE".
 std::string SetToOption(const std::string& text, const std::vector<std::string>& keys) {
   const size_t eq = text.find('=');
-  if (eq == std::string::npos || eq == 0) throw std::invalid_argument("--set: expected KEY=VALUE, found '" + text + "'");
+  if (eq == std::string::npos || eq == 0)
+    throw std::invalid_argument("--set: expected KEY=VALUE, found '" + text + "'");
   const std::string key = text.substr(0, eq);
   if (std::find(keys.begin(), keys.end(), key) == keys.end()) {
     std::string valid;
@@ -107,7 +108,8 @@ void AddSensorVariationOptions(CLI::App& cmd, EpisodeOptions& o) {
   cmd.add_option("--camera-shift", o.variation.camera_shift_m,
                  "Move the Kinect this far (m) in a random direction; the robot is given the nominal pose")
       ->capture_default_str();
-  cmd.add_option("--camera-turn", o.variation.camera_turn_rad, "Turn the Kinect by this angle (rad) about a random axis")
+  cmd.add_option("--camera-turn", o.variation.camera_turn_rad,
+                 "Turn the Kinect by this angle (rad) about a random axis")
       ->capture_default_str();
 }
 
@@ -158,16 +160,22 @@ void AddEpisodeCommand(CLI::App& app, std::function<int()>& run, const std::vect
   o.object_set = std::filesystem::path(DataDir()) / "scenes" / "objects" / "paper.yaml";
   cmd->add_option("--object-set", o.object_set, "Object set YAML (names and categories)")->capture_default_str();
   cmd->add_option("--objects", o.objects, "How many objects to place (0: all of the set, at most 6)")
-      ->check(CLI::Range(0, 100))->capture_default_str();
-  cmd->add_option("--seed", o.seed, "Seed (uint64): placement, noise, lighting")->check(kUnsignedInteger)->capture_default_str();
+      ->check(CLI::Range(0, 100))
+      ->capture_default_str();
+  cmd->add_option("--seed", o.seed, "Seed (uint64): placement, noise, lighting")
+      ->check(kUnsignedInteger)
+      ->capture_default_str();
   cmd->add_option("--model", o.model,
-                  "Recognition model from sortcell train (default: <set>-color-cvfh-norm.model.json in the model cache, build/models or $SORTCELL_MODEL_CACHE)");
+                  "Recognition model from sortcell train (default: <set>-color-cvfh-norm.model.json in the model "
+                  "cache, build/models or $SORTCELL_MODEL_CACHE)");
   cmd->add_flag("--train-if-missing", cli->train_if_missing,
-                "Without --model: train and cache the default model first if it is not there (sortcell train --objects; about 30 s for 150 scenes)");
+                "Without --model: train and cache the default model first if it is not there (sortcell train "
+                "--objects; about 30 s for 150 scenes)");
   cmd->add_option("--video", o.video, "Also write an H.264 MP4 from the review camera (30 fps, with overlay)");
-  cmd->add_option("--stills", o.stills,
-                  "Also write the Kinect still of every decision into this folder (still_<simulated ms>.png: the capture "
-                  "with each cluster outlined and named with its category and confidence)");
+  cmd->add_option(
+      "--stills", o.stills,
+      "Also write the Kinect still of every decision into this folder (still_<simulated ms>.png: the capture "
+      "with each cluster outlined and named with its category and confidence)");
   cmd->add_option("--video-size", cli->video_size, "The video's WIDTHxHEIGHT (at most 1280x960)")
       ->check(kVideoSize)
       ->capture_default_str();
@@ -178,7 +186,8 @@ void AddEpisodeCommand(CLI::App& app, std::function<int()>& run, const std::vect
                   "Put an object at NAME=x,y[,yaw[,lying]] (world, m, rad; 'lying': on its side) instead of at random");
   AddPlacementOptions(*cmd, *cli);
   AddSensorVariationOptions(*cmd, o);
-  cmd->add_option("--friction-scale", o.variation.friction_scale, "Scale of the objects' friction")->capture_default_str();
+  cmd->add_option("--friction-scale", o.variation.friction_scale, "Scale of the objects' friction")
+      ->capture_default_str();
   cmd->add_option("--mass-scale", o.variation.mass_scale, "Scale of the objects' masses")->capture_default_str();
   cmd->add_option("--colour-jitter", o.variation.colour_jitter,
                   "Vary each object's colours at random (0-1): hue up to +-25 deg, saturation and brightness up to "
@@ -202,11 +211,13 @@ void AddEpisodeCommand(CLI::App& app, std::function<int()>& run, const std::vect
   cmd->add_option("--unknown-set", o.unknown_set, "Object set the model was not trained on, for --unknown-objects");
   cmd->add_option("--unknown-objects", o.unknown_objects,
                   "Also place this many objects of --unknown-set: the rules send them to the reject bin")
-      ->check(CLI::Range(0, 100))->capture_default_str();
+      ->check(CLI::Range(0, 100))
+      ->capture_default_str();
   AddSetOption(*cmd, cli->sets);
   cmd->callback([&run, cli, command_line] {
     run = [cli, command_line] {
-      if (!cli->sets.empty()) throw std::logic_error("episode: --set reached the parser (ExpandEpisodeSets not applied)");
+      if (!cli->sets.empty())
+        throw std::logic_error("episode: --set reached the parser (ExpandEpisodeSets not applied)");
       EpisodeOptions options = cli->options;
       if (cli->reject_below_given) options.reject_below = cli->reject_below;
       for (const auto& p : cli->placements) options.placements.push_back(ParsePlacement(p));
@@ -223,9 +234,9 @@ void AddEpisodeCommand(CLI::App& app, std::function<int()>& run, const std::vect
         } else if (!std::filesystem::exists(options.model)) {
           throw std::invalid_argument("no trained model at " + options.model.string() + ": " + DefaultModelHint(set));
         } else if (!DefaultModelIsCurrent(set)) {
-          throw std::invalid_argument("the cached model " + options.model.string() +
-                                      " was trained on other object models or another Kinect colour model: " +
-                                      DefaultModelHint(set));
+          throw std::invalid_argument(
+              "the cached model " + options.model.string() +
+              " was trained on other object models or another Kinect colour model: " + DefaultModelHint(set));
         }
       }
       const EpisodeMetrics metrics = RunEpisode(options, command_line);

@@ -20,12 +20,11 @@ void AddSensorVariationOptions(CLI::App& cmd, EpisodeOptions& options);
 /// last value given.
 void AddSetOption(CLI::App& cmd, std::vector<std::string>& sets);
 
-/// `--set KEY=VALUE` on `sortcell episode` and `sortcell calibrate` (DESIGN §3), repeatable: KEY is any of the command's
-/// options by its long name without dashes (noise-scale, seed, time-limit, ...). Returns `args` (a
-/// whole command line, "sortcell episode ...") with every `--set KEY=VALUE` (or `--set=KEY=VALUE`)
-/// taken out and `--KEY=VALUE` appended after the other arguments, so that CLI11 parses it as that
-/// option (with its checks) and it overrides the option given directly (the last value wins).
-/// Arguments after "--" are left alone.
+/// `--set KEY=VALUE` on `sortcell episode` and `sortcell calibrate` (DESIGN §3), repeatable: KEY is any of the
+/// command's options by its long name without dashes (noise-scale, seed, time-limit, ...). Returns `args` (a whole
+/// command line, "sortcell episode ...") with every `--set KEY=VALUE` (or `--set=KEY=VALUE`) taken out and
+/// `--KEY=VALUE` appended after the other arguments, so that CLI11 parses it as that option (with its checks) and it
+/// overrides the option given directly (the last value wins). Arguments after "--" are left alone.
 /// @param episode the subcommand, as AddEpisodeCommand (or AddCalibrateCommand) made it.
 /// @throws std::invalid_argument "--set: unknown key '<key>' (valid keys: ...)" or
 ///         "--set: expected KEY=VALUE, found '<text>'".

@@ -113,7 +113,8 @@ nlohmann::json DescriptorJson(const DescriptorRun& run) {
   nlohmann::json trials = nlohmann::json::array();
   for (const Evaluation& e : run.trials) {
     f1.push_back(e.metrics.macro_f1);
-    trials.push_back({{"macro_f1", e.metrics.macro_f1}, {"accuracy", e.metrics.accuracy},
+    trials.push_back({{"macro_f1", e.metrics.macro_f1},
+                      {"accuracy", e.metrics.accuracy},
                       {"svm", {{"C", e.C}, {"gamma", e.gamma}, {"cv_accuracy", e.cv_accuracy}}}});
   }
   const double mean = std::accumulate(f1.begin(), f1.end(), 0.0) / f1.size();
@@ -173,8 +174,9 @@ nlohmann::json RunExperiment(const ExperimentOptions& options, const std::vector
   }
   const std::optional<Dataset> given = GivenDataset(options.data);
   if (given && options.number == 3) {
-    throw std::invalid_argument("--data '" + options.data.string() +
-                                "' holds one dataset; experiment 3 needs a folder for its turntable and scene datasets");
+    throw std::invalid_argument(
+        "--data '" + options.data.string() +
+        "' holds one dataset; experiment 3 needs a folder for its turntable and scene datasets");
   }
   const auto start = WallClock::now();
   PrepareOutputDir(options.out);
@@ -210,16 +212,17 @@ nlohmann::json RunExperiment(const ExperimentOptions& options, const std::vector
   } else {
     const ObjectSet paper = Set("paper");
     train_data = turntable(paper);
-    scene_data = ReuseOrCapture(data / "paper_scenes", paper, 0, options.seed,
-                                {{"kind", "scenes"}, {"scenes", options.scenes}}, [&](const std::filesystem::path& dir) {
-                                  SceneOptions s;
-                                  s.scenes = options.scenes;
-                                  s.seed = options.seed;
-                                  // The paper's pipeline: its segmentation is Euclidean clustering (the
-                                  // cell now segments with convex clusters; the experiments reproduce the paper).
-                                  s.clustering = perception::SegmentationParams::Clustering::kEuclidean;
-                                  return CaptureScenes(paper, s, dir);
-                                });
+    scene_data =
+        ReuseOrCapture(data / "paper_scenes", paper, 0, options.seed, {{"kind", "scenes"}, {"scenes", options.scenes}},
+                       [&](const std::filesystem::path& dir) {
+                         SceneOptions s;
+                         s.scenes = options.scenes;
+                         s.seed = options.seed;
+                         // The paper's pipeline: its segmentation is Euclidean clustering (the
+                         // cell now segments with convex clusters; the experiments reproduce the paper).
+                         s.clustering = perception::SegmentationParams::Clustering::kEuclidean;
+                         return CaptureScenes(paper, s, dir);
+                       });
     trials = {SceneTrial(train_data, scene_data, options.scenes)};
   }
   const Dataset& test_data = options.number == 3 ? scene_data : train_data;
@@ -245,15 +248,20 @@ nlohmann::json RunExperiment(const ExperimentOptions& options, const std::vector
     for (const Trial& t : trials) split_detail.push_back(t.description);
   }
   // Samples per trial (the first's: the trials differ by a few views).
-  nlohmann::json results = {{"experiment", options.number}, {"split", ToString(options.split)},
-                            {"views", given ? given->views : options.views}, {"seed", options.seed},
-                            {"trials", trials.size()}, {"train_samples", trials.front().train.size()},
-                            {"test_samples", trials.front().test.size()}, {"split_detail", split_detail},
+  nlohmann::json results = {{"experiment", options.number},
+                            {"split", ToString(options.split)},
+                            {"views", given ? given->views : options.views},
+                            {"seed", options.seed},
+                            {"trials", trials.size()},
+                            {"train_samples", trials.front().train.size()},
+                            {"test_samples", trials.front().test.size()},
+                            {"split_detail", split_detail},
                             {"descriptors", descriptors}};
   if (given) results["data"] = options.data.string();
   WriteJson(options.out / "results.json", results);
-  WriteJson(options.out / "run.json", RunRecord(command_line, options.seed, {{"command", "experiment"},
-                                                                          {"experiment_wall_s", SecondsSince(start)}}));
+  WriteJson(
+      options.out / "run.json",
+      RunRecord(command_line, options.seed, {{"command", "experiment"}, {"experiment_wall_s", SecondsSince(start)}}));
   return results;
 }
 
@@ -263,7 +271,8 @@ void AddExperimentCommand(CLI::App& app, std::function<int()>& run, const std::v
   CLI::App* cmd = app.add_subcommand(
       "experiment",
       "Run one of the paper's recognition experiments whole (section 3, Tables 1-8): 1 = category level on the "
-      "produce set, 2 = instance level on the apple and orange instances, 3 = the six paper objects tested in random cell "
+      "produce set, 2 = instance level on the apple and orange instances, 3 = the six paper objects tested in random "
+      "cell "
       "scenes. Captures the data into DIR/data (reused when it matches), trains and evaluates CVFH, Color-CVFH and "
       "Color-CVFH (normalization), and writes tables.md, metrics.csv, confusion_*.csv/.png, results.json, models/.");
   cmd->add_option("experiment", o->number, "1, 2 or 3")->required()->check(CLI::IsMember({1, 2, 3}));
@@ -273,9 +282,11 @@ void AddExperimentCommand(CLI::App& app, std::function<int()>& run, const std::v
                   "instance has been held out once)")
       ->check(CLI::Range(0, 1000));
   cmd->add_option("--views", o->views, "Turntable views per revolution and elevation")
-      ->check(CLI::Range(3, 3600))->capture_default_str();
+      ->check(CLI::Range(3, 3600))
+      ->capture_default_str();
   cmd->add_option("--scenes", o->scenes, "Experiment 3: random cell scenes to test on")
-      ->check(CLI::Range(1, 100000))->capture_default_str();
+      ->check(CLI::Range(1, 100000))
+      ->capture_default_str();
   cmd->add_option("--seed", o->seed, "Seed (uint64)")->check(kUnsignedInteger)->capture_default_str();
   cmd->add_option("--out", o->out, "Output folder (created if missing)")->required();
   cmd->add_option("--data", o->data,
@@ -288,7 +299,8 @@ void AddExperimentCommand(CLI::App& app, std::function<int()>& run, const std::v
       const nlohmann::json r = RunExperiment(*o, command_line);
       std::cout << "Experiment " << o->number << " (" << ToString(o->split) << "): " << r["train_samples"]
                 << " training, " << r["test_samples"] << " test samples. Macro F1:";
-      for (const auto& [name, d] : r["descriptors"].items()) std::cout << " " << name << " " << d["macro_f1"].get<double>();
+      for (const auto& [name, d] : r["descriptors"].items())
+        std::cout << " " << name << " " << d["macro_f1"].get<double>();
       std::cout << ". Tables in " << o->out.string() << "/tables.md\n";
       return 0;
     };

@@ -23,13 +23,16 @@ robot::Joints JointsFrom(const std::vector<double>& values, const std::string& o
   }
   robot::Joints q;
   for (int i = 0; i < 6; ++i) {
-    if (!std::isfinite(values[i])) throw std::invalid_argument(option + ": value " + std::to_string(i + 1) + " is not finite");
+    if (!std::isfinite(values[i]))
+      throw std::invalid_argument(option + ": value " + std::to_string(i + 1) + " is not finite");
     q[i] = values[i];
   }
   return q;
 }
 
-std::string FrameName(bool tcp) { return tcp ? "tcp in base (D-H frame 0)" : "flange (D-H frame 6) in base (D-H frame 0)"; }
+std::string FrameName(bool tcp) {
+  return tcp ? "tcp in base (D-H frame 0)" : "flange (D-H frame 6) in base (D-H frame 0)";
+}
 
 nlohmann::json ToJson(const robot::Joints& q) { return std::vector<double>(q.data(), q.data() + 6); }
 
@@ -40,7 +43,8 @@ nlohmann::json IkJson(const std::vector<double>& pose, const std::vector<double>
   for (double v : pose) {
     if (!std::isfinite(v)) throw std::invalid_argument("--pose: values must be finite numbers");
   }
-  const robot::Joints q_near = q_near_values.empty() ? cell::CellLayout().q_observe : JointsFrom(q_near_values, "--q-near");
+  const robot::Joints q_near =
+      q_near_values.empty() ? cell::CellLayout().q_observe : JointsFrom(q_near_values, "--q-near");
   Eigen::Isometry3d X = Eigen::Isometry3d::Identity();
   X.translation() << pose[0], pose[1], pose[2];
   X.linear() = robot::RotationFromRpy(pose[3], pose[4], pose[5]);

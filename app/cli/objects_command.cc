@@ -27,14 +27,15 @@ std::string Row(const ObjectCheckResult& r) {
   if (r.grip_width_lying && *r.grip_width_lying >= robot::kMaxGap) {
     notes += std::string(notes.empty() ? "" : "; ") + "ungraspable when lying";
   }
-  return fmt::format("{:<18} {:<9} {:>6} {:>7} {:>6.1f} {:>6} {:>7.1f} {:>7.1f} {:<6} {:<10} {}", r.name, r.category, pieces,
-                     mass, 1000 * r.grip_width, lying, 1000 * r.bounce, r.tilt_deg, r.rests ? "yes" : "NO",
+  return fmt::format("{:<18} {:<9} {:>6} {:>7} {:>6.1f} {:>6} {:>7.1f} {:>7.1f} {:<6} {:<10} {}", r.name, r.category,
+                     pieces, mass, 1000 * r.grip_width, lying, 1000 * r.bounce, r.tilt_deg, r.rests ? "yes" : "NO",
                      r.graspable ? "yes" : "NO (wide)", notes);
 }
 
 std::string Summary(const ObjectCheck& check, const std::filesystem::path& out) {
-  std::string text = fmt::format("{:<18} {:<9} {:>6} {:>7} {:>6} {:>6} {:>7} {:>7} {:<6} {:<10} {}\n", "object", "category",
-                                 "pieces", "kg", "grip", "lying", "bounce", "tilt", "rests", "graspable", "notes");
+  std::string text =
+      fmt::format("{:<18} {:<9} {:>6} {:>7} {:>6} {:>6} {:>7} {:>7} {:<6} {:<10} {}\n", "object", "category", "pieces",
+                  "kg", "grip", "lying", "bounce", "tilt", "rests", "graspable", "notes");
   text += fmt::format("{:<18} {:<9} {:>6} {:>7} {:>6} {:>6} {:>7} {:>7}\n", "", "", "", "", "mm", "mm", "mm", "deg");
   int resting = 0, graspable = 0;
   for (const auto& r : check.objects) {
@@ -72,8 +73,8 @@ void AddObjectsCommand(CLI::App& app, std::function<int()>& run, const std::vect
     run = [cli, command_line] {
       const ObjectSet set = LoadObjectSet(cli->set);
       const ObjectCheck result = CheckObjects(set, cli->out, cli->options);
-      WriteJson(cli->out / "run.json", RunRecord(command_line, 0, {{"command", "objects check"},
-                                                                   {"object_set", cli->set.string()}}));
+      WriteJson(cli->out / "run.json",
+                RunRecord(command_line, 0, {{"command", "objects check"}, {"object_set", cli->set.string()}}));
       std::cout << Summary(result, cli->out) << "\n";
       for (const auto& r : result.objects) {
         if (!r.rests || !r.graspable) return 1;

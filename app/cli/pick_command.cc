@@ -19,8 +19,7 @@ void AddPickCommand(CLI::App& app, std::function<int()>& run, const std::vector<
   cmd->add_option("--scene", options->scene, "MJCF scene file, e.g. scenes/cell.xml")->required();
   cmd->add_option("--cell", options->cell, "Cell layout: bins and rules (default: scenes/cells/default.yaml)");
   cmd->add_option("--object", options->object, "Object (free body) to pick, e.g. bottle1")->required();
-  cmd->add_option("--bin", options->bin, "Bin of the cell layout to place it in, e.g. cup (or bin_<name>)")
-      ->required();
+  cmd->add_option("--bin", options->bin, "Bin of the cell layout to place it in, e.g. cup (or bin_<name>)")->required();
   cmd->add_option("--video", options->video, "Also write an H.264 MP4 from the review camera (30 fps)");
   auto video_size = std::make_shared<std::string>("1280x720");
   cmd->add_option("--video-size", *video_size, "The video's WIDTHxHEIGHT (at most 1280x960)")
@@ -37,7 +36,8 @@ void AddPickCommand(CLI::App& app, std::function<int()>& run, const std::vector<
       std::cout << "Pick " << options->object << " -> " << options->bin << " (scripted pose): " << r.status
                 << (r.in_bin ? ", in the bin" : ", NOT in the bin") << ", slip " << r.slip_mm << " mm, cycle "
                 << r.cycle_time_s << " s simulated, " << r.wall_time_s << " s wall (real-time factor "
-                << r.real_time_factor << ")" << (r.video_frames ? ", video " + std::to_string(r.video_frames) + " frames" : "")
+                << r.real_time_factor << ")"
+                << (r.video_frames ? ", video " + std::to_string(r.video_frames) + " frames" : "")
                 << ". Result: " << (options->out / "result.json").string() << "\n";
       return r.status == "sorted" ? 0 : 1;
     };

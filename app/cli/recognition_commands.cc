@@ -47,15 +47,15 @@ int ImportRgbdObjectsCommand(const DatasetOptions& o, const std::vector<std::str
   const Dataset d = ImportRgbdObjects(o.rgbd_objects, o.out);
   SaveDataset(o.out, d);
   const double wall = SecondsSince(start);
-  WriteJson(o.out / "run.json", RunRecord(command_line, 0, {{"command", "dataset"},
-                                                            {"from_rgbd_objects", o.rgbd_objects.string()},
-                                                            {"capture", d.capture},
-                                                            {"dataset_wall_s", wall}}));
-  std::cout << "Dataset from the RGB-D Object Dataset views in " << o.rgbd_objects.string() << ": "
-            << d.samples.size() << " samples (" << d.Labels(perception::LabelKind::kCategory).size()
-            << " categories, " << d.Labels(perception::LabelKind::kInstance).size() << " instances), "
-            << d.capture["skipped"].size() << " views skipped, in " << o.out.string() << "/, " << std::lround(wall)
-            << " s\n";
+  WriteJson(o.out / "run.json", RunRecord(command_line, 0,
+                                          {{"command", "dataset"},
+                                           {"from_rgbd_objects", o.rgbd_objects.string()},
+                                           {"capture", d.capture},
+                                           {"dataset_wall_s", wall}}));
+  std::cout << "Dataset from the RGB-D Object Dataset views in " << o.rgbd_objects.string() << ": " << d.samples.size()
+            << " samples (" << d.Labels(perception::LabelKind::kCategory).size() << " categories, "
+            << d.Labels(perception::LabelKind::kInstance).size() << " instances), " << d.capture["skipped"].size()
+            << " views skipped, in " << o.out.string() << "/, " << std::lround(wall) << " s\n";
   return 0;
 }
 
@@ -106,8 +106,8 @@ int EvalCommand(const perception::RecognitionModel& model, const Dataset& d, con
             << o.out.string() << "/tables.md\n";
   for (const auto& [instance, r] : by_instance) {
     if (r.known) {
-      std::cout << fmt::format("  {} ({}): {:.1f} % of {} called {}\n", instance, r.category, 100.0 * r.correct / r.samples,
-                               r.samples, r.category);
+      std::cout << fmt::format("  {} ({}): {:.1f} % of {} called {}\n", instance, r.category,
+                               100.0 * r.correct / r.samples, r.samples, r.category);
     }
   }
   return 0;
@@ -124,8 +124,8 @@ int TrainFromSetCommand(const TrainOptions& o, const std::vector<std::string>& c
   perception::SaveModel(o.out, model);
   RecordTrainedOn(set, o.out);  // Trained into the model cache, it is the current default model.
   WriteJson(scenes / "run.json", RunRecord(command_line, 0, {{"command", "train"}, {"objects", o.objects.string()}}));
-  std::cout << "Trained the default recipe for " << set.name << " (" << DefaultRecipeTitle() << "): "
-            << model.classes.size() << " " << ToString(model.label_kind) << " classes, grouped-CV accuracy "
+  std::cout << "Trained the default recipe for " << set.name << " (" << DefaultRecipeTitle()
+            << "): " << model.classes.size() << " " << ToString(model.label_kind) << " classes, grouped-CV accuracy "
             << model.cv_accuracy << ", " << std::lround(SecondsSince(start)) << " s. Model " << o.out.string()
             << ", its scenes in " << scenes.string() << "/\n";
   return 0;
@@ -141,9 +141,9 @@ int TrainFromDatasetCommand(const TrainOptions& o) {
   const auto start = WallClock::now();
   const perception::RecognitionModel model = TrainModel(d, {}, request);
   perception::SaveModel(o.out, model);
-  std::cout << "Trained " << perception::DescriptorTitle(model.descriptor) << " on " << d.samples.size()
-            << " samples, " << model.classes.size() << " " << ToString(model.label_kind) << " classes: C "
-            << model.classifier.C() << ", gamma " << model.classifier.gamma() << ", grouped-CV accuracy " << model.cv_accuracy << ", "
+  std::cout << "Trained " << perception::DescriptorTitle(model.descriptor) << " on " << d.samples.size() << " samples, "
+            << model.classes.size() << " " << ToString(model.label_kind) << " classes: C " << model.classifier.C()
+            << ", gamma " << model.classifier.gamma() << ", grouped-CV accuracy " << model.cv_accuracy << ", "
             << model.classifier.support_vectors() << " support vectors, " << std::lround(SecondsSince(start))
             << " s. Model " << o.out.string() << "\n";
   return 0;
@@ -169,15 +169,20 @@ void AddDatasetCommand(CLI::App& app, std::function<int()>& run, const std::vect
   objects->excludes(rgbd);
   cmd->add_option("--out", o->out, "Dataset folder (created if missing)")->required();
   CLI::Option* views = cmd->add_option("--views", o->views, "Views per revolution and elevation")
-                           ->check(CLI::Range(3, 3600))->capture_default_str();
-  CLI::Option* scenes = cmd->add_option("--scenes", o->scenes, "Random cell scenes instead of turntable views (0: turntable)")
-                            ->check(CLI::Range(0, 100000))->capture_default_str();
-  CLI::Option* seed = cmd->add_option("--seed", o->seed, "Seed (uint64)")->check(kUnsignedInteger)->capture_default_str();
+                           ->check(CLI::Range(3, 3600))
+                           ->capture_default_str();
+  CLI::Option* scenes =
+      cmd->add_option("--scenes", o->scenes, "Random cell scenes instead of turntable views (0: turntable)")
+          ->check(CLI::Range(0, 100000))
+          ->capture_default_str();
+  CLI::Option* seed =
+      cmd->add_option("--seed", o->seed, "Seed (uint64)")->check(kUnsignedInteger)->capture_default_str();
   CLI::Option* occluded =
       cmd->add_option("--occluded", o->occluded,
                       "Turntable: per view, this many more samples with 15-70 % of the object hidden beyond a "
                       "random straight edge (as a nearer object hides it in a scene)")
-          ->check(CLI::Range(0, 10))->capture_default_str();
+          ->check(CLI::Range(0, 10))
+          ->capture_default_str();
   occluded->excludes(scenes);
   CLI::Option* placement =
       cmd->add_option("--placement", o->placement,
@@ -201,7 +206,8 @@ void AddDatasetCommand(CLI::App& app, std::function<int()>& run, const std::vect
     run = [o, command_line] {
       if (!o->rgbd_objects.empty()) return ImportRgbdObjectsCommand(*o, command_line);
       if (o->objects.empty()) {
-        throw std::invalid_argument("dataset: give --objects SET.yaml (a simulated capture) or --from-rgbd-objects DIR");
+        throw std::invalid_argument(
+            "dataset: give --objects SET.yaml (a simulated capture) or --from-rgbd-objects DIR");
       }
       const ObjectSet set = LoadObjectSet(o->objects);
       const auto start = WallClock::now();
@@ -226,14 +232,15 @@ void AddDatasetCommand(CLI::App& app, std::function<int()>& run, const std::vect
       }
       SaveDataset(o->out, d);
       const double wall = SecondsSince(start);
-      WriteJson(o->out / "run.json", RunRecord(command_line, o->seed, {{"command", "dataset"},
-                                                                      {"objects", o->objects.string()},
-                                                                      {"capture", d.capture},
-                                                                      {"dataset_wall_s", wall}}));
+      WriteJson(o->out / "run.json", RunRecord(command_line, o->seed,
+                                               {{"command", "dataset"},
+                                                {"objects", o->objects.string()},
+                                                {"capture", d.capture},
+                                                {"dataset_wall_s", wall}}));
       std::cout << "Dataset of " << set.name << ": " << d.samples.size() << " samples ("
                 << d.Labels(perception::LabelKind::kCategory).size() << " categories, "
-                << d.Labels(perception::LabelKind::kInstance).size() << " instances) in "
-                << o->out.string() << "/, " << std::lround(wall) << " s\n";
+                << d.Labels(perception::LabelKind::kInstance).size() << " instances) in " << o->out.string() << "/, "
+                << std::lround(wall) << " s\n";
       return 0;
     };
   });
@@ -248,14 +255,18 @@ void AddTrainCommand(CLI::App& app, std::function<int()>& run, const std::vector
       "cross-validation (groups: contiguous thirds of each turntable revolution, or whole instances). The "
       "model file holds the descriptor, its parameters, the classes, the scaling and a format version. With "
       "--objects SET instead of --dataset: the default recipe for that set, the one episodes and sweeps train "
-      "on first use (" + DefaultRecipeTitle() + "), its scenes kept in MODEL.scenes/.");
+      "on first use (" +
+          DefaultRecipeTitle() + "), its scenes kept in MODEL.scenes/.");
   CLI::Option* dataset = cmd->add_option("--dataset", o->dataset, "Dataset folder from sortcell dataset");
   CLI::Option* objects = cmd->add_option("--objects", o->objects, "Object set YAML: train the default recipe on it");
   dataset->excludes(objects);
-  CLI::Option* descriptor = cmd->add_option("--descriptor", o->descriptor, "cvfh | color-cvfh | color-cvfh-norm")->capture_default_str();
+  CLI::Option* descriptor =
+      cmd->add_option("--descriptor", o->descriptor, "cvfh | color-cvfh | color-cvfh-norm")->capture_default_str();
   cmd->add_option("--out", o->out, "Model file to write, e.g. out/models/paper.model.json")->required();
-  CLI::Option* label = cmd->add_option("--label", o->label, "What to recognise: category | instance")->capture_default_str();
-  CLI::Option* group = cmd->add_option("--group-by", o->group_by, "Cross-validation groups: sequence | instance")->capture_default_str();
+  CLI::Option* label =
+      cmd->add_option("--label", o->label, "What to recognise: category | instance")->capture_default_str();
+  CLI::Option* group =
+      cmd->add_option("--group-by", o->group_by, "Cross-validation groups: sequence | instance")->capture_default_str();
   for (CLI::Option* recipe_fixed : {descriptor, label, group}) objects->excludes(recipe_fixed);
   cmd->callback([&run, o, command_line] {
     run = [o, command_line] {

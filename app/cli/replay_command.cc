@@ -25,10 +25,13 @@ void AddReplayCommand(CLI::App& app, std::function<int()>& run) {
       "process) and check that its record matches the sweep's, wall-clock figures aside. Refused when this build or "
       "the model file differs from the sweep's. Exit code 0: the records match; 1: they differ (printed).");
   cmd->add_option("dir", o->sweep_dir, "Sweep folder (holding results.jsonl)")->required();
-  cmd->add_option("--episode", o->episode, "Episode index, as in results.jsonl")->required()->check(CLI::NonNegativeNumber);
+  cmd->add_option("--episode", o->episode, "Episode index, as in results.jsonl")
+      ->required()
+      ->check(CLI::NonNegativeNumber);
   cmd->add_option("--video", o->video, "Also write the replay's review video (MP4)");
   cmd->add_option("--stills", o->stills, "Also write the Kinect still of every decision into this folder");
-  cmd->add_option("--out", o->out, "Folder for the replay's metrics.json, run.json and log.txt (default DIR/replays/<episode>)");
+  cmd->add_option("--out", o->out,
+                  "Folder for the replay's metrics.json, run.json and log.txt (default DIR/replays/<episode>)");
   cmd->callback([&run, o] {
     run = [o] {
       const ReplayResult r = ReplayEpisode(*o);

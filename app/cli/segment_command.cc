@@ -38,8 +38,9 @@ std::string Recognise(const perception::RecognitionModel& model, const perceptio
 int RunSegment(const SegmentOptions& options, const std::vector<std::string>& command_line) {
   const perception::Cloud::Ptr cloud = perception::LoadCloud(options.pcd, /*organized=*/false);
   if (!cloud->isOrganized() && !options.background.empty()) {
-    throw std::invalid_argument("--background: PCD '" + options.pcd.string() +
-                                "' is unorganized (height 1); background subtraction compares pixels of organized clouds");
+    throw std::invalid_argument(
+        "--background: PCD '" + options.pcd.string() +
+        "' is unorganized (height 1); background subtraction compares pixels of organized clouds");
   }
   std::optional<Eigen::Isometry3d> X_WC;
   if (!options.camera.empty()) X_WC = LoadCameraPose(options.camera);
@@ -70,16 +71,20 @@ int RunSegment(const SegmentOptions& options, const std::vector<std::string>& co
     const perception::Segment& s = result.segments[i];
     const std::string name = fmt::format("segment_{:02}.pcd", i);
     perception::SaveCloud(options.out / name, *s.cloud_C);
-    segments.push_back({{"id", i}, {"points", s.cloud_C->size()}, {"voxels", s.voxels}, {"file", name},
-                        {"centroid", Vec(s.centroid)}, {"bbox_min", Vec(s.bbox_min)}, {"bbox_max", Vec(s.bbox_max)},
+    segments.push_back({{"id", i},
+                        {"points", s.cloud_C->size()},
+                        {"voxels", s.voxels},
+                        {"file", name},
+                        {"centroid", Vec(s.centroid)},
+                        {"bbox_min", Vec(s.bbox_min)},
+                        {"bbox_max", Vec(s.bbox_max)},
                         {"principal_axis", Vec(s.principal_axes.col(0))}});
     if (model) labels.push_back(fmt::format("{} {}", i, Recognise(*model, s, options.reject_below, segments.back())));
   }
   const Eigen::Vector4d& plane = result.plane_C;
-  WriteJson(options.out / "segments.json",
-            {{"frame", result.world_frame ? "world" : "camera"},
-             {"plane_camera_frame", {plane[0], plane[1], plane[2], plane[3]}},
-             {"segments", segments}});
+  WriteJson(options.out / "segments.json", {{"frame", result.world_frame ? "world" : "camera"},
+                                            {"plane_camera_frame", {plane[0], plane[1], plane[2], plane[3]}},
+                                            {"segments", segments}});
   // An unorganized cloud has no image to draw on: no overlay (the summary and run.json say so).
   if (!cloud->isOrganized()) std::filesystem::remove(options.out / "overlay.png");
   if (cloud->isOrganized()) {
@@ -89,21 +94,22 @@ int RunSegment(const SegmentOptions& options, const std::vector<std::string>& co
     }
   }
   const auto& t = result.timings;
-  WriteJson(options.out / "run.json",
-            RunRecord(command_line, 0,
-                      {{"command", "segment"},
-                       {"pcd", options.pcd.string()},
-                       {"camera", options.camera.string()},
-                       {"background", options.background.string()},
-                       {"model", options.model.string()},
-                       {"reject_below", options.reject_below},
-                       {"clustering", options.clustering},
-                       {"organized", cloud->isOrganized()},
-                       {"skipped", cloud->isOrganized() ? nlohmann::json::array()
-                                                        : nlohmann::json{"overlay.png (an unorganized cloud has no image)"}},
-                       {"segment_wall_s", wall_s},
-                       {"stages_wall_s", {{"crop", t.crop_s}, {"plane", t.plane_s}, {"voxel", t.voxel_s},
-                                          {"cluster", t.cluster_s}}}}));
+  WriteJson(
+      options.out / "run.json",
+      RunRecord(command_line, 0,
+                {{"command", "segment"},
+                 {"pcd", options.pcd.string()},
+                 {"camera", options.camera.string()},
+                 {"background", options.background.string()},
+                 {"model", options.model.string()},
+                 {"reject_below", options.reject_below},
+                 {"clustering", options.clustering},
+                 {"organized", cloud->isOrganized()},
+                 {"skipped", cloud->isOrganized() ? nlohmann::json::array()
+                                                  : nlohmann::json{"overlay.png (an unorganized cloud has no image)"}},
+                 {"segment_wall_s", wall_s},
+                 {"stages_wall_s",
+                  {{"crop", t.crop_s}, {"plane", t.plane_s}, {"voxel", t.voxel_s}, {"cluster", t.cluster_s}}}}));
   return static_cast<int>(result.segments.size());
 }
 
@@ -113,11 +119,13 @@ void AddSegmentCommand(CLI::App& app, std::function<int()>& run, const std::vect
       "segment",
       "Segment the objects of an organized cloud (paper 2.1): invalid points out, workspace box (with --camera) "
       "and background subtraction (with --background), RANSAC supporting plane, 5 mm voxels, convex clusters "
-      "(as the cell segments; --clustering euclidean: Euclidean clusters, which merge touching objects). Writes segment_NN.pcd (camera frame, full resolution), segments.json (world frame with "
+      "(as the cell segments; --clustering euclidean: Euclidean clusters, which merge touching objects). Writes "
+      "segment_NN.pcd (camera frame, full resolution), segments.json (world frame with "
       "--camera, else camera frame) and overlay.png. Works on real Kinect v1 PCDs (organized 640x480 "
       "XYZRGBA, any encoding) without --camera: the dominant plane is found and objects standing on it kept. "
       "Unorganized clouds are segmented too, without --background and without overlay.png.");
-  cmd->add_option("--pcd", options->pcd, "Cloud (organized, e.g. cloud.pcd from sortcell capture, or unorganized)")->required();
+  cmd->add_option("--pcd", options->pcd, "Cloud (organized, e.g. cloud.pcd from sortcell capture, or unorganized)")
+      ->required();
   cmd->add_option("--camera", options->camera, "camera.json with X_WC (from sortcell capture)");
   cmd->add_option("--background", options->background, "Organized cloud of the empty scene, same camera");
   cmd->add_option("--model", options->model,
@@ -125,17 +133,19 @@ void AddSegmentCommand(CLI::App& app, std::function<int()>& run, const std::vect
                   "segments.json and on overlay.png");
   cmd->add_option("--reject-below", options->reject_below,
                   "With --model: a segment whose confidence is below this (0-1) is 'unknown'")
-      ->check(CLI::Range(0.0, 1.0))->capture_default_str();
+      ->check(CLI::Range(0.0, 1.0))
+      ->capture_default_str();
   cmd->add_option("--clustering", options->clustering,
                   "euclidean: voxels within 15 mm join (touching objects merge); convex: supervoxels joined "
                   "across convex connections and cut at concave creases (LCCP), so touching objects come apart")
-      ->check(CLI::IsMember({"euclidean", "convex"}))->capture_default_str();
+      ->check(CLI::IsMember({"euclidean", "convex"}))
+      ->capture_default_str();
   cmd->add_option("--out", options->out, "Output folder (created if missing)")->required();
   cmd->callback([&run, options, command_line] {
     run = [options, command_line] {
       const int n = RunSegment(*options, command_line);
-      std::cout << "Segmented " << options->pcd.string() << ": " << n << " objects. Files in "
-                << options->out.string() << "/"
+      std::cout << "Segmented " << options->pcd.string() << ": " << n << " objects. Files in " << options->out.string()
+                << "/"
                 << (std::filesystem::exists(options->out / "overlay.png") ? "" : " (unorganized cloud: no overlay.png)")
                 << "\n";
       return 0;

@@ -13,9 +13,10 @@ nlohmann::json CameraJson(const std::string& camera, const sim::KinectFrame& fra
     for (int c = 0; c < 4; ++c) row.push_back(X_WC.matrix()(r, c));
     rows.push_back(row);
   }
-  return {{"camera", camera}, {"fx", k.fx}, {"fy", k.fy}, {"cx", k.cx}, {"cy", k.cy},
-          {"width", k.width}, {"height", k.height}, {"frame", "optical: x right, y down, z forward"},
-          {"X_WC", rows}};
+  return {
+      {"camera", camera}, {"fx", k.fx},       {"fy", k.fy},         {"cx", k.cx},
+      {"cy", k.cy},       {"width", k.width}, {"height", k.height}, {"frame", "optical: x right, y down, z forward"},
+      {"X_WC", rows}};
 }
 
 Eigen::Isometry3d LoadCameraPose(const std::filesystem::path& file) {

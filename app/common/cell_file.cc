@@ -86,7 +86,9 @@ cell::CellLayout CellFile::Layout() const {
   return layout;
 }
 
-std::filesystem::path DefaultCellFile() { return std::filesystem::path(DataDir()) / "scenes" / "cells" / "default.yaml"; }
+std::filesystem::path DefaultCellFile() {
+  return std::filesystem::path(DataDir()) / "scenes" / "cells" / "default.yaml";
+}
 
 CellFile ReadCellFile(const std::filesystem::path& file) {
   const YamlReader reader("cell layout", file);
@@ -97,7 +99,8 @@ CellFile ReadCellFile(const std::filesystem::path& file) {
   cell.name = reader.String(root, "name", "the top level");
   const YAML::Node bins = root["bins"];
   if (!bins) reader.Fail("missing key 'bins'");
-  if (!bins.IsSequence() || bins.size() == 0) reader.Fail("key 'bins': expected a non-empty list, found " + NodeKind(bins));
+  if (!bins.IsSequence() || bins.size() == 0)
+    reader.Fail("key 'bins': expected a non-empty list, found " + NodeKind(bins));
   std::set<std::string> names;
   for (size_t i = 0; i < bins.size(); ++i) {
     BinSpec spec = ReadBin(reader, bins[i], "bins[" + std::to_string(i) + "]");
@@ -123,8 +126,8 @@ std::string BinsXml(const CellFile& cell) {
   const cell::CellLayout walls = cell.Layout();
   std::ostringstream xml;
   xml.precision(6);
-  xml << "<!-- The bins of cell layout '" << cell.name << "' (written by sortcell from " << cell.source.filename().string()
-      << "). -->\n<mujoco>\n  <asset>\n";
+  xml << "<!-- The bins of cell layout '" << cell.name << "' (written by sortcell from "
+      << cell.source.filename().string() << "). -->\n<mujoco>\n  <asset>\n";
   for (const auto& b : cell.bins) {
     xml << "    <material name=\"" << sim::BinName(b.name) << "\" rgba=\"" << b.colour[0] << " " << b.colour[1] << " "
         << b.colour[2] << " 1\"/>\n";
@@ -142,12 +145,12 @@ std::string BinsXml(const CellFile& cell) {
         << " " << kFloorThickness / 2 << "\" material=\"bins_floor\"/>\n";
     const double wall_z = kFloorThickness + (h - kFloorThickness) / 2, wall_half = (h - kFloorThickness) / 2;
     for (const double s : {1.0, -1.0}) {
-      xml << "      <geom type=\"box\" pos=\"" << s * (in.x() + t / 2) << " 0 " << wall_z << "\" size=\"" << t / 2 << " "
-          << out.y() << " " << wall_half << "\" material=\"" << name << "\"/>\n";
+      xml << "      <geom type=\"box\" pos=\"" << s * (in.x() + t / 2) << " 0 " << wall_z << "\" size=\"" << t / 2
+          << " " << out.y() << " " << wall_half << "\" material=\"" << name << "\"/>\n";
     }
     for (const double s : {1.0, -1.0}) {
-      xml << "      <geom type=\"box\" pos=\"0 " << s * (in.y() + t / 2) << " " << wall_z << "\" size=\"" << in.x() << " "
-          << t / 2 << " " << wall_half << "\" material=\"" << name << "\"/>\n";
+      xml << "      <geom type=\"box\" pos=\"0 " << s * (in.y() + t / 2) << " " << wall_z << "\" size=\"" << in.x()
+          << " " << t / 2 << " " << wall_half << "\" material=\"" << name << "\"/>\n";
     }
     xml << "    </body>\n";
   }

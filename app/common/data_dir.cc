@@ -11,7 +11,9 @@ std::string DataDir() {
   return env != nullptr && *env != '\0' ? env : SORTCELL_DEFAULT_DATA_DIR;
 }
 
-std::filesystem::path ObjectTexturesDir() { return std::filesystem::path(DataDir()) / "models" / "objects" / "textures"; }
+std::filesystem::path ObjectTexturesDir() {
+  return std::filesystem::path(DataDir()) / "models" / "objects" / "textures";
+}
 
 sim::Model LoadScene(const std::filesystem::path& scene) {
   return sim::Model::FromFile(scene.string(), sim::ModelTextures(std::filesystem::path(DataDir()) / "models"));

@@ -18,11 +18,16 @@ namespace sortcell::app {
 /// fractions for integers).
 template <typename T>
 const char* JsonExpectedType() {
-  if constexpr (std::is_same_v<T, std::string>) return "a string";
-  else if constexpr (std::is_unsigned_v<T>) return "a non-negative integer";
-  else if constexpr (std::is_integral_v<T>) return "an integer";
-  else if constexpr (std::is_floating_point_v<T>) return "a number";
-  else return "a value";
+  if constexpr (std::is_same_v<T, std::string>)
+    return "a string";
+  else if constexpr (std::is_unsigned_v<T>)
+    return "a non-negative integer";
+  else if constexpr (std::is_integral_v<T>)
+    return "an integer";
+  else if constexpr (std::is_floating_point_v<T>)
+    return "a number";
+  else
+    return "a value";
 }
 
 template <typename T>
@@ -58,21 +63,24 @@ inline std::string JsonFound(const nlohmann::json& value) {
 template <typename T>
 void ReadField(const nlohmann::json& json, const std::string& path, const char* key, T& out) {
   const std::string name = path.empty() ? key : path + "." + key;
-  if (!json.is_object()) throw std::invalid_argument((path.empty() ? std::string("record") : path) + ": expected an object");
+  if (!json.is_object())
+    throw std::invalid_argument((path.empty() ? std::string("record") : path) + ": expected an object");
   const auto it = json.find(key);
   if (it == json.end()) throw std::invalid_argument(name + ": missing");
   if constexpr (std::is_same_v<T, bool>) {
     if (!it->is_boolean()) throw std::invalid_argument(name + ": expected true or false, found " + it->type_name());
   } else if constexpr (std::is_arithmetic_v<T>) {
     if (!it->is_number()) throw std::invalid_argument(name + ": expected a number, found " + it->type_name());
-    if (!JsonHolds<T>(*it)) throw std::invalid_argument(name + ": expected " + JsonExpectedType<T>() + ", found " + JsonFound(*it));
+    if (!JsonHolds<T>(*it))
+      throw std::invalid_argument(name + ": expected " + JsonExpectedType<T>() + ", found " + JsonFound(*it));
   } else if constexpr (std::is_same_v<T, std::string>) {
     if (!it->is_string()) throw std::invalid_argument(name + ": expected a string, found " + it->type_name());
   }
   try {
     out = it->template get<T>();
   } catch (const nlohmann::json::exception& e) {
-    throw std::invalid_argument(name + ": expected another type, found " + std::string(it->type_name()) + " (" + e.what() + ")");
+    throw std::invalid_argument(name + ": expected another type, found " + std::string(it->type_name()) + " (" +
+                                e.what() + ")");
   } catch (const std::invalid_argument& e) {
     throw std::invalid_argument(name + ": " + e.what());
   }

@@ -16,8 +16,8 @@
 namespace sortcell::app {
 namespace {
 
-const std::set<std::string> kObjectKeys{"name", "category", "instance", "model", "urdf", "mesh",
-                                        "mass", "density", "scale", "friction"};
+const std::set<std::string> kObjectKeys{"name", "category", "instance", "model", "urdf",
+                                        "mesh", "mass",     "density",  "scale", "friction"};
 const std::set<std::string> kImportKeys{"mass", "density", "scale", "friction"};
 
 std::optional<double> PositiveNumber(const YamlReader& reader, const YAML::Node& node, const std::string& key,
@@ -45,13 +45,15 @@ void Import(const YamlReader& reader, const YAML::Node& node, const std::string&
   const std::string kind = node["urdf"] ? "urdf" : "mesh";
   const std::filesystem::path file = (base / reader.String(node, kind, where)).lexically_normal();
   std::error_code ec;
-  if (!std::filesystem::is_regular_file(file, ec)) reader.Fail("key '" + where + "." + kind + "': file '" + file.string() + "' not found");
+  if (!std::filesystem::is_regular_file(file, ec))
+    reader.Fail("key '" + where + "." + kind + "': file '" + file.string() + "' not found");
   (kind == "urdf" ? source.urdf : source.mesh) = file;
   source.mass = PositiveNumber(reader, node, "mass", where);
   source.density = PositiveNumber(reader, node, "density", where);
   source.scale = PositiveNumber(reader, node, "scale", where).value_or(1.0);
   source.friction = PositiveNumber(reader, node, "friction", where);
-  if (kind == "mesh" && !source.mass && !source.density) reader.Fail("key '" + where + "': a mesh needs 'mass' or 'density'");
+  if (kind == "mesh" && !source.mass && !source.density)
+    reader.Fail("key '" + where + "': a mesh needs 'mass' or 'density'");
   assets::ImportedObject imported;
   try {
     imported = assets::ImportObject(source, ImportCacheDir());
@@ -87,7 +89,8 @@ void LoadTrainingVariety(const YamlReader& reader, const YAML::Node& node, const
     } catch (const std::invalid_argument& e) {
       reader.Fail("key '" + where + "': " + e.what());
     }
-    if (nested) reader.Fail("key '" + where + "': '" + file.string() + "' names a training variety of its own (one level only)");
+    if (nested)
+      reader.Fail("key '" + where + "': '" + file.string() + "' names a training variety of its own (one level only)");
     for (const ObjectSpec& o : variety.objects) {
       if (std::find(categories.begin(), categories.end(), o.category) == categories.end()) {
         reader.Fail("key '" + where + "': object '" + o.name + "' of '" + file.string() + "' is a " + o.category +
@@ -157,7 +160,8 @@ ObjectSet LoadObjectSet(const std::filesystem::path& file) {
     if (!names.insert(spec.name).second) reader.Fail("duplicate object name '" + spec.name + "' at " + where);
     const int sources = (node["model"] ? 1 : 0) + (node["urdf"] ? 1 : 0) + (node["mesh"] ? 1 : 0);
     if (sources != 1) {
-      reader.Fail("key '" + where + "': expected exactly one of 'model', 'urdf' or 'mesh', found " + std::to_string(sources));
+      reader.Fail("key '" + where + "': expected exactly one of 'model', 'urdf' or 'mesh', found " +
+                  std::to_string(sources));
     }
     if (node["model"]) {
       for (const auto& key : kImportKeys) {
@@ -175,7 +179,6 @@ ObjectSet LoadObjectSet(const std::filesystem::path& file) {
   if (root["training_variety"]) LoadTrainingVariety(reader, root["training_variety"], base, set);
   return set;
 }
-
 
 std::string ObjectModelsDigest(const ObjectSet& set, const std::filesystem::path& texture_dir) {
   std::string content;

@@ -28,9 +28,9 @@
 namespace sortcell::app {
 
 struct ObjectSpec {
-  std::string name;      ///< The object's body name in the model (unique in the set).
-  std::string category;  ///< Class label for category-level recognition and the bin it goes to.
-  std::string instance;  ///< Class label for instance-level recognition.
+  std::string name;             ///< The object's body name in the model (unique in the set).
+  std::string category;         ///< Class label for category-level recognition and the bin it goes to.
+  std::string instance;         ///< Class label for instance-level recognition.
   std::filesystem::path model;  ///< Absolute path of the object's MJCF fragment (imported ones': in the cache).
   /// What the import did, for objects given as `urdf` or `mesh`.
   std::optional<assets::ImportReport> import;
@@ -60,8 +60,8 @@ ObjectSet LoadObjectSet(const std::filesystem::path& file);
 /// (compile definition SORTCELL_DEFAULT_IMPORT_CACHE, <build folder>/imports); else out/imports.
 std::filesystem::path ImportCacheDir();
 
-/// A digest of what the set's objects look like (its training variety's included): the content of their model files and of every file
-/// in `texture_dir` (none if it does not exist). Captures record it, so data of other models is not
+/// A digest of what the set's objects look like (its training variety's included): the content of their model files and
+/// of every file in `texture_dir` (none if it does not exist). Captures record it, so data of other models is not
 /// reused. Not a cryptographic hash: it tells versions of a set apart, nothing more.
 std::string ObjectModelsDigest(const ObjectSet& set, const std::filesystem::path& texture_dir);
 

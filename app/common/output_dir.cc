@@ -73,8 +73,7 @@ void PrepareOutputDir(const std::filesystem::path& dir) {
 void CloseChecked(std::ofstream& out, const std::filesystem::path& path) {
   if (out.is_open()) out.close();  // Flushes: a full disk shows here, not at the last <<.
   if (!out) {
-    throw std::runtime_error("cannot write '" + path.string() + "'" +
-                             SystemReason(errno));
+    throw std::runtime_error("cannot write '" + path.string() + "'" + SystemReason(errno));
   }
 }
 
@@ -123,8 +122,7 @@ void WriteTextFile(const std::filesystem::path& path, const std::string& text) {
     const int reason = errno;
     std::error_code ignored;
     std::filesystem::remove(partial, ignored);
-    throw std::runtime_error("cannot write '" + path.string() + "'" +
-                             SystemReason(reason));
+    throw std::runtime_error("cannot write '" + path.string() + "'" + SystemReason(reason));
   }
   std::filesystem::rename(partial, path, ec);
   if (ec) {
@@ -143,8 +141,7 @@ std::string ReadTextFile(const std::filesystem::path& path) {
   char chunk[1 << 16];
   while (in.read(chunk, sizeof chunk) || in.gcount() > 0) text.append(chunk, static_cast<size_t>(in.gcount()));
   if (!in.is_open() || in.bad()) {
-    throw std::runtime_error("cannot read '" + path.string() + "'" +
-                             SystemReason(errno));
+    throw std::runtime_error("cannot read '" + path.string() + "'" + SystemReason(errno));
   }
   return text;
 }

@@ -37,9 +37,12 @@ nlohmann::json ShowingJson(const cell::MarkerShowing& s) {
 
 bool SelfCalibrates(const EpisodeOptions& options) {
   switch (options.self_calibrate) {
-    case SelfCalibration::kOn: return true;
-    case SelfCalibration::kOff: return false;
-    case SelfCalibration::kAuto: break;
+    case SelfCalibration::kOn:
+      return true;
+    case SelfCalibration::kOff:
+      return false;
+    case SelfCalibration::kAuto:
+      break;
   }
   return options.variation.camera_shift_m > 0 || options.variation.camera_turn_rad > 0;
 }
@@ -70,8 +73,11 @@ nlohmann::json CalibrationJson(const cell::HandEyeCalibration& calibration, cons
           {"rms_residual_m", figures.rms_residual_m},
           {"max_residual_m", calibration.max_residual_m},
           {"duration_s", figures.duration_s},
-          {"truth", {{"error_m", figures.error_m}, {"error_rad", figures.error_rad},
-                     {"prior_error_m", figures.prior_error_m}, {"prior_error_rad", figures.prior_error_rad}}},
+          {"truth",
+           {{"error_m", figures.error_m},
+            {"error_rad", figures.error_rad},
+            {"prior_error_m", figures.prior_error_m},
+            {"prior_error_rad", figures.prior_error_rad}}},
           {"showings", showings}};
 }
 
@@ -88,8 +94,8 @@ CalibrationFigures RunCalibration(const EpisodeOptions& options, const std::vect
   if (rig.video()) rig.video()->Close();
   const CalibrationFigures figures = ScoreCalibration(calibration, rig.TrueCameraPose());
   WriteJson(options.out / "calibration.json", CalibrationJson(calibration, figures));
-  WriteJson(options.out / "run.json", RunRecord(command_line, options.seed,
-                                                {{"command", "calibrate"}, {"scene", options.scene.string()}}));
+  WriteJson(options.out / "run.json",
+            RunRecord(command_line, options.seed, {{"command", "calibrate"}, {"scene", options.scene.string()}}));
   return figures;
 }
 

@@ -41,7 +41,11 @@ class EpisodeRun {
  public:
   EpisodeRun(const EpisodeOptions& options, const ObjectSet& set, const ObjectSet& unknown,
              const perception::RecognitionModel& recognizer)
-      : options_(options), set_(set), unknown_(unknown), recognizer_(recognizer), rng_(EpisodeRng(options.seed, 0)),
+      : options_(options),
+        set_(set),
+        unknown_(unknown),
+        recognizer_(recognizer),
+        rng_(EpisodeRng(options.seed, 0)),
         cell_(ReadCellFileOrDefault(options.cell)),
         model_(LoadEpisodeScene(options.scene, WithUnknown(set, unknown), cell_)) {}
 
@@ -116,7 +120,8 @@ void EpisodeRun::SelfCalibrate() {
 void EpisodeRun::DrawObjects() {
   for (int draw = 1;; ++draw) {
     chosen_ = ChooseObjects(set_, options_, rng_);
-    for (auto& spec : ChooseUnknownObjects(unknown_, options_.unknown_objects, rng_)) chosen_.push_back(std::move(spec));
+    for (auto& spec : ChooseUnknownObjects(unknown_, options_.unknown_objects, rng_))
+      chosen_.push_back(std::move(spec));
     shapes_.clear();
     for (const auto& spec : chosen_) shapes_.push_back(sim::ObjectShapeOf(model_, model_.Id(mjOBJ_BODY, spec.name)));
     if (draw == kObjectDraws) break;
@@ -138,8 +143,8 @@ void EpisodeRun::PlaceObjects() {
   for (size_t i = 0; i < chosen.size(); ++i) {
     const int body = model_.Id(mjOBJ_BODY, chosen[i].name);
     sim::PlaceObject(model_, rig_->data(), body, poses[i], shapes[i]);
-    const int label = static_cast<int>(std::find(label_names.begin(), label_names.end(), chosen[i].name) -
-                                       label_names.begin()) + 1;
+    const int label =
+        static_cast<int>(std::find(label_names.begin(), label_names.end(), chosen[i].name) - label_names.begin()) + 1;
     const bool unknown = i >= chosen.size() - static_cast<size_t>(options_.unknown_objects);
     const std::string bin = unknown ? layout_.rules.reject_bin : *layout_.rules.BinOf(chosen[i].category);
     placed.push_back({chosen[i].name, chosen[i].category, body, label, bin, unknown});
@@ -150,8 +155,7 @@ void EpisodeRun::PlaceObjects() {
   }
   mj_forward(model_.get(), rig_->data().get());
   scorer_ = std::make_unique<EpisodeScorer>(std::move(placed), static_cast<int>(label_names.size()),
-                                            TableExtent{layout_.table_min_xy, layout_.table_max_xy},
-                                            layout_.rules);
+                                            TableExtent{layout_.table_min_xy, layout_.table_max_xy}, layout_.rules);
 }
 
 // The policy's budget from the options (the number of objects asked for, not what the scene holds).
@@ -171,8 +175,8 @@ EpisodeMetrics EpisodeRun::Run(const std::vector<std::string>& command_line) {
   DrawObjects();
   SelfCalibrate();
   PlaceObjects();
-  recorder_ = std::make_unique<EpisodeRecorder>(*scorer_, rig_->cell(), model_, rig_->data(), rig_->video(), options_.seed,
-                                                options_.max_attempts_per_object, options_.stills);
+  recorder_ = std::make_unique<EpisodeRecorder>(*scorer_, rig_->cell(), model_, rig_->data(), rig_->video(),
+                                                options_.seed, options_.max_attempts_per_object, options_.stills);
   recorder_->ShowStatus("settling");
   rig_->cell().Wait("settle", kSceneSettleTime);
 
@@ -185,7 +189,8 @@ EpisodeMetrics EpisodeRun::Run(const std::vector<std::string>& command_line) {
   const EpisodeMetrics metrics = Metrics(result, SecondsSince(wall_start));
   WriteJson(options_.out / "metrics.json", metrics);
   WriteJson(options_.out / "run.json", RunRecord(command_line, options_.seed,
-                                                 {{"command", "episode"}, {"scene", options_.scene.string()},
+                                                 {{"command", "episode"},
+                                                  {"scene", options_.scene.string()},
                                                   {"wall_time_s", metrics.summary.run.wall_time_s}}));
   return metrics;
 }

@@ -38,16 +38,16 @@ struct EpisodeOptions {
   std::filesystem::path object_set;  ///< Which objects exist and their categories.
   /// Objects the model was not trained on, added to the scene: the rules send them to the reject bin.
   std::filesystem::path unknown_set;
-  int unknown_objects = 0;  ///< How many of them (drawn at random).
-  std::filesystem::path model;       ///< Trained recognition model (sortcell train).
-  std::filesystem::path video;       ///< Empty: no video.
-  sim::VideoOptions video_options;   ///< Its camera, size and frame rate.
+  int unknown_objects = 0;          ///< How many of them (drawn at random).
+  std::filesystem::path model;      ///< Trained recognition model (sortcell train).
+  std::filesystem::path video;      ///< Empty: no video.
+  sim::VideoOptions video_options;  ///< Its camera, size and frame rate.
   /// Empty: none. Else the Kinect still of every decision, as still_<simulated ms, 7 digits>.png: the
   /// capture's colour image with each cluster outlined and named with its category and confidence.
   std::filesystem::path stills;
   std::filesystem::path out;
   uint64_t seed = 0;
-  int objects = 0;  ///< How many of the set's objects to place (0: all of them, at most 6).
+  int objects = 0;                          ///< How many of the set's objects to place (0: all of them, at most 6).
   std::vector<ObjectPlacement> placements;  ///< Placed first, as given; the rest at random.
   sim::PlacementOptions placement;          ///< How the rest are drawn: apart, touching, lying.
   // Variations (sweep axes).

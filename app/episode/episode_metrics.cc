@@ -70,25 +70,29 @@ EpisodeSummary SummarizeEpisode(const std::vector<ItemResult>& items, int attemp
 
 std::string EpisodeParagraph(const EpisodeMetrics& metrics) {
   const EpisodeSummary& s = metrics.summary;
-  const auto rate = [](const std::optional<double>& v) { return v ? fmt::format("{:.0f} %", 100 * *v) : std::string("n/a"); };
-  std::string text = fmt::format("Episode (seed {}, {} objects): {} sorted into the right bin ({})", metrics.seed, s.items,
-                                 s.outcomes.at(cell::ItemOutcome::kSorted), rate(s.correct_sort_rate));
+  const auto rate = [](const std::optional<double>& v) {
+    return v ? fmt::format("{:.0f} %", 100 * *v) : std::string("n/a");
+  };
+  std::string text = fmt::format("Episode (seed {}, {} objects): {} sorted into the right bin ({})", metrics.seed,
+                                 s.items, s.outcomes.at(cell::ItemOutcome::kSorted), rate(s.correct_sort_rate));
   for (const auto outcome : cell::kItemOutcomes) {
     const int n = s.outcomes.at(outcome);
     if (outcome != cell::ItemOutcome::kSorted && n > 0) text += fmt::format(", {} {}", n, cell::ToString(outcome));
   }
-  text += fmt::format(". Recognition accuracy {}, grasp success {} of {} attempts, {}{}. ", rate(s.recognition_accuracy),
-                      rate(s.grasp_success_rate), s.grasp_attempts,
-                      s.mean_cycle_time_s ? fmt::format("mean cycle {:.1f} s per item", *s.mean_cycle_time_s) +
-                                                (s.cycle_to_bound ? fmt::format(" ({:.1f} times the arm's least time)",
-                                                                                *s.cycle_to_bound)
-                                                                  : std::string())
-                                          : std::string("no completed pick"),
-                      s.picks_per_hour ? fmt::format(" ({:.0f} picks per hour)", *s.picks_per_hour) : std::string());
-  text += fmt::format("{:.1f} s simulated in {:.1f} s (real-time factor {:.1f}), perception {:.0f} ms per frame over {} "
-                      "frames, status {}.",
-                      s.run.sim_time_s, s.run.wall_time_s, s.run.real_time_factor, s.run.perception_ms_per_frame,
-                      s.run.frames, cell::ToString(s.run.status));
+  text +=
+      fmt::format(". Recognition accuracy {}, grasp success {} of {} attempts, {}{}. ", rate(s.recognition_accuracy),
+                  rate(s.grasp_success_rate), s.grasp_attempts,
+                  s.mean_cycle_time_s
+                      ? fmt::format("mean cycle {:.1f} s per item", *s.mean_cycle_time_s) +
+                            (s.cycle_to_bound ? fmt::format(" ({:.1f} times the arm's least time)", *s.cycle_to_bound)
+                                              : std::string())
+                      : std::string("no completed pick"),
+                  s.picks_per_hour ? fmt::format(" ({:.0f} picks per hour)", *s.picks_per_hour) : std::string());
+  text += fmt::format(
+      "{:.1f} s simulated in {:.1f} s (real-time factor {:.1f}), perception {:.0f} ms per frame over {} "
+      "frames, status {}.",
+      s.run.sim_time_s, s.run.wall_time_s, s.run.real_time_factor, s.run.perception_ms_per_frame, s.run.frames,
+      cell::ToString(s.run.status));
   return text;
 }
 
@@ -226,9 +230,15 @@ void from_json(const nlohmann::json& j, EpisodeSummary& v) {
 }
 
 void to_json(nlohmann::json& j, const CalibrationFigures& v) {
-  j = {{"status", v.status},           {"sightings", v.sightings},   {"inliers", v.inliers},
-       {"rms_residual_m", v.rms_residual_m}, {"duration_s", v.duration_s}, {"error_m", v.error_m},
-       {"error_rad", v.error_rad},     {"prior_error_m", v.prior_error_m}, {"prior_error_rad", v.prior_error_rad}};
+  j = {{"status", v.status},
+       {"sightings", v.sightings},
+       {"inliers", v.inliers},
+       {"rms_residual_m", v.rms_residual_m},
+       {"duration_s", v.duration_s},
+       {"error_m", v.error_m},
+       {"error_rad", v.error_rad},
+       {"prior_error_m", v.prior_error_m},
+       {"prior_error_rad", v.prior_error_rad}};
 }
 
 void from_json(const nlohmann::json& j, CalibrationFigures& v) {
@@ -263,7 +273,8 @@ void to_json(nlohmann::json& j, const AttemptLogEntry& v) {
   j["lying"] = OrNull(v.lying);
   j["release_clearance_m"] = OrNull(v.release_clearance_m);
   nlohmann::json phases = nlohmann::json::array();
-  for (const auto& p : v.phases) phases.push_back({{"phase", p.phase}, {"end_s", p.end_s}, {"hold", p.hold}, {"gap_m", p.gap_m}});
+  for (const auto& p : v.phases)
+    phases.push_back({{"phase", p.phase}, {"end_s", p.end_s}, {"hold", p.hold}, {"gap_m", p.gap_m}});
   j["phases"] = phases;
   j["max_friction_use"] = OrNull(v.max_friction_use);
   j["recentred_m"] = OrNull(v.recentred_m);
@@ -313,17 +324,9 @@ void from_json(const nlohmann::json& j, AttemptLogEntry& v) {
 }
 
 void to_json(nlohmann::json& j, const EpisodeMetrics& v) {
-  j = {{"seed", v.seed},
-       {"scene", v.scene},
-       {"cell", v.cell},
-       {"object_set", v.object_set},
-       {"model", v.model},
-       {"descriptor", v.descriptor},
-       {"variation", v.variation},
-       {"items", v.items},
-       {"summary", v.summary},
-       {"attempts", v.attempts},
-       {"video", OrNull(v.video)}};
+  j = {{"seed", v.seed},       {"scene", v.scene},           {"cell", v.cell},           {"object_set", v.object_set},
+       {"model", v.model},     {"descriptor", v.descriptor}, {"variation", v.variation}, {"items", v.items},
+       {"summary", v.summary}, {"attempts", v.attempts},     {"video", OrNull(v.video)}};
 }
 
 }  // namespace sortcell::app

@@ -74,10 +74,10 @@ struct RunFigures {
 
 /// The hand-eye self-calibration an episode started with (app/episode/calibration_run.h).
 struct CalibrationFigures {
-  std::string status;           ///< cell::ToString(cell::HandEyeStatus).
+  std::string status;  ///< cell::ToString(cell::HandEyeStatus).
   int sightings = 0, inliers = 0;
-  double rms_residual_m = 0;    ///< Of the fit, over its inliers.
-  double duration_s = 0;        ///< Simulated.
+  double rms_residual_m = 0;  ///< Of the fit, over its inliers.
+  double duration_s = 0;      ///< Simulated.
   /// Scoring: the calibrated and the prior (nominal) camera pose against the true one.
   double error_m = 0, error_rad = 0, prior_error_m = 0, prior_error_rad = 0;
 };
@@ -123,14 +123,14 @@ struct AttemptLogEntry {
   std::optional<double> pinch_yaw, width_m, top_z_m;
   std::optional<bool> lying;                  ///< Seen lying on its side.
   std::optional<double> release_clearance_m;  ///< Its bottom above the bin floor when let go (planned).
-  std::string result;  ///< An attempt result (cell::ToString) or "skipped: <grasp status>".
-  std::optional<std::string> truth_object;  ///< Scoring: the object the cluster really was.
+  std::string result;                         ///< An attempt result (cell::ToString) or "skipped: <grasp status>".
+  std::optional<std::string> truth_object;    ///< Scoring: the object the cluster really was.
   std::optional<double> truth_centre_error_m, truth_width_error_m;
   std::string detail;
-  std::vector<PhaseHold> phases;  ///< An attempt's phases in order; empty for a skipped cluster.
-  std::optional<double> max_friction_use;          ///< The most of the pads' friction the hold used.
-  std::optional<double> recentred_m;               ///< Grasped again this far over (off-centre), or null.
-  std::optional<std::string> squeezed_harder_in;   ///< The phase the grip was firmed in (near slipping).
+  std::vector<PhaseHold> phases;                  ///< An attempt's phases in order; empty for a skipped cluster.
+  std::optional<double> max_friction_use;         ///< The most of the pads' friction the hold used.
+  std::optional<double> recentred_m;              ///< Grasped again this far over (off-centre), or null.
+  std::optional<std::string> squeezed_harder_in;  ///< The phase the grip was firmed in (near slipping).
 };
 
 struct EpisodeMetrics {
@@ -151,7 +151,7 @@ struct ItemTally {
   int unknown = 0, unknown_rejected = 0, unknown_in_category_bin = 0, known = 0, known_rejected = 0;
   int completed = 0;   ///< Items that reached a bin (sorted or wrong_bin) with a cycle time.
   double cycle_s = 0;  ///< Their cycle times, summed.
-  int bounded = 0;          ///< Those of them with a cycle bound (records from before it have none).
+  int bounded = 0;     ///< Those of them with a cycle bound (records from before it have none).
   double bounded_cycle_s = 0, cycle_bound_s = 0;  ///< Their cycle times and bounds, summed.
   OutcomeCounts outcomes;
 

@@ -16,8 +16,14 @@ namespace sortcell::app {
 EpisodeRecorder::EpisodeRecorder(EpisodeScorer& scorer, const SimCell& cell, const sim::Model& model,
                                  const sim::Data& data, sim::VideoRecorder* video, uint64_t seed,
                                  int max_attempts_per_object, std::filesystem::path stills)
-    : scorer_(scorer), cell_(cell), model_(model), data_(data), video_(video), seed_(seed),
-      max_attempts_per_object_(max_attempts_per_object), tcp_site_(model.Id(mjOBJ_SITE, "tcp")) {
+    : scorer_(scorer),
+      cell_(cell),
+      model_(model),
+      data_(data),
+      video_(video),
+      seed_(seed),
+      max_attempts_per_object_(max_attempts_per_object),
+      tcp_site_(model.Id(mjOBJ_SITE, "tcp")) {
   stills_ = std::move(stills);
   if (!stills_.empty()) std::filesystem::create_directories(stills_);
 }
@@ -26,8 +32,8 @@ void EpisodeRecorder::ShowStatus(const std::string& current) {
   if (!video_) return;
   video_->SetOverlay({fmt::format("seed {}   objects {}   frames {}", seed_, scorer_.objects().size(), cell_.frames()),
                       current,
-                      fmt::format("released into bins {}   missed grasps {}   dropped {}   skipped {}", released_, missed_,
-                                  dropped_, skipped_)});
+                      fmt::format("released into bins {}   missed grasps {}   dropped {}   skipped {}", released_,
+                                  missed_, dropped_, skipped_)});
 }
 
 void EpisodeRecorder::Observing() { ShowStatus("observing"); }
@@ -54,9 +60,9 @@ void EpisodeRecorder::ShowObservation(const perception::Cloud& cloud, const std:
     cv::findContours(mask, contours, cv::RETR_EXTERNAL, cv::CHAIN_APPROX_SIMPLE);
     cv::drawContours(overlay, contours, -1, cv::Scalar(255, 255, 255), 2);
     const cv::Rect box = cv::boundingRect(mask);
-    const std::string text =
-        fmt::format("{} {}", i,
-                    detections[i].category ? fmt::format("{} {:.2f}", *detections[i].category, detections[i].confidence) : "?");
+    const std::string text = fmt::format(
+        "{} {}", i,
+        detections[i].category ? fmt::format("{} {:.2f}", *detections[i].category, detections[i].confidence) : "?");
     const cv::Point at(box.x, std::max(14, box.y - 6));
     cv::putText(overlay, text, at, cv::FONT_HERSHEY_SIMPLEX, 0.6, cv::Scalar(0, 0, 0), 4, cv::LINE_AA);
     cv::putText(overlay, text, at, cv::FONT_HERSHEY_SIMPLEX, 0.6, cv::Scalar(255, 255, 255), 2, cv::LINE_AA);
@@ -97,7 +103,7 @@ void EpisodeRecorder::AttemptStarting(const cell::AttemptReport& report) {
 
 // The attempted object's position in the TCP frame now (truth), if the attempt went for one.
 static std::optional<Eigen::Isometry3d> ObjectInTcp(const EpisodeScorer& scorer, int object, const sim::Data& data,
-                                                  int tcp_site) {
+                                                    int tcp_site) {
   if (object < 0) return std::nullopt;
   const int body = scorer.objects()[object].body;
   return sim::SitePose(data, tcp_site).inverse() * sim::BodyPose(data, body);
@@ -155,7 +161,8 @@ void EpisodeRecorder::AttemptEnded(const cell::AttemptReport& report) {
   if (report.pick.grasped) entry.max_friction_use = report.pick.max_friction_use;
   if (report.pick.recentred_m != 0) entry.recentred_m = report.pick.recentred_m;
   if (!report.pick.squeezed_harder_in.empty()) entry.squeezed_harder_in = report.pick.squeezed_harder_in;
-  for (const auto& span : report.phases) entry.phases.push_back({span.phase, span.end_s, robot::ToString(span.hold), span.gap_m});
+  for (const auto& span : report.phases)
+    entry.phases.push_back({span.phase, span.end_s, robot::ToString(span.hold), span.gap_m});
   entry.result = cell::ToString(result);
   if (attempted_object_ >= 0) entry.truth_object = scorer_.objects()[attempted_object_].name;
   if (truth_errors_) {
@@ -178,6 +185,8 @@ std::map<std::string, double> PerAttempt(const std::map<std::string, double>& to
 
 std::map<std::string, double> EpisodeRecorder::CyclePhases() const { return PerAttempt(phase_s_, attempts_); }
 
-std::map<std::string, double> EpisodeRecorder::CyclePhaseBounds() const { return PerAttempt(phase_bound_s_, attempts_); }
+std::map<std::string, double> EpisodeRecorder::CyclePhaseBounds() const {
+  return PerAttempt(phase_bound_s_, attempts_);
+}
 
 }  // namespace sortcell::app

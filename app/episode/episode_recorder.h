@@ -29,7 +29,8 @@ class EpisodeRecorder : public cell::PolicyObserver {
                   std::filesystem::path stills = {});
 
   void Observing() override;
-  void Observed(const perception::Cloud& cloud, const cell::Observation& observation, double perception_wall_s) override;
+  void Observed(const perception::Cloud& cloud, const cell::Observation& observation,
+                double perception_wall_s) override;
   void Skipped(int detection, const cell::Detection& seen, robot::GraspStatus why) override;
   void AttemptStarting(const cell::AttemptReport& report) override;
   void AttemptEnded(const cell::AttemptReport& report) override;
@@ -71,7 +72,7 @@ class EpisodeRecorder : public cell::PolicyObserver {
   std::optional<Eigen::Isometry3d> X_TO_grasped_;  // How the held object sat in the gripper at the grasp.
   Slip slip_;
   double perception_wall_s_ = 0;
-  std::map<std::string, double> phase_s_;  // Simulated seconds in each phase, over every attempt.
+  std::map<std::string, double> phase_s_;        // Simulated seconds in each phase, over every attempt.
   std::map<std::string, double> phase_bound_s_;  // The arm's least time for each phase, over every attempt.
   int attempts_ = 0;
   int released_ = 0, missed_ = 0, dropped_ = 0, skipped_ = 0;

@@ -6,7 +6,10 @@ namespace sortcell::app {
 
 EpisodeScorer::EpisodeScorer(std::vector<PlacedObject> objects, int label_count, const TableExtent& table,
                              cell::SortingRules rules)
-    : objects_(std::move(objects)), label_count_(label_count), table_(table), rules_(std::move(rules)),
+    : objects_(std::move(objects)),
+      label_count_(label_count),
+      table_(table),
+      rules_(std::move(rules)),
       tracks_(objects_.size()) {}
 
 void EpisodeScorer::Observe(const cv::Mat& labels, const std::vector<DetectionRecord>& detections) {
@@ -31,8 +34,8 @@ int EpisodeScorer::ObjectOf(int detection) const {
 }
 
 std::optional<std::pair<double, double>> EpisodeScorer::GraspErrors(int detection, const Eigen::Vector2d& xy,
-                                                                     double width, const sim::Model& model,
-                                                                     const sim::Data& data) const {
+                                                                    double width, const sim::Model& model,
+                                                                    const sim::Data& data) const {
   const int o = ObjectOf(detection);
   if (o < 0) return std::nullopt;
   const sim::ObjectExtent truth = sim::ObjectExtentOf(model, data, objects_[o].body);
@@ -78,7 +81,8 @@ std::optional<sim::BinRef> EpisodeScorer::BinHolding(size_t o, const sim::Data& 
   return std::nullopt;
 }
 
-cell::ItemOutcome EpisodeScorer::OutcomeOf(size_t o, const sim::Data& data, const std::optional<sim::BinRef>& in_bin) const {
+cell::ItemOutcome EpisodeScorer::OutcomeOf(size_t o, const sim::Data& data,
+                                           const std::optional<sim::BinRef>& in_bin) const {
   const PlacedObject& object = objects_[o];
   const Track& t = tracks_[o];
   if (in_bin) return in_bin->name == object.bin ? cell::ItemOutcome::kSorted : cell::ItemOutcome::kWrongBin;
@@ -111,9 +115,9 @@ std::vector<ItemResult> EpisodeScorer::Items(const sim::Data& data, const std::v
     item.unknown = objects_[o].unknown;
     item.rejected = t.predicted && rules_.Rejects(t.confidence);
     if (t.attempts > 0) {
-    item.cycle_time_s = t.cycle_time_s;
-    item.cycle_bound_s = t.cycle_bound_s;
-  }
+      item.cycle_time_s = t.cycle_time_s;
+      item.cycle_bound_s = t.cycle_bound_s;
+    }
     item.final_xyz = {p.x(), p.y(), p.z()};
     items.push_back(item);
   }

@@ -23,8 +23,8 @@ namespace sortcell::app {
 /// An object placed on the table for the episode.
 struct PlacedObject {
   std::string name, category;
-  int body = -1;   ///< Body id in the model.
-  int label = 0;   ///< Its value in the Kinect's label image.
+  int body = -1;         ///< Body id in the model.
+  int label = 0;         ///< Its value in the Kinect's label image.
   std::string bin;       ///< Where the cell's rules send it: sorted when it ends there.
   bool unknown = false;  ///< Not of the model's set (its bin is the reject bin).
 };
@@ -44,8 +44,8 @@ struct AttemptRecord {
   std::string predicted;
   double confidence = 0;
   double start_s = 0, end_s = 0;  ///< Simulated time from leaving the observe pose to being back.
-  bool grasped = false;   ///< Something held when the fingers closed.
-  bool lifted = false;    ///< Still held after the lift.
+  bool grasped = false;           ///< Something held when the fingers closed.
+  bool lifted = false;            ///< Still held after the lift.
   cell::AttemptResult result = cell::AttemptResult::kMotionFailed;
   double bound_s = 0;  ///< The least time the arm could have taken over the attempt's paths (cell::PhaseSpan::bound_s).
 };
@@ -80,7 +80,7 @@ class EpisodeScorer {
   /// How far the policy's grasp centre `xy` for a detection of the last observation is from the true
   /// centre of the object it shows (sim::ObjectExtentOf), and how far its width is off; empty if it shows none.
   std::optional<std::pair<double, double>> GraspErrors(int detection, const Eigen::Vector2d& xy, double width,
-                                                        const sim::Model& model, const sim::Data& data) const;
+                                                       const sim::Model& model, const sim::Data& data) const;
 
   /// The object the last observation's detection showed (index into the placed objects, -1: none).
   int ObjectOf(int detection) const;
@@ -97,7 +97,8 @@ class EpisodeScorer {
     double confidence = 0;
   };
   cell::ItemOutcome OutcomeOf(size_t object, const sim::Data& data, const std::optional<sim::BinRef>& in_bin) const;
-  std::optional<sim::BinRef> BinHolding(size_t object, const sim::Data& data, const std::vector<sim::BinRef>& bins) const;
+  std::optional<sim::BinRef> BinHolding(size_t object, const sim::Data& data,
+                                        const std::vector<sim::BinRef>& bins) const;
 
   std::vector<PlacedObject> objects_;
   int label_count_;

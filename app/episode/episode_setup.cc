@@ -45,7 +45,8 @@ sim::Model LoadEpisodeScene(const std::filesystem::path& scene, const ObjectSet&
   sim::Model model = LoadCellScene(scene, cell);
   std::string missing;
   for (const auto& o : set.objects) {
-    if (mj_name2id(model.get(), mjOBJ_BODY, o.name.c_str()) < 0) missing += (missing.empty() ? "'" : ", '") + o.name + "'";
+    if (mj_name2id(model.get(), mjOBJ_BODY, o.name.c_str()) < 0)
+      missing += (missing.empty() ? "'" : ", '") + o.name + "'";
   }
   if (!missing.empty()) {
     throw std::invalid_argument("scene '" + scene.string() + "': no object " + missing + " of object set '" +
@@ -102,8 +103,8 @@ int ObjectCount(const ObjectSet& set, const EpisodeOptions& options) {
 std::vector<ObjectSpec> ChooseObjects(const ObjectSet& set, const EpisodeOptions& options, std::mt19937_64& rng) {
   const int count = ObjectCount(set, options);
   if (static_cast<int>(options.placements.size()) > count) {
-    throw std::invalid_argument("--place: " + std::to_string(options.placements.size()) +
-                                " placements for " + std::to_string(count) + " objects");
+    throw std::invalid_argument("--place: " + std::to_string(options.placements.size()) + " placements for " +
+                                std::to_string(count) + " objects");
   }
   std::vector<ObjectSpec> chosen;
   std::set<std::string> names;
@@ -128,7 +129,8 @@ std::optional<std::vector<sim::TablePose>> TryDrawPoses(const std::vector<Object
   for (size_t i = 0; i < placements.size(); ++i) {
     const ObjectPlacement& p = placements[i];
     if (p.lying && !shapes[i].lying) {
-      throw std::invalid_argument("--place: object '" + p.name + "' cannot lie on its side (not taller than it is narrow)");
+      throw std::invalid_argument("--place: object '" + p.name +
+                                  "' cannot lie on its side (not taller than it is narrow)");
     }
     fixed.push_back({p.x, p.y, p.yaw, p.lying});
   }

@@ -33,7 +33,9 @@ std::string Join(const std::vector<std::string>& names) {
 }
 
 // --bin takes "cup" or "bin_cup".
-std::string FullBinName(const std::string& bin) { return bin.rfind(sim::BinName(""), 0) == 0 ? bin : sim::BinName(bin); }
+std::string FullBinName(const std::string& bin) {
+  return bin.rfind(sim::BinName(""), 0) == 0 ? bin : sim::BinName(bin);
+}
 
 // The scene's object and bin named by the options.
 struct PickTarget {
@@ -76,19 +78,25 @@ robot::ObjectFootprint FootprintFromScene(const sim::ObjectExtent& extent) {
 // The pick command's status from how the sequence ended and where the object is.
 std::string PickStatus(cell::AttemptResult result, bool in_bin) {
   switch (result) {
-    case cell::AttemptResult::kReleased: return in_bin ? "sorted" : "missed_bin";
-    case cell::AttemptResult::kMissed: return "grasp_failed";
-    case cell::AttemptResult::kDropped: return "dropped";
+    case cell::AttemptResult::kReleased:
+      return in_bin ? "sorted" : "missed_bin";
+    case cell::AttemptResult::kMissed:
+      return "grasp_failed";
+    case cell::AttemptResult::kDropped:
+      return "dropped";
     case cell::AttemptResult::kPutBack:
-    case cell::AttemptResult::kMotionFailed: return "unreachable";
-    case cell::AttemptResult::kSimDiverged: return "sim_diverged";
+    case cell::AttemptResult::kMotionFailed:
+      return "unreachable";
+    case cell::AttemptResult::kSimDiverged:
+      return "sim_diverged";
   }
   return "unreachable";
 }
 
 nlohmann::json ResultJson(const PickOptions& options, const PickResult& result, const std::string& detail,
-                          const sim::ObjectExtent& extent, const robot::GraspPlan& grasp, std::optional<double> held_gap,
-                          const SimCell& cell, const cell::CellLayout& layout, const std::vector<cell::PhaseSpan>& phases) {
+                          const sim::ObjectExtent& extent, const robot::GraspPlan& grasp,
+                          std::optional<double> held_gap, const SimCell& cell, const cell::CellLayout& layout,
+                          const std::vector<cell::PhaseSpan>& phases) {
   nlohmann::json phase_list = nlohmann::json::array();
   for (const auto& p : phases) phase_list.push_back({{"phase", p.phase}, {"start_s", p.start_s}, {"end_s", p.end_s}});
   const robot::TrackingStats& tracking = cell.tracking();
@@ -177,7 +185,7 @@ PickResult RunPick(const PickOptions& options, const std::vector<std::string>& c
     cell::PickRequest request;
     request.grasp = grasp;
     request.p_W_release = cell::BinNamed(layout, target.bin.name).p_W_floor;  // The bin's middle.
-    request.place_yaw_step = robot::GraspOptions().place_yaw_step;  // Any yaw: the bin's middle.
+    request.place_yaw_step = robot::GraspOptions().place_yaw_step;            // Any yaw: the bin's middle.
     request.q_home = layout.q_observe;
     request.speeds = layout.speeds;
     const cell::PickReport report = cell::PickAndPlace(motions, request, hooks);
@@ -201,8 +209,9 @@ PickResult RunPick(const PickOptions& options, const std::vector<std::string>& c
   result.real_time_factor = cell.Now() / result.wall_time_s;
   WriteJson(options.out / "result.json",
             ResultJson(options, result, detail, extent, grasp, held_gap, cell, layout, motions.phases()));
-  WriteJson(options.out / "run.json", RunRecord(command_line, 0, {{"command", "pick"}, {"scene", options.scene.string()},
-                                                                  {"wall_time_s", result.wall_time_s}}));
+  WriteJson(options.out / "run.json",
+            RunRecord(command_line, 0,
+                      {{"command", "pick"}, {"scene", options.scene.string()}, {"wall_time_s", result.wall_time_s}}));
   return result;
 }
 

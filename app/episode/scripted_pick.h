@@ -17,7 +17,7 @@ struct PickOptions {
   std::filesystem::path scene;
   std::filesystem::path cell;  ///< Bins and rules; empty: the default cell.
   std::string object;
-  std::string bin;  ///< "cup" or "bin_cup"
+  std::string bin;              ///< "cup" or "bin_cup"
   std::filesystem::path video;  ///< Empty: no video.
   sim::VideoOptions video_options;
   std::filesystem::path out;

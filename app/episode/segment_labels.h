@@ -10,9 +10,9 @@
 namespace sortcell::app {
 
 struct SegmentLabel {
-  int label = 0;       ///< The label most of the segment's pixels carry (0 = no object).
-  double purity = 0;   ///< Fraction of the segment's pixels with that label.
-  double iou = 0;      ///< Intersection over union of the segment and that object's mask (0 for label 0).
+  int label = 0;      ///< The label most of the segment's pixels carry (0 = no object).
+  double purity = 0;  ///< Fraction of the segment's pixels with that label.
+  double iou = 0;     ///< Intersection over union of the segment and that object's mask (0 for label 0).
 };
 
 /// `labels`: CV_16UC1 label image (sim::KinectFrame::labels); `indices`: the segment's pixels

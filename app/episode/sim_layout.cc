@@ -39,7 +39,8 @@ void CheckSceneBins(const sim::Model& model, const CellFile& cell) {
   std::set<std::string> in_scene;
   for (const auto& bin : sim::Bins(model)) {
     in_scene.insert(bin.name);
-    const auto spec = std::find_if(cell.bins.begin(), cell.bins.end(), [&](const BinSpec& b) { return b.name == bin.name; });
+    const auto spec =
+        std::find_if(cell.bins.begin(), cell.bins.end(), [&](const BinSpec& b) { return b.name == bin.name; });
     if (spec == cell.bins.end()) fail("bin '" + bin.name + "' is not in the layout");
     const Eigen::Vector3d p_W = sim::SitePose(nominal, bin.site).translation();
     if ((p_W - spec->bin.p_W_floor).norm() > kSameBin || (bin.inner_half - spec->bin.inner_half).norm() > kSameBin) {
@@ -66,7 +67,8 @@ cell::CellLayout ReadCellLayout(const sim::Model& model, const CellFile& cell) {
   try {
     cell::CheckBinsOnTable(layout);  // The rest was checked when the cell file was read.
   } catch (const std::invalid_argument& e) {
-    throw std::invalid_argument("cell layout '" + cell.source.string() + "' in scene '" + model.source() + "': " + e.what());
+    throw std::invalid_argument("cell layout '" + cell.source.string() + "' in scene '" + model.source() +
+                                "': " + e.what());
   }
   return layout;
 }
@@ -80,9 +82,10 @@ std::vector<std::string> BinCapacityWarnings(const sim::Model& model, const cell
     if (shape.lying) longest = std::max(longest, 2 * shape.lying->middle_radius);
     const double side = 2 * cell::BinNamed(layout, bin_name).inner_half.minCoeff();
     if (longest > side) {
-      warnings.push_back(fmt::format("bin '{}' ({:.3f} m inside) cannot hold '{}' ({:.3f} m long) lying flat: it may "
-                                     "bounce out or rest on the rim; make the bin larger",
-                                     bin_name, side, object, longest));
+      warnings.push_back(
+          fmt::format("bin '{}' ({:.3f} m inside) cannot hold '{}' ({:.3f} m long) lying flat: it may "
+                      "bounce out or rest on the rim; make the bin larger",
+                      bin_name, side, object, longest));
     }
   }
   return warnings;

@@ -29,7 +29,8 @@ SimRig::SimRig(sim::Model& model, const cell::CellLayout& layout, const EpisodeO
   kinect_->SetLighting(lighting);
   noise_.noise_scale = options.noise_scale;
   const std::vector<std::string> bodies = sim::FreeBodyNames(model_);
-  for (size_t i = 0; i < bodies.size(); ++i) sim::StowObject(model_, *data_, model_.Id(mjOBJ_BODY, bodies[i]), static_cast<int>(i));
+  for (size_t i = 0; i < bodies.size(); ++i)
+    sim::StowObject(model_, *data_, model_.Id(mjOBJ_BODY, bodies[i]), static_cast<int>(i));
   if (!options.video.empty()) {
     if (options.video.has_parent_path()) std::filesystem::create_directories(options.video.parent_path());
     video_ = std::make_unique<sim::VideoRecorder>(model_, options.video, options.video_options);

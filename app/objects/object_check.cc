@@ -27,9 +27,9 @@ namespace {
 // Where the objects are dropped: the table in front of the robot, clear of the bins.
 const Eigen::Vector2d kSpotsMin{0.25, -0.33};
 const Eigen::Vector2d kSpotsMax{0.88, 0.33};
-constexpr double kSpotGap = 0.03;        // free table between neighbours' footprints (m)
-constexpr double kEndWindow = 0.5;        // s: where jitter and the last speeds are watched
-constexpr double kCreepWindow = 1.0;      // s
+constexpr double kSpotGap = 0.03;     // free table between neighbours' footprints (m)
+constexpr double kEndWindow = 0.5;    // s: where jitter and the last speeds are watched
+constexpr double kCreepWindow = 1.0;  // s
 // The soft contact's first impact (it sinks in a few mm and springs back to rest) lasts about this
 // long; a bounce is a rise above the resting height after it (s).
 constexpr double kImpactTime = 0.03;
@@ -190,7 +190,8 @@ std::vector<ObjectCheckResult> DropBatch(Rig& rig, const ObjectSet& set, const s
     rig.HoldArm();
     const sim::StepStatus status = sim::Step(rig.model, rig.data, 1);
     if (status.code == sim::StepStatus::kDiverged) {
-      throw std::runtime_error("object set '" + set.source.string() + "': the simulation diverged (" + status.detail + ")");
+      throw std::runtime_error("object set '" + set.source.string() + "': the simulation diverged (" + status.detail +
+                               ")");
     }
     for (auto& w : watches) Observe(rig, s * m->opt.timestep, options, w);
   }
@@ -214,18 +215,31 @@ void WriteStill(Rig& rig, const std::filesystem::path& file) {
 
 nlohmann::json ResultJson(const ObjectCheckResult& r) {
   const auto vec = [](const Eigen::Vector3d& v) { return nlohmann::json::array({v.x(), v.y(), v.z()}); };
-  nlohmann::json j = {{"name", r.name}, {"category", r.category}, {"dropped_at_m", vec(r.p_W_dropped)},
-                      {"settled_at_m", vec(r.p_W_settled)}, {"tilt_deg", r.tilt_deg}, {"yaw_deg", r.yaw_deg}, {"end_speed_mps", r.end_speed},
-                      {"end_spin_radps", r.end_spin}, {"creep_m", r.creep}, {"turn_deg", r.turn_deg}, {"jitter_m", r.jitter}, {"jitter_deg", r.jitter_deg}, {"bounce_m", r.bounce},
-                      {"on_table", r.on_table}, {"rests", r.rests}, {"why_not", r.why_not},
-                      {"grip_width_m", r.grip_width}, {"graspable", r.graspable}};
+  nlohmann::json j = {{"name", r.name},
+                      {"category", r.category},
+                      {"dropped_at_m", vec(r.p_W_dropped)},
+                      {"settled_at_m", vec(r.p_W_settled)},
+                      {"tilt_deg", r.tilt_deg},
+                      {"yaw_deg", r.yaw_deg},
+                      {"end_speed_mps", r.end_speed},
+                      {"end_spin_radps", r.end_spin},
+                      {"creep_m", r.creep},
+                      {"turn_deg", r.turn_deg},
+                      {"jitter_m", r.jitter},
+                      {"jitter_deg", r.jitter_deg},
+                      {"bounce_m", r.bounce},
+                      {"on_table", r.on_table},
+                      {"rests", r.rests},
+                      {"why_not", r.why_not},
+                      {"grip_width_m", r.grip_width},
+                      {"graspable", r.graspable}};
   if (r.grip_width_lying) {
     j["grip_width_lying_m"] = *r.grip_width_lying;
     j["graspable_lying"] = *r.grip_width_lying < robot::kMaxGap;
   }
   if (r.import) {
-    j["import"] = {{"source", r.import->source}, {"collision_pieces", r.import->collision_pieces},
-                   {"mass_kg", r.import->mass}, {"volume_m3", r.import->volume},
+    j["import"] = {{"source", r.import->source},    {"collision_pieces", r.import->collision_pieces},
+                   {"mass_kg", r.import->mass},     {"volume_m3", r.import->volume},
                    {"size_m", vec(r.import->size)}, {"warnings", r.import->warnings}};
   }
   return j;
@@ -266,7 +280,8 @@ std::string CheckedKeyframe(const sim::Model& model, const sim::Data& data) {
 // MuJoCo looks for every texture of the cell: texturedir); `keyframe` before its end.
 void WriteSceneFiles(const ObjectSet& set, const std::filesystem::path& models_dir, const std::filesystem::path& out,
                      const std::filesystem::path& scene, const std::string& keyframe) {
-  const std::filesystem::path scenes_dir = std::filesystem::absolute(models_dir.parent_path() / "scenes").lexically_normal();
+  const std::filesystem::path scenes_dir =
+      std::filesystem::absolute(models_dir.parent_path() / "scenes").lexically_normal();
   const std::filesystem::path out_dir = std::filesystem::absolute(out).lexically_normal();
   const auto from_out = [&](const std::filesystem::path& f) { return f.lexically_relative(out_dir); };
   const auto from_scenes = [&](const std::filesystem::path& f) { return f.lexically_relative(scenes_dir); };
@@ -301,7 +316,9 @@ void WriteCheckJson(const ObjectSet& set, const ObjectCheck& check, const std::f
   for (const auto& r : check.objects) objects.push_back(ResultJson(r));
   nlohmann::json stills = nlohmann::json::array();
   for (const auto& s : check.stills) stills.push_back(s.filename().string());
-  WriteJson(out / "check.json", {{"object_set", set.source.string()}, {"objects", objects}, {"stills", stills},
+  WriteJson(out / "check.json", {{"object_set", set.source.string()},
+                                 {"objects", objects},
+                                 {"stills", stills},
                                  {"scene", check.scene.filename().string()}});
 }
 

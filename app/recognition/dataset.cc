@@ -182,14 +182,26 @@ perception::DescriptorParams DescriptorParamsFromJson(const nlohmann::json& json
 void SaveDataset(const std::filesystem::path& dir, const Dataset& d) {
   nlohmann::json samples = nlohmann::json::array();
   for (const Sample& s : d.samples) {
-    samples.push_back({{"id", s.id}, {"category", s.category}, {"instance", s.instance}, {"source", s.source},
-                       {"elevation_deg", s.elevation_deg}, {"frame", s.frame}, {"scene", s.scene},
-                       {"cloud", s.cloud}, {"points", s.points}, {"purity", s.purity}, {"iou", s.iou},
+    samples.push_back({{"id", s.id},
+                       {"category", s.category},
+                       {"instance", s.instance},
+                       {"source", s.source},
+                       {"elevation_deg", s.elevation_deg},
+                       {"frame", s.frame},
+                       {"scene", s.scene},
+                       {"cloud", s.cloud},
+                       {"points", s.points},
+                       {"purity", s.purity},
+                       {"iou", s.iou},
                        {"cvfh_regions", s.parts.cvfh_regions}});
   }
-  WriteJson(dir / "manifest.json", {{"format", kFormat}, {"version", kDatasetFormatVersion},
-                                    {"object_set", d.object_set}, {"views", d.views}, {"seed", d.seed},
-                                    {"descriptor_params", DescriptorParamsJson(d.params)}, {"capture", d.capture},
+  WriteJson(dir / "manifest.json", {{"format", kFormat},
+                                    {"version", kDatasetFormatVersion},
+                                    {"object_set", d.object_set},
+                                    {"views", d.views},
+                                    {"seed", d.seed},
+                                    {"descriptor_params", DescriptorParamsJson(d.params)},
+                                    {"capture", d.capture},
                                     {"samples", samples}});
   WriteDescriptors(dir / "descriptors.csv", d.samples);
 }
@@ -202,8 +214,8 @@ Dataset LoadDataset(const std::filesystem::path& dir) {
   d.object_set = Get<std::string>(m, "object_set", mwhere);
   d.views = Get<int>(m, "views", mwhere);
   d.seed = Get<uint64_t>(m, "seed", mwhere);
-  d.params = DescriptorParamsFromJson(Get<nlohmann::json>(m, "descriptor_params", mwhere),
-                                      mwhere + " descriptor_params");
+  d.params =
+      DescriptorParamsFromJson(Get<nlohmann::json>(m, "descriptor_params", mwhere), mwhere + " descriptor_params");
   d.capture = m.value("capture", nlohmann::json::object());
   d.samples = ReadSamples(m, mwhere);
   ReadDescriptors(dir, where, d.samples);

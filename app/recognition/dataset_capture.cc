@@ -232,7 +232,8 @@ Dataset CaptureTurntable(const ObjectSet& set, const TurntableOptions& options, 
         std::string segmentation_failure;
         const auto segments = rig.CaptureSegments(cameras[c].name, rng, &segmentation_failure);
         const int label = static_cast<int>(std::find(rig.object_names().begin(), rig.object_names().end(), spec.name) -
-                                           rig.object_names().begin()) + 1;
+                                           rig.object_names().begin()) +
+                          1;
         const LabelledSegment* best = nullptr;
         for (const auto& l : segments) {
           if (l.label == label && (best == nullptr || l.iou > best->iou)) best = &l;
@@ -257,17 +258,23 @@ Dataset CaptureTurntable(const ObjectSet& set, const TurntableOptions& options, 
             }
           }
         } else {
-          skipped.push_back({{"instance", spec.instance}, {"elevation_deg", options.elevations_deg[c]},
-                             {"frame", view}, {"reason", reason}});
+          skipped.push_back({{"instance", spec.instance},
+                             {"elevation_deg", options.elevations_deg[c]},
+                             {"frame", view},
+                             {"reason", reason}});
         }
         progress.Advance();
       }
     }
   }
   progress.Finish();
-  dataset.capture = {{"kind", "turntable"}, {"captures", total}, {"samples", dataset.samples.size()},
-                     {"skipped", skipped}, {"elevations_deg", options.elevations_deg},
-                     {"distance_m", options.distance_m}, {"jitter_m", options.jitter_m},
+  dataset.capture = {{"kind", "turntable"},
+                     {"captures", total},
+                     {"samples", dataset.samples.size()},
+                     {"skipped", skipped},
+                     {"elevations_deg", options.elevations_deg},
+                     {"distance_m", options.distance_m},
+                     {"jitter_m", options.jitter_m},
                      {"occluded_copies", options.occluded_copies}};
   return dataset;
 }
@@ -355,16 +362,22 @@ Dataset CaptureScenes(const ObjectSet& set, const SceneOptions& options, const s
       }
     }
     for (int o : order) {
-      const int label = static_cast<int>(std::find(rig.object_names().begin(), rig.object_names().end(),
-                                                   set.objects[o].name) - rig.object_names().begin()) + 1;
+      const int label =
+          static_cast<int>(std::find(rig.object_names().begin(), rig.object_names().end(), set.objects[o].name) -
+                           rig.object_names().begin()) +
+          1;
       if (!found[label]) ++missed;
     }
     progress.Advance();
   }
   progress.Finish();
-  dataset.capture = {{"kind", "scenes"}, {"scenes", options.scenes}, {"objects_placed", placed},
-                     {"objects_not_segmented", missed}, {"segments_without_object", spurious},
-                     {"segments_not_described", undescribed}, {"samples", dataset.samples.size()},
+  dataset.capture = {{"kind", "scenes"},
+                     {"scenes", options.scenes},
+                     {"objects_placed", placed},
+                     {"objects_not_segmented", missed},
+                     {"segments_without_object", spurious},
+                     {"segments_not_described", undescribed},
+                     {"samples", dataset.samples.size()},
                      {"objects_per_scene", {options.min_objects, options.max_objects}},
                      {"placement", PlacementModesText(options.modes)},
                      {"lying_fraction", options.placement.lying_fraction},

@@ -27,11 +27,11 @@ struct TurntableOptions {
   int views = 36;  ///< Per revolution and elevation.
   uint64_t seed = 0;
   std::vector<double> elevations_deg{30, 45, 60};
-  double distance_m = 1.0;                     ///< Camera to the aim point.
-  Eigen::Vector3d centre_W{0.5, 0.0, 0.0};     ///< Turntable centre on the table.
-  double aim_height_m = 0.06;                  ///< Aim point above the centre.
-  double jitter_m = 0.005;                     ///< Uniform +- position jitter.
-  double yaw_jitter_rad = 0.05;                ///< Uniform +- yaw jitter on top of the view's angle.
+  double distance_m = 1.0;                  ///< Camera to the aim point.
+  Eigen::Vector3d centre_W{0.5, 0.0, 0.0};  ///< Turntable centre on the table.
+  double aim_height_m = 0.06;               ///< Aim point above the centre.
+  double jitter_m = 0.005;                  ///< Uniform +- position jitter.
+  double yaw_jitter_rad = 0.05;             ///< Uniform +- yaw jitter on top of the view's angle.
   /// Per view, this many more samples of the same segment with part of the object hidden, as a nearer
   /// object hides it in a scene: the points beyond a random straight edge across the view are dropped,
   /// keeping a random 30-85 % of them (source "turntable_occluded"; same instance, elevation and frame,
@@ -43,7 +43,7 @@ struct SceneOptions {
   int scenes = 150;
   uint64_t seed = 0;
   int min_objects = 2, max_objects = 6;
-  sim::PlacementArea area;        ///< Where objects stand: the episodes' distribution.
+  sim::PlacementArea area;  ///< Where objects stand: the episodes' distribution.
   /// Apart, touching or in groups, some lying, as episodes draw them: scene k is placed in mode
   /// modes[k % modes.size()] (placement.mode is not used).
   std::vector<sim::PlacementMode> modes{sim::PlacementMode::kSparse};

@@ -68,7 +68,8 @@ std::vector<RecipeGroup> Recipe(const ObjectSet& set) {
     RecipeGroup group;
     group.objects.name = set.name + "_variety" + std::to_string(recipe.size());
     group.objects.source = set.source;
-    group.objects.objects.assign(set.training_variety.begin() + first, set.training_variety.begin() + std::min(n, first + size));
+    group.objects.objects.assign(set.training_variety.begin() + first,
+                                 set.training_variety.begin() + std::min(n, first + size));
     const size_t count = group.objects.objects.size();
     group.scenes = TrainingScenes(count, static_cast<int>(std::lround(per_object * static_cast<double>(count))));
     recipe.push_back(std::move(group));
@@ -82,8 +83,9 @@ std::string DefaultTrainingSceneArguments(const ObjectSet& set) {
   for (const RecipeGroup& group : Recipe(set)) {
     const SceneOptions& scenes = group.scenes;
     text += (text.empty() ? "" : "; ") + std::string("--scenes ") + std::to_string(scenes.scenes) + " --placement " +
-            PlacementModesText(scenes.modes) + " --lying-fraction " + fmt::format("{:g}", scenes.placement.lying_fraction) +
-            " --colour-jitter " + fmt::format("{:g}", scenes.colour_jitter);
+            PlacementModesText(scenes.modes) + " --lying-fraction " +
+            fmt::format("{:g}", scenes.placement.lying_fraction) + " --colour-jitter " +
+            fmt::format("{:g}", scenes.colour_jitter);
   }
   return text;
 }
@@ -104,22 +106,22 @@ void AppendDataset(Dataset& whole, Dataset part, const std::string& sub) {
 // How those scenes are segmented (the cell's convex clusters and their settings).
 std::string SegmentationDigest() {
   const perception::ConvexClusteringParams c = perception::SegmentationParams().convex;
-  return fmt::format("convex {:g} {:g} {:g} {:g} {:g} {:g} {:g} {:g} {:g} {:g} {:g} {:g} {:g} {:g} {:g}", c.voxel_m, c.seed_m,
-                     c.concavity_deg, c.colour_edge_delta_e, c.colour_edge_concavity_deg, c.colour_importance,
+  return fmt::format("convex {:g} {:g} {:g} {:g} {:g} {:g} {:g} {:g} {:g} {:g} {:g} {:g} {:g} {:g} {:g}", c.voxel_m,
+                     c.seed_m, c.concavity_deg, c.colour_edge_delta_e, c.colour_edge_concavity_deg, c.colour_importance,
                      c.normal_importance, c.inside_fraction, c.top_tolerance_m, c.hollow_lift_m, c.rim_tolerance_m,
                      c.round_wall_residual, c.cap_fraction, c.cap_overlap_m, c.neck_length_m) +
          fmt::format(" {:g} {:g}", c.lying_elongation, c.round_wall_radius_factor) +
-         fmt::format(" creases {:d} {:g} {:g} {:g} {:d} {:g} {:d}", c.split_at_creases, c.crease_radius_m, c.crease_height_m,
-                     c.crease_deg, c.crease_rising_neighbours, c.split_link_m, c.split_min_voxels);
+         fmt::format(" creases {:d} {:g} {:g} {:g} {:d} {:g} {:d}", c.split_at_creases, c.crease_radius_m,
+                     c.crease_height_m, c.crease_deg, c.crease_rising_neighbours, c.split_link_m, c.split_min_voxels);
 }
 
 // What the default model of `set` depends on: its objects' models, the sensor it sees them through, and
 // the scenes it is trained on and how they are segmented, and what a model holds (a model of before the
 // familiarity was fitted cannot reject unknown objects: it is trained again).
 std::string TrainedOnDigest(const ObjectSet& set) {
-  return "model familiarity-2 " + ObjectModelsDigest(set, ObjectTexturesDir()) + " colour " + sim::ToString(sim::KinectColourParams{}) +
-         " depth " + sim::ToString(sim::KinectNoiseParams{}) +
-         " scenes " + DefaultTrainingSceneArguments(set) + " segmentation " + SegmentationDigest();
+  return "model familiarity-2 " + ObjectModelsDigest(set, ObjectTexturesDir()) + " colour " +
+         sim::ToString(sim::KinectColourParams{}) + " depth " + sim::ToString(sim::KinectNoiseParams{}) + " scenes " +
+         DefaultTrainingSceneArguments(set) + " segmentation " + SegmentationDigest();
 }
 
 std::string ReadDigest(const std::filesystem::path& file) {
@@ -163,8 +165,8 @@ std::string DefaultRecipeTitle() {
   return fmt::format(
       "{} random cell scenes, more in proportion for a training variety ({}; {:g} % lying; colour jitter {:g}; "
       "seed {}), {}",
-      scenes.scenes, PlacementModesText(scenes.modes), 100 * scenes.placement.lying_fraction, scenes.colour_jitter, scenes.seed,
-                     perception::DescriptorTitle(TrainRequest{}.descriptor));
+      scenes.scenes, PlacementModesText(scenes.modes), 100 * scenes.placement.lying_fraction, scenes.colour_jitter,
+      scenes.seed, perception::DescriptorTitle(TrainRequest{}.descriptor));
 }
 
 perception::RecognitionModel TrainDefaultRecipe(const ObjectSet& set, const std::filesystem::path& dataset_dir) {
@@ -181,14 +183,17 @@ perception::RecognitionModel TrainDefaultRecipe(const ObjectSet& set, const std:
 void RecordTrainedOn(const ObjectSet& set, const std::filesystem::path& model) {
   const std::string digest = TrainedOnDigest(set);
   std::ofstream(DigestPath(model)) << digest << "\n";
-  if (ReadDigest(DigestPath(model)) != digest) throw std::runtime_error("cannot write '" + DigestPath(model).string() + "'");
+  if (ReadDigest(DigestPath(model)) != digest)
+    throw std::runtime_error("cannot write '" + DigestPath(model).string() + "'");
 }
 
 std::filesystem::path EnsureDefaultModel(const ObjectSet& set) {
   const std::filesystem::path path = DefaultModelPath(set);
   if (DefaultModelIsCurrent(set)) return path;
   spdlog::info("{} trained model at {}: training one on random scenes of '{}'{} ({})",
-               std::filesystem::exists(path) ? "the objects, the Kinect's colour or depth model or the training recipe have changed since the" : "no",
+               std::filesystem::exists(path)
+                   ? "the objects, the Kinect's colour or depth model or the training recipe have changed since the"
+                   : "no",
                path.string(), set.name, set.training_variety.empty() ? "" : " and, apart, of its training variety",
                DefaultTrainingSceneArguments(set));
   const perception::RecognitionModel model = TrainDefaultRecipe(set, DefaultDatasetDir(set));

@@ -44,7 +44,8 @@ std::map<std::string, std::vector<std::string>> HoldOutOrder(const Dataset& d, u
 }  // namespace
 
 std::vector<Trial> LeaveOneInstanceOutTrials(const Dataset& d, int trials, uint64_t seed) {
-  if (trials < 0) throw std::invalid_argument("unseen-instance split: trials must be >= 0, got " + std::to_string(trials));
+  if (trials < 0)
+    throw std::invalid_argument("unseen-instance split: trials must be >= 0, got " + std::to_string(trials));
   const auto order = HoldOutOrder(d, seed);
   if (trials == 0) {
     for (const auto& [category, names] : order) trials = std::max(trials, static_cast<int>(names.size()));

@@ -17,7 +17,8 @@ double Quantile(const std::vector<double>& sorted, double q) {
 }
 
 double RejectedShare(const std::vector<double>& confidences, double threshold) {
-  const auto below = std::count_if(confidences.begin(), confidences.end(), [threshold](double c) { return c < threshold; });
+  const auto below =
+      std::count_if(confidences.begin(), confidences.end(), [threshold](double c) { return c < threshold; });
   return confidences.empty() ? 0.0 : static_cast<double>(below) / confidences.size();
 }
 
@@ -102,12 +103,13 @@ nlohmann::json OutOfSetJson(const OutOfSetReport& report) {
 }
 
 std::string OutOfSetMarkdown(const OutOfSetReport& report) {
-  std::string md = "## Samples of categories the model does not know\n\n" +
-                   TableHead("| category | samples | called | confidence mean / median / p90 / max |", "|---|---:|---|---:|");
+  std::string md =
+      "## Samples of categories the model does not know\n\n" +
+      TableHead("| category | samples | called | confidence mean / median / p90 / max |", "|---|---:|---|---:|");
   for (const auto& [name, c] : report) {
     const std::string called = CalledText(c.called);
-    md += fmt::format("| {} | {} | {} | {:.2f} / {:.2f} / {:.2f} / {:.2f} |", name, c.samples, called, Mean(c.confidences),
-                      Quantile(c.confidences, 0.5), Quantile(c.confidences, 0.9),
+    md += fmt::format("| {} | {} | {} | {:.2f} / {:.2f} / {:.2f} / {:.2f} |", name, c.samples, called,
+                      Mean(c.confidences), Quantile(c.confidences, 0.5), Quantile(c.confidences, 0.9),
                       c.confidences.empty() ? 0.0 : c.confidences.back());
     for (double t : kThresholds) md += fmt::format(" {:.0f} % |", 100 * RejectedShare(c.confidences, t));
     md += "\n";
@@ -136,31 +138,33 @@ std::map<std::string, InstanceResults> ClassifyByInstance(const perception::Reco
 nlohmann::json InstanceJson(const std::map<std::string, InstanceResults>& report) {
   nlohmann::json out = nlohmann::json::object();
   for (const auto& [name, r] : report) {
-    out[name] = {{"category", r.category},
-                 {"known", r.known},
-                 {"samples", r.samples},
-                 {"correct_share", r.known ? nlohmann::json(static_cast<double>(r.correct) / r.samples) : nlohmann::json()},
-                 {"called", r.called},
-                 {"confidence", ConfidenceJson(r.confidences)},
-                 {"histogram", Histogram(r.confidences)},
-                 {"rejected_below", RejectedJson(r.confidences)}};
+    out[name] = {
+        {"category", r.category},
+        {"known", r.known},
+        {"samples", r.samples},
+        {"correct_share", r.known ? nlohmann::json(static_cast<double>(r.correct) / r.samples) : nlohmann::json()},
+        {"called", r.called},
+        {"confidence", ConfidenceJson(r.confidences)},
+        {"histogram", Histogram(r.confidences)},
+        {"rejected_below", RejectedJson(r.confidences)}};
   }
   return out;
 }
 
 std::string InstanceMarkdown(const std::map<std::string, InstanceResults>& report) {
-  std::string md = "## By instance\n\nKnown instances: the share called their category, and the share each threshold would "
-                   "reject wrongly; unknown ones (a category the model has no class for): the share it would rightly reject. "
-                   "Confidence histogram: samples per tenth, 0-0.1 first.\n\n" +
-                   TableHead("| instance | category | samples | called right | called | confidence median | histogram |",
-                             "|---|---|---:|---:|---|---:|---|");
+  std::string md =
+      "## By instance\n\nKnown instances: the share called their category, and the share each threshold would "
+      "reject wrongly; unknown ones (a category the model has no class for): the share it would rightly reject. "
+      "Confidence histogram: samples per tenth, 0-0.1 first.\n\n" +
+      TableHead("| instance | category | samples | called right | called | confidence median | histogram |",
+                "|---|---|---:|---:|---|---:|---|");
   for (const auto& [name, r] : report) {
     const std::vector<int> bins = Histogram(r.confidences);
     std::string histogram;
     for (int n : bins) histogram += fmt::format("{}{}", histogram.empty() ? "" : " ", n);
-    md += fmt::format("| {} | {}{} | {} | {} | {} | {:.2f} | {} |", name, r.category, r.known ? "" : " (unknown)", r.samples,
-                      r.known ? fmt::format("{:.1f} %", 100.0 * r.correct / r.samples) : "-", CalledText(r.called),
-                      Quantile(r.confidences, 0.5), histogram);
+    md += fmt::format("| {} | {}{} | {} | {} | {} | {:.2f} | {} |", name, r.category, r.known ? "" : " (unknown)",
+                      r.samples, r.known ? fmt::format("{:.1f} %", 100.0 * r.correct / r.samples) : "-",
+                      CalledText(r.called), Quantile(r.confidences, 0.5), histogram);
     for (double t : kThresholds) md += fmt::format(" {:.0f} % |", 100 * RejectedShare(r.confidences, t));
     md += "\n";
   }

@@ -51,7 +51,8 @@ struct InstanceResults {
 };
 
 /// Per instance (the category label of the model's kind decides known and correct).
-std::map<std::string, InstanceResults> ClassifyByInstance(const perception::RecognitionModel& model, const Dataset& dataset);
+std::map<std::string, InstanceResults> ClassifyByInstance(const perception::RecognitionModel& model,
+                                                          const Dataset& dataset);
 
 /// {"<instance>": {"category", "known", "samples", "correct_share", "called", "confidence": {...},
 /// "histogram": [10 counts over 0-0.1, ..., 0.9-1], "rejected_below": {...}}}.

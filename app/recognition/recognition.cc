@@ -190,8 +190,10 @@ std::string MetricsCsvRows(const Evaluation& e) {
 
 const char* ToString(Grouping grouping) {
   switch (grouping) {
-    case Grouping::kSequence: return "sequence";
-    case Grouping::kInstance: return "instance";
+    case Grouping::kSequence:
+      return "sequence";
+    case Grouping::kInstance:
+      return "instance";
   }
   return "unknown";
 }
@@ -205,8 +207,10 @@ Grouping ParseGrouping(const std::string& name) {
 
 const char* ToString(ExperimentSplit split) {
   switch (split) {
-    case ExperimentSplit::kPaper: return "paper";
-    case ExperimentSplit::kUnseenInstance: return "unseen-instance";
+    case ExperimentSplit::kPaper:
+      return "paper";
+    case ExperimentSplit::kUnseenInstance:
+      return "unseen-instance";
   }
   return "unknown";
 }
@@ -226,11 +230,13 @@ perception::RecognitionModel TrainModel(const Dataset& dataset, std::vector<int>
   model.label_kind = request.label_kind;
   for (int r : rows) {
     const std::string& label = Dataset::Label(dataset.samples.at(r), request.label_kind);
-    if (std::find(model.classes.begin(), model.classes.end(), label) == model.classes.end()) model.classes.push_back(label);
+    if (std::find(model.classes.begin(), model.classes.end(), label) == model.classes.end())
+      model.classes.push_back(label);
   }
   const int dim = perception::DescriptorSize(request.descriptor);
   Eigen::MatrixXf samples(static_cast<Eigen::Index>(rows.size()), dim);
-  Eigen::MatrixXf raw_parts(static_cast<Eigen::Index>(rows.size()), perception::DescriptorSize(perception::DescriptorKind::kColorCvfh));
+  Eigen::MatrixXf raw_parts(static_cast<Eigen::Index>(rows.size()),
+                            perception::DescriptorSize(perception::DescriptorKind::kColorCvfh));
   std::vector<int> labels, groups;
   std::map<std::string, int> group_ids;
   for (size_t i = 0; i < rows.size(); ++i) {
@@ -240,11 +246,12 @@ perception::RecognitionModel TrainModel(const Dataset& dataset, std::vector<int>
     labels.push_back(ClassIndex(model.classes, Dataset::Label(s, request.label_kind)));
     groups.push_back(group_ids.emplace(GroupKey(s, request.group_by, dataset.views), group_ids.size()).first->second);
   }
-  model.classifier = perception::SvmClassifier::Train(samples, labels, groups, static_cast<int>(model.classes.size()),
-                                                      request.grid);
+  model.classifier =
+      perception::SvmClassifier::Train(samples, labels, groups, static_cast<int>(model.classes.size()), request.grid);
   model.familiarity = perception::Familiarity::Fit(raw_parts, groups);
   model.train_samples = static_cast<int>(rows.size());
-  for (const auto& score : model.classifier.cv_scores()) model.cv_accuracy = std::max(model.cv_accuracy, score.accuracy);
+  for (const auto& score : model.classifier.cv_scores())
+    model.cv_accuracy = std::max(model.cv_accuracy, score.accuracy);
   return model;
 }
 
@@ -261,8 +268,15 @@ Evaluation EvaluateModel(const perception::RecognitionModel& model, const Datase
                          const std::string& dataset_name) {
   rows = AllRows(dataset, std::move(rows));
   CheckDescriptorParams(model, dataset, dataset_name);
-  Evaluation e{model.descriptor, perception::ConfusionMatrix(model.classes), {}, model.classifier.C(),
-               model.classifier.gamma(), model.cv_accuracy, model.train_samples, static_cast<int>(rows.size()), 0};
+  Evaluation e{model.descriptor,
+               perception::ConfusionMatrix(model.classes),
+               {},
+               model.classifier.C(),
+               model.classifier.gamma(),
+               model.cv_accuracy,
+               model.train_samples,
+               static_cast<int>(rows.size()),
+               0};
   for (int r : rows) {
     const Sample& s = dataset.samples.at(r);
     const std::string& truth = Dataset::Label(s, model.label_kind);
@@ -289,7 +303,15 @@ Evaluation PoolEvaluations(const std::vector<Evaluation>& trials) {
     }
   }
   const Evaluation& first = trials.front();
-  Evaluation pooled{first.descriptor, perception::ConfusionMatrix(classes), {}, first.C, first.gamma, 0, 0, 0, 0,
+  Evaluation pooled{first.descriptor,
+                    perception::ConfusionMatrix(classes),
+                    {},
+                    first.C,
+                    first.gamma,
+                    0,
+                    0,
+                    0,
+                    0,
                     static_cast<int>(trials.size())};
   for (const Evaluation& e : trials) {
     const auto& names = e.confusion.classes();
@@ -314,8 +336,14 @@ nlohmann::json EvaluationJson(const Evaluation& e) {
   nlohmann::json per_class = nlohmann::json::object();
   for (size_t c = 0; c < classes.size(); ++c) {
     const auto& k = e.metrics.per_class[c];
-    per_class[classes[c]] = {{"recall", k.recall}, {"precision", k.precision}, {"accuracy", k.accuracy},
-                             {"f1", k.f1}, {"tp", k.tp}, {"fp", k.fp}, {"fn", k.fn}, {"tn", k.tn}};
+    per_class[classes[c]] = {{"recall", k.recall},
+                             {"precision", k.precision},
+                             {"accuracy", k.accuracy},
+                             {"f1", k.f1},
+                             {"tp", k.tp},
+                             {"fp", k.fp},
+                             {"fn", k.fn},
+                             {"tn", k.tn}};
   }
   nlohmann::json counts = nlohmann::json::array(), percent = nlohmann::json::array();
   const Eigen::MatrixXd p = e.confusion.RowPercent();
@@ -328,20 +356,24 @@ nlohmann::json EvaluationJson(const Evaluation& e) {
     counts.push_back(cr);
     percent.push_back(pr);
   }
-  return {{"macro_f1", e.metrics.macro_f1}, {"accuracy", e.metrics.accuracy},
-          {"macro_recall", e.metrics.macro_recall}, {"macro_precision", e.metrics.macro_precision},
-          {"macro_accuracy", e.metrics.macro_accuracy}, {"per_class", per_class},
+  return {{"macro_f1", e.metrics.macro_f1},
+          {"accuracy", e.metrics.accuracy},
+          {"macro_recall", e.metrics.macro_recall},
+          {"macro_precision", e.metrics.macro_precision},
+          {"macro_accuracy", e.metrics.macro_accuracy},
+          {"per_class", per_class},
           {"confusion", {{"classes", classes}, {"counts", counts}, {"percent", percent}}},
           {"mean_confidence", e.mean_confidence},
           {"svm", {{"C", e.C}, {"gamma", e.gamma}, {"cv_accuracy", e.cv_accuracy}}},
-          {"train_samples", e.train_samples}, {"test_samples", e.test_samples}};
+          {"train_samples", e.train_samples},
+          {"test_samples", e.test_samples}};
 }
 
 std::string WriteRecognitionReport(const std::filesystem::path& dir, const std::string& title,
                                    const std::vector<Evaluation>& evaluations, const std::string& preface) {
   if (evaluations.empty()) return "";
-  std::string markdown = "## " + title + "\n\n" + (preface.empty() ? "" : preface + "\n") +
-                         PerClassTable(evaluations) + "\n" + SvmTable(evaluations);
+  std::string markdown = "## " + title + "\n\n" + (preface.empty() ? "" : preface + "\n") + PerClassTable(evaluations) +
+                         "\n" + SvmTable(evaluations);
   std::string metrics_csv = "descriptor,class,recall,precision,accuracy,f1,tp,fp,fn,tn\n";
   for (const auto& e : evaluations) {
     const std::string name = perception::DescriptorName(e.descriptor);

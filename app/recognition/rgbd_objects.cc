@@ -33,7 +33,8 @@ cv::Mat ReadImage(const std::filesystem::path& file, assets::PixelFormat format,
   if (!std::filesystem::is_regular_file(file)) Refuse(file, "missing");
   const cv::Mat image = assets::ReadImage(file, format);
   // An 8-bit file where 16-bit depth is asked for reads as empty: say which it is.
-  if (image.empty() && format == assets::PixelFormat::kGrey16 && !assets::ReadImage(file, assets::PixelFormat::kGrey8).empty()) {
+  if (image.empty() && format == assets::PixelFormat::kGrey16 &&
+      !assets::ReadImage(file, assets::PixelFormat::kGrey8).empty()) {
     Refuse(file, std::string("expected ") + expected);
   }
   if (image.empty()) Refuse(file, "not a readable image");
@@ -116,7 +117,8 @@ cv::Mat LargestRegion(const cv::Mat& pixels) {
   const int count = cv::connectedComponentsWithStats(pixels, labels, stats, centroids, 8, CV_32S);
   int largest = 0;  // Label 0 is the unmasked rest.
   for (int label = 1; label < count; ++label) {
-    if (largest == 0 || stats.at<int>(label, cv::CC_STAT_AREA) > stats.at<int>(largest, cv::CC_STAT_AREA)) largest = label;
+    if (largest == 0 || stats.at<int>(label, cv::CC_STAT_AREA) > stats.at<int>(largest, cv::CC_STAT_AREA))
+      largest = label;
   }
   cv::Mat region = cv::Mat::zeros(pixels.size(), CV_8UC1);
   if (largest > 0) region.setTo(255, labels == largest);
@@ -163,7 +165,8 @@ perception::Cloud::Ptr ReadRgbdObjectsView(const RgbdObjectsView& view, const Rg
   const cv::Mat mask = ReadImage(mask_file, assets::PixelFormat::kGrey8, CV_8UC1, "a grey-level mask");
   for (const auto& [file, image] : {std::pair{depth_file, depth}, std::pair{mask_file, mask}}) {
     if (image.size() != colour.size()) {
-      Refuse(file, fmt::format("{}x{}, but the colour crop is {}x{}", image.cols, image.rows, colour.cols, colour.rows));
+      Refuse(file,
+             fmt::format("{}x{}, but the colour crop is {}x{}", image.cols, image.rows, colour.cols, colour.rows));
     }
   }
   const cv::Point corner = ReadLoc(Partner(view, "loc.txt"), colour.size());
@@ -234,9 +237,10 @@ Dataset ImportRgbdObjects(const std::filesystem::path& root, const std::filesyst
     dataset.samples.push_back(std::move(sample));
   }
   progress.Finish();
-  dataset.capture = {{"kind", "rgbd-objects"}, {"source", root.string()}, {"views", views.size()},
-                     {"samples", dataset.samples.size()}, {"skipped", skipped},
-                     {"camera", {{"focal_px", camera.focal_px}, {"cx", camera.cx}, {"cy", camera.cy}}}};
+  dataset.capture = {
+      {"kind", "rgbd-objects"}, {"source", root.string()},
+      {"views", views.size()},  {"samples", dataset.samples.size()},
+      {"skipped", skipped},     {"camera", {{"focal_px", camera.focal_px}, {"cx", camera.cx}, {"cy", camera.cy}}}};
   return dataset;
 }
 

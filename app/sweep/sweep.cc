@@ -58,10 +58,11 @@ std::string SpecCopyText(const SweepOptions& options) {
   return text;
 }
 
-void CheckSameSpec(const std::filesystem::path& out, const std::filesystem::path& spec_copy, const std::string& spec_text) {
+void CheckSameSpec(const std::filesystem::path& out, const std::filesystem::path& spec_copy,
+                   const std::string& spec_text) {
   if (std::filesystem::exists(spec_copy) && ReadTextFile(spec_copy) != spec_text) {
-    throw std::invalid_argument("output folder '" + out.string() + "' holds a sweep of another spec (" + spec_copy.string() +
-                                "): use another --out");
+    throw std::invalid_argument("output folder '" + out.string() + "' holds a sweep of another spec (" +
+                                spec_copy.string() + "): use another --out");
   }
 }
 
@@ -129,8 +130,10 @@ std::vector<int> EpisodesToRun(const SweepOptions& options, const std::vector<Sw
   for (int i = 0; i < run.total; ++i) {
     if (i % options.shards != options.shard - 1) continue;
     ++run.in_shard;
-    if (done.count(i)) ++run.already;
-    else todo.push_back(i);
+    if (done.count(i))
+      ++run.already;
+    else
+      todo.push_back(i);
   }
   return todo;
 }
@@ -144,7 +147,7 @@ struct Worker {
   nlohmann::json axes;
   std::filesystem::path dir;
   WallClock::time_point started;
-  long peak_memory_kb = 0;  ///< The largest VmHWM seen while it ran.
+  long peak_memory_kb = 0;             ///< The largest VmHWM seen while it ran.
   std::vector<std::string> arguments;  ///< Its `sortcell episode` command line.
   std::string model_digest;
 };
@@ -184,7 +187,8 @@ class StopOnSignals {
   StopOnSignals& operator=(const StopOnSignals&) = delete;
 
  private:
-  struct sigaction old_int_ {}, old_term_ {};
+  struct sigaction old_int_ {
+  }, old_term_{};
 };
 
 // What every episode of the sweep shares.
@@ -192,8 +196,8 @@ struct SweepSetup {
   const SweepSpec& spec;
   const SweepOptions& options;
   std::filesystem::path model;
-  std::string build;                                   ///< BuildDigest(), for replays.
-  std::map<std::string, std::string> model_digests;    ///< By model file, for replays.
+  std::string build;                                 ///< BuildDigest(), for replays.
+  std::map<std::string, std::string> model_digests;  ///< By model file, for replays.
 };
 
 // The digest of every model a worker may sort with.
@@ -212,17 +216,18 @@ std::string ModelOf(const SweepSetup& s, const Worker& w) {
 
 // The `sortcell episode` command line of worker `w`.
 std::vector<std::string> EpisodeArguments(const SweepSetup& s, const Worker& w) {
-  std::vector<std::string> args{"sortcell",      "episode",
-                                "--scene",       s.spec.scene.string(),
-                                "--object-set",  s.spec.object_set.string(),
-                                "--seed",        std::to_string(w.seed),
-                                "--out",         w.dir.string(),
-                                "--model",       ModelOf(s, w)};
+  std::vector<std::string> args{"sortcell",     "episode",
+                                "--scene",      s.spec.scene.string(),
+                                "--object-set", s.spec.object_set.string(),
+                                "--seed",       std::to_string(w.seed),
+                                "--out",        w.dir.string(),
+                                "--model",      ModelOf(s, w)};
   if (!s.spec.cell.empty()) args.insert(args.end(), {"--cell", s.spec.cell.string()});
   if (!s.spec.unknown_set.empty()) args.insert(args.end(), {"--unknown-set", s.spec.unknown_set.string()});
   static const std::map<std::string, std::string> kAxisOptions{
-      {"light_intensity", "--light-intensity"}, {"noise_scale", "--noise-scale"},   {"friction_scale", "--friction-scale"},
-      {"mass_scale", "--mass-scale"},           {"camera_shift_m", "--camera-shift"}, {"camera_turn_rad", "--camera-turn"},
+      {"light_intensity", "--light-intensity"}, {"noise_scale", "--noise-scale"},
+      {"friction_scale", "--friction-scale"},   {"mass_scale", "--mass-scale"},
+      {"camera_shift_m", "--camera-shift"},     {"camera_turn_rad", "--camera-turn"},
       {"reject_below", "--reject-below"},       {"lying_fraction", "--lying-fraction"},
       {"colour_jitter", "--colour-jitter"}};
   for (const auto& [axis, value] : w.axes.items()) {
@@ -231,7 +236,8 @@ std::vector<std::string> EpisodeArguments(const SweepSetup& s, const Worker& w) 
     if (axis == "placement") args.insert(args.end(), {"--placement", value.get<std::string>()});
     if (axis == "self_calibrate") args.insert(args.end(), {"--self-calibrate", value.get<std::string>()});
     const auto option = kAxisOptions.find(axis);
-    if (option != kAxisOptions.end()) args.insert(args.end(), {option->second, fmt::format("{:.17g}", value.get<double>())});
+    if (option != kAxisOptions.end())
+      args.insert(args.end(), {option->second, fmt::format("{:.17g}", value.get<double>())});
   }
   return args;
 }
@@ -409,9 +415,10 @@ void CheckCell(const SweepSpec& spec, const ObjectSet& set) {
   const ObjectSet unknown = LoadUnknownSet(unknowns, set);
   const std::string in_spec = "sweep spec '" + spec.source.string() + "': ";
   if (AxisMax(spec, "unknown_objects") > static_cast<double>(unknown.objects.size())) {
-    throw std::invalid_argument(in_spec + "axis 'unknown_objects' reaches " + fmt::format("{:g}", AxisMax(spec, "unknown_objects")) +
-                                ", but unknown set '" + spec.unknown_set.string() + "' has " +
-                                std::to_string(unknown.objects.size()) + " objects");
+    throw std::invalid_argument(in_spec + "axis 'unknown_objects' reaches " +
+                                fmt::format("{:g}", AxisMax(spec, "unknown_objects")) + ", but unknown set '" +
+                                spec.unknown_set.string() + "' has " + std::to_string(unknown.objects.size()) +
+                                " objects");
   }
   if (AxisMax(spec, "reject_below") > 0 && cell.rules.reject_bin.empty()) {
     throw std::invalid_argument(in_spec + "axis 'reject_below' needs a 'reject' bin in cell layout '" +
@@ -426,7 +433,9 @@ void CheckCell(const SweepSpec& spec, const ObjectSet& set) {
   std::vector<std::pair<std::string, std::string>> objects_and_bins;
   for (const auto& o : set.objects) {
     const auto bin = layout.rules.BinOf(o.category);
-    if (!bin) throw std::invalid_argument(where + ": category '" + o.category + "' goes to no bin (no rule for it and no \"*\")");
+    if (!bin)
+      throw std::invalid_argument(where + ": category '" + o.category +
+                                  "' goes to no bin (no rule for it and no \"*\")");
     objects_and_bins.emplace_back(o.name, *bin);
   }
   for (const auto& o : unknown.objects) objects_and_bins.emplace_back(o.name, layout.rules.reject_bin);
@@ -444,7 +453,7 @@ SweepRun RunSweep(const SweepOptions& options, const std::vector<std::string>& c
   const ObjectSet set = LoadObjectSet(spec.object_set);
   CheckCell(spec, set);  // Fails here, once, rather than in every worker.
   PrepareOutputDir(options.out);
-  const SweepLock lock(options.out);  // Before anything in the folder is read or written.
+  const SweepLock lock(options.out);     // Before anything in the folder is read or written.
   RemoveStalePartialFiles(options.out);  // What a killed sweep was writing.
   const std::filesystem::path results_file = options.out / "results.jsonl";
   const std::filesystem::path spec_copy = options.out / "spec.yaml";
@@ -460,9 +469,12 @@ SweepRun RunSweep(const SweepOptions& options, const std::vector<std::string>& c
   const std::vector<int> todo = EpisodesToRun(options, finished.records, run);
   WriteJson(options.out / ("run_shard" + std::to_string(options.shard) + ".json"),
             RunRecord(command_line, spec.seed,
-                      {{"command", "sweep"}, {"spec", options.spec.string()}, {"jobs", options.jobs},
+                      {{"command", "sweep"},
+                       {"spec", options.spec.string()},
+                       {"jobs", options.jobs},
                        {"shard", std::to_string(options.shard) + "/" + std::to_string(options.shards)},
-                       {"episodes_to_run", todo.size()}, {"set", options.sets}}));
+                       {"episodes_to_run", todo.size()},
+                       {"set", options.sets}}));
 
   SweepResultsWriter writer(results_file);
   const SweepSetup setup{spec, options, model, BuildDigest(), ModelDigests(spec, model)};

@@ -30,9 +30,9 @@ struct SweepOptions {
 };
 
 struct SweepRun {
-  int total = 0;      ///< Episodes of the spec.
-  int in_shard = 0;   ///< Of them, this shard's.
-  int already = 0;    ///< Found in results.jsonl.
+  int total = 0;     ///< Episodes of the spec.
+  int in_shard = 0;  ///< Of them, this shard's.
+  int already = 0;   ///< Found in results.jsonl.
   int ran = 0, crashed = 0;
   /// The signal (SIGINT, SIGTERM) that stopped the sweep early, 0 if it ran to the end; the episodes
   /// it ended in flight are not recorded (--resume runs them).

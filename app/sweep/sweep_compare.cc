@@ -35,8 +35,8 @@ std::map<int, const SweepRecord*> ByEpisode(const std::vector<SweepRecord>& reco
 
 void CheckSameEpisode(const SweepRecord& a, const SweepRecord& b) {
   if (a.seed != b.seed) {
-    throw std::invalid_argument(fmt::format("episode {}: seed {} in A, {} in B: not the same episodes", a.episode,
-                                            a.seed, b.seed));
+    throw std::invalid_argument(
+        fmt::format("episode {}: seed {} in A, {} in B: not the same episodes", a.episode, a.seed, b.seed));
   }
   if (a.axes != b.axes) {
     throw std::invalid_argument(fmt::format("episode {}: axes {} in A, {} in B: not the same episodes", a.episode,
@@ -59,7 +59,8 @@ void PairItems(const SweepRecord& a, const SweepRecord& b, SweepComparison& c) {
     const bool sorted_b = it->second == cell::ItemOutcome::kSorted;
     c.sorted_only_in_a += sorted_a && !sorted_b;
     c.sorted_only_in_b += sorted_b && !sorted_a;
-    if (item.outcome != it->second) c.changed.push_back({a.episode, a.seed, a.axes, item.name, item.outcome, it->second});
+    if (item.outcome != it->second)
+      c.changed.push_back({a.episode, a.seed, a.axes, item.name, item.outcome, it->second});
     in_b.erase(it);
   }
   c.items_unpaired += static_cast<int>(in_b.size());
@@ -77,11 +78,20 @@ std::string HtmlEscaped(const std::string& text) {
   std::string out;
   for (char ch : text) {
     switch (ch) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      default: out += ch;
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      default:
+        out += ch;
     }
   }
   return out;
@@ -105,8 +115,8 @@ std::string ItemLink(const std::filesystem::path& dir, const ItemChange& change,
     return HtmlEscaped(label) + " (not kept)";
   }
   const std::filesystem::path relative = std::filesystem::relative(target, page_dir, ec);
-  return fmt::format("<a href=\"{}{}\">{}</a>", HtmlEscaped((ec ? target : relative).generic_string()), HtmlEscaped(anchor),
-                     HtmlEscaped(label));
+  return fmt::format("<a href=\"{}{}\">{}</a>", HtmlEscaped((ec ? target : relative).generic_string()),
+                     HtmlEscaped(anchor), HtmlEscaped(label));
 }
 
 std::string RateText(const SortRate& r) {
@@ -170,30 +180,36 @@ SweepComparison CompareSweepFolders(const std::filesystem::path& a, const std::f
 
 std::string ComparisonText(const SweepComparison& c, const std::filesystem::path& a, const std::filesystem::path& b) {
   std::string text = fmt::format("A {}: {}\nB {}: {}\n", a.string(), RateText(c.a), b.string(), RateText(c.b));
-  text += fmt::format(
-      "Paired: {} items in {} episodes; sorted in A only {}, in B only {}; exact McNemar p = {:.3g}: {}.\n",
-      c.items_paired, c.episodes_paired, c.sorted_only_in_a, c.sorted_only_in_b, c.p_value, Verdict(c));
+  text +=
+      fmt::format("Paired: {} items in {} episodes; sorted in A only {}, in B only {}; exact McNemar p = {:.3g}: {}.\n",
+                  c.items_paired, c.episodes_paired, c.sorted_only_in_a, c.sorted_only_in_b, c.p_value, Verdict(c));
   if (!c.episodes_unpaired.empty() || c.items_unpaired > 0) {
     text += fmt::format("Not paired: {} episodes (in one sweep only, or crashed or timed out), {} items.\n",
                         c.episodes_unpaired.size(), c.items_unpaired);
   }
-  if (c.specs_differ) text += "The folders' spec.yaml differ (overrides or an edited spec); episodes checked one by one.\n";
+  if (c.specs_differ)
+    text += "The folders' spec.yaml differ (overrides or an edited spec); episodes checked one by one.\n";
   text += fmt::format("Items that changed outcome: {}\n", c.changed.size());
   for (const auto& ch : c.changed) {
-    text += fmt::format("  episode {} (seed {}{}{}): {}: {} -> {}\n", ch.episode, ch.seed, ch.axes.empty() ? "" : ", ", AxesText(ch.axes), ch.item,
-                        cell::ToString(ch.before), cell::ToString(ch.after));
+    text += fmt::format("  episode {} (seed {}{}{}): {}: {} -> {}\n", ch.episode, ch.seed, ch.axes.empty() ? "" : ", ",
+                        AxesText(ch.axes), ch.item, cell::ToString(ch.before), cell::ToString(ch.after));
   }
   return text;
 }
 
-nlohmann::json ComparisonJson(const SweepComparison& c, const std::filesystem::path& a, const std::filesystem::path& b) {
+nlohmann::json ComparisonJson(const SweepComparison& c, const std::filesystem::path& a,
+                              const std::filesystem::path& b) {
   const auto rate = [](const SortRate& r) {
     return nlohmann::json{{"sorted", r.sorted}, {"items", r.items}, {"rate", r.rate}, {"ci95", {r.low, r.high}}};
   };
   nlohmann::json changed = nlohmann::json::array();
   for (const auto& ch : c.changed) {
-    changed.push_back({{"episode", ch.episode}, {"seed", ch.seed}, {"axes", ch.axes}, {"item", ch.item},
-                       {"before", cell::ToString(ch.before)}, {"after", cell::ToString(ch.after)}});
+    changed.push_back({{"episode", ch.episode},
+                       {"seed", ch.seed},
+                       {"axes", ch.axes},
+                       {"item", ch.item},
+                       {"before", cell::ToString(ch.before)},
+                       {"after", cell::ToString(ch.after)}});
   }
   return {{"a", {{"dir", a.string()}, {"correct_sort", rate(c.a)}}},
           {"b", {{"dir", b.string()}, {"correct_sort", rate(c.b)}}},
@@ -219,21 +235,23 @@ std::string ComparisonHtml(const SweepComparison& c, const std::filesystem::path
   html += fmt::format("<tr><td>A</td><td>{}</td><td>{}</td></tr>\n", HtmlEscaped(a.string()), RateText(c.a));
   html += fmt::format("<tr><td>B</td><td>{}</td><td>{}</td></tr></table>\n", HtmlEscaped(b.string()), RateText(c.b));
   html += fmt::format(
-      "<p>Paired: {} items in {} episodes; sorted in A only {}, in B only {}; exact McNemar p = {:.3g}: <b>{}</b>.</p>\n",
+      "<p>Paired: {} items in {} episodes; sorted in A only {}, in B only {}; exact McNemar p = {:.3g}: "
+      "<b>{}</b>.</p>\n",
       c.items_paired, c.episodes_paired, c.sorted_only_in_a, c.sorted_only_in_b, c.p_value, Verdict(c));
   if (!c.episodes_unpaired.empty() || c.items_unpaired > 0) {
     html += fmt::format("<p>Not paired: {} episodes (in one sweep only, or crashed or timed out), {} items.</p>\n",
                         c.episodes_unpaired.size(), c.items_unpaired);
   }
-  if (c.specs_differ) html += "<p>The folders' spec.yaml differ (overrides or an edited spec); episodes checked one by one.</p>\n";
+  if (c.specs_differ)
+    html += "<p>The folders' spec.yaml differ (overrides or an edited spec); episodes checked one by one.</p>\n";
   html += fmt::format("<h2>Items that changed outcome ({})</h2>\n", c.changed.size());
   html += "<table><tr><th>episode</th><th>seed</th><th>axes</th><th>item</th><th>A</th><th>B</th></tr>\n";
   for (const auto& ch : c.changed) {
     const bool better = ch.after == cell::ItemOutcome::kSorted, worse = ch.before == cell::ItemOutcome::kSorted;
-    html += fmt::format("<tr class=\"{}\"><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>\n",
-                        better ? "better" : (worse ? "worse" : ""), ch.episode, ch.seed,
-                        HtmlEscaped(AxesText(ch.axes)), HtmlEscaped(ch.item),
-                        ItemLink(a, ch, ch.before, page_dir), ItemLink(b, ch, ch.after, page_dir));
+    html +=
+        fmt::format("<tr class=\"{}\"><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>\n",
+                    better ? "better" : (worse ? "worse" : ""), ch.episode, ch.seed, HtmlEscaped(AxesText(ch.axes)),
+                    HtmlEscaped(ch.item), ItemLink(a, ch, ch.before, page_dir), ItemLink(b, ch, ch.after, page_dir));
   }
   html += "</table>\n</body></html>\n";
   return html;

@@ -33,15 +33,15 @@ struct ItemChange {
 };
 
 struct SweepComparison {
-  SortRate a, b;                  ///< Each over all of its sweep's items (as its summary counts them).
-  int episodes_paired = 0;        ///< Ran to the end in both.
+  SortRate a, b;                       ///< Each over all of its sweep's items (as its summary counts them).
+  int episodes_paired = 0;             ///< Ran to the end in both.
   std::vector<int> episodes_unpaired;  ///< In one sweep only, or crashed / timed out in either.
   int items_paired = 0;
-  int items_unpaired = 0;         ///< In a paired episode of one sweep only.
+  int items_unpaired = 0;                          ///< In a paired episode of one sweep only.
   int sorted_only_in_a = 0, sorted_only_in_b = 0;  ///< The discordant pairs.
-  double p_value = 1;             ///< Exact McNemar test, two-sided (1 when no pair differs).
-  bool significant = false;       ///< p_value < 0.05.
-  std::vector<ItemChange> changed;  ///< Every paired item whose outcome differs, by episode then name.
+  double p_value = 1;                              ///< Exact McNemar test, two-sided (1 when no pair differs).
+  bool significant = false;                        ///< p_value < 0.05.
+  std::vector<ItemChange> changed;                 ///< Every paired item whose outcome differs, by episode then name.
   /// The folders' spec.yaml differ (other --set overrides, e.g. two models, or an edited spec): said, not
   /// refused, since the episodes are checked one by one.
   bool specs_differ = false;

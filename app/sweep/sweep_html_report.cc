@@ -90,7 +90,8 @@ std::filesystem::path WriteHtmlReport(const std::filesystem::path& dir) {
   std::filesystem::create_directories(report);
   if (CopyIfThere(ChartJsFile(), report / "chart.min.js")) {
     std::error_code ec;
-    if (std::filesystem::exists(kChartLicence, ec)) WriteTextFile(report / "CHART_JS_LICENSE", ReadTextFile(kChartLicence));
+    if (std::filesystem::exists(kChartLicence, ec))
+      WriteTextFile(report / "CHART_JS_LICENSE", ReadTextFile(kChartLicence));
   }
   WriteTextFile(report / "index.html", ReportPage(data));
   return report / "index.html";

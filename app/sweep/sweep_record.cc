@@ -57,7 +57,8 @@ void ReadReplay(const nlohmann::json& j, SweepRecord& v) {
   ReadField(replay, "replay", "arguments", v.worker_arguments);
   ReadField(replay, "replay", "build", v.build);
   ReadField(replay, "replay", "model_digest", v.model_digest);
-  if (v.worker_arguments.empty()) throw std::invalid_argument("replay.arguments: expected the episode's arguments, found none");
+  if (v.worker_arguments.empty())
+    throw std::invalid_argument("replay.arguments: expected the episode's arguments, found none");
 }
 
 // One line of results.jsonl. @throws std::invalid_argument naming the key.
@@ -131,7 +132,8 @@ void from_json(const nlohmann::json& j, SweepRecord& v) {
   if (!j.is_object()) throw std::invalid_argument(std::string("record: expected an object, found ") + j.type_name());
   ReadEpisodeIndex(j, v);
   ReadField(j, "", "axes", v.axes);
-  if (!v.axes.is_object()) throw std::invalid_argument(std::string("axes: expected an object, found ") + v.axes.type_name());
+  if (!v.axes.is_object())
+    throw std::invalid_argument(std::string("axes: expected an object, found ") + v.axes.type_name());
   ReadField(j, "", "wall_time_s", v.wall_time_s);
   ReadOptional(j, "peak_memory_mb", v.peak_memory_mb);
   ReadStatus(j, v.status);
@@ -145,7 +147,8 @@ void from_json(const nlohmann::json& j, SweepRecord& v) {
 }
 
 void ReadSummaryAndItems(const nlohmann::json& json, EpisodeSummary& summary, std::vector<ItemResult>& items) {
-  if (!json.is_object()) throw std::invalid_argument(std::string("record: expected an object, found ") + json.type_name());
+  if (!json.is_object())
+    throw std::invalid_argument(std::string("record: expected an object, found ") + json.type_name());
   const auto s = json.find("summary");
   if (s == json.end()) throw std::invalid_argument("summary: missing");
   from_json(*s, summary);  // Its messages name "summary.<key>".
@@ -173,7 +176,8 @@ std::vector<SweepRecord> ReadSweepFolder(const std::filesystem::path& dir) {
   }
   SweepResults results = ReadSweepResults(file);
   if (!results.damaged.empty()) {
-    throw std::invalid_argument(results.damaged.front() + " (run `sortcell sweep --resume` on '" + dir.string() + "' first)");
+    throw std::invalid_argument(results.damaged.front() + " (run `sortcell sweep --resume` on '" + dir.string() +
+                                "' first)");
   }
   return std::move(results.records);
 }

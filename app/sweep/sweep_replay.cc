@@ -16,8 +16,10 @@ namespace {
 
 constexpr size_t kMostDifferences = 20;
 
-SweepRecord RecordOf(const std::vector<SweepRecord>& records, const ReplayOptions& o, const std::filesystem::path& file) {
-  const auto it = std::find_if(records.begin(), records.end(), [&](const SweepRecord& r) { return r.episode == o.episode; });
+SweepRecord RecordOf(const std::vector<SweepRecord>& records, const ReplayOptions& o,
+                     const std::filesystem::path& file) {
+  const auto it =
+      std::find_if(records.begin(), records.end(), [&](const SweepRecord& r) { return r.episode == o.episode; });
   if (it != records.end()) return *it;
   int last = -1;
   for (const auto& r : records) last = std::max(last, r.episode);
@@ -43,12 +45,14 @@ void CheckReplayable(const SweepRecord& r, const std::filesystem::path& dir, con
   }
   if (r.worker_arguments.empty()) {
     throw std::invalid_argument(fmt::format(
-        "episode {}: recorded before sweeps kept what a replay needs (arguments, build, model): sweep again", r.episode));
+        "episode {}: recorded before sweeps kept what a replay needs (arguments, build, model): sweep again",
+        r.episode));
   }
   if (r.build != build) {
-    throw std::invalid_argument(fmt::format("episode {} ran on another build (digest {}; this sortcell is {}): replay "
-                                            "it with the build that ran the sweep",
-                                            r.episode, r.build, build));
+    throw std::invalid_argument(
+        fmt::format("episode {} ran on another build (digest {}; this sortcell is {}): replay "
+                    "it with the build that ran the sweep",
+                    r.episode, r.build, build));
   }
   const std::filesystem::path model = ModelArgument(r);
   std::string digest;

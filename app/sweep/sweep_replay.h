@@ -26,8 +26,8 @@ struct ReplayOptions {
 };
 
 struct ReplayResult {
-  SweepRecord recorded;         ///< The sweep's record of the episode.
-  std::filesystem::path out;    ///< The replay's folder.
+  SweepRecord recorded;       ///< The sweep's record of the episode.
+  std::filesystem::path out;  ///< The replay's folder.
   bool matches = false;
   /// Where the two records differ, at most 20: "<JSON path>: sweep <value>, replay <value>".
   std::vector<std::string> differences;

@@ -26,7 +26,7 @@ struct Tally {
   int episodes = 0, failed_episodes = 0, attempts = 0, grasps = 0;
   double sim_s = 0, wall_s = 0;
   ItemTally items;
-  std::map<std::string, double> phase_s;  // Simulated seconds in each pick phase, over every attempt.
+  std::map<std::string, double> phase_s;        // Simulated seconds in each pick phase, over every attempt.
   std::map<std::string, double> phase_bound_s;  // The arm's least time in each, over every attempt.
   int saturated = 0;
   double max_error = 0;
@@ -61,9 +61,10 @@ struct Tally {
 // A group's figures, as summary.json, summary.csv and summary.md show them.
 struct GroupFigures {
   int episodes = 0, episodes_failed = 0, items = 0, sorted = 0, grasp_attempts = 0;
-  std::optional<double> correct_sort_rate, recognition_accuracy, grasp_success_rate, mean_cycle_time_s, real_time_factor;
+  std::optional<double> correct_sort_rate, recognition_accuracy, grasp_success_rate, mean_cycle_time_s,
+      real_time_factor;
   std::optional<double> picks_per_hour, mean_cycle_bound_s, cycle_to_bound;
-  std::map<std::string, double> cycle_phases_s;  // Mean simulated seconds per attempt in each phase.
+  std::map<std::string, double> cycle_phases_s;        // Mean simulated seconds per attempt in each phase.
   std::map<std::string, double> cycle_phases_bound_s;  // The arm's least time per attempt in each phase.
   int torque_saturated_samples = 0;
   double tracking_max_error_rad = 0;
@@ -173,8 +174,10 @@ std::string ValueLabel(const SweepAxis& axis, const SweepRecord& record) {
   const bool model = axis.name == "model", text = model || axis.name == "placement" || axis.name == "self_calibrate";
   if (text ? !value.is_string() : !value.is_number()) {
     throw std::invalid_argument("episode " + std::to_string(record.episode) + ": axes." + axis.name + ": expected " +
-                                (model ? "a file name" : text ? "a text value" : "a number") + ", found " +
-                                value.dump());
+                                (model  ? "a file name"
+                                 : text ? "a text value"
+                                        : "a number") +
+                                ", found " + value.dump());
   }
   if (model) return std::filesystem::path(value.get<std::string>()).filename().string();
   if (text) return value.get<std::string>();
@@ -224,9 +227,9 @@ std::string CsvHeader() {
 }
 
 std::string CsvRow(const std::string& axis, const std::string& value, const GroupFigures& f) {
-  std::string row = fmt::format("{},{},{},{},{},{},{},{}", CsvField(axis), CsvField(value), f.episodes, f.items, f.sorted,
-                                f.correct_sort_rate ? Number(*f.correct_sort_rate) : "", Number(f.ci95.first),
-                                Number(f.ci95.second));
+  std::string row =
+      fmt::format("{},{},{},{},{},{},{},{}", CsvField(axis), CsvField(value), f.episodes, f.items, f.sorted,
+                  f.correct_sort_rate ? Number(*f.correct_sort_rate) : "", Number(f.ci95.first), Number(f.ci95.second));
   for (const auto o : Failures()) row += fmt::format(",{}", f.outcomes.at(o));
   return row + fmt::format(",{}\n", f.episodes_failed);
 }
@@ -250,25 +253,27 @@ std::string MarkdownPhases(const GroupFigures& all) {
   }
   md.back() = '.';
   md += fmt::format(" Torque-saturated control periods {}, largest tracking error {:.4f} rad.",
-                   all.torque_saturated_samples, all.tracking_max_error_rad);
+                    all.torque_saturated_samples, all.tracking_max_error_rad);
   if (all.carry_slip_mean_mm) {
-    md += fmt::format(" Held objects slipped {:.2f} mm on average from grasp to bin (largest {:.1f} mm, largest turn"
-                      " {:.1f} deg).",
-                      *all.carry_slip_mean_mm, all.carry_slip_max_mm, all.carry_turn_max_deg);
+    md += fmt::format(
+        " Held objects slipped {:.2f} mm on average from grasp to bin (largest {:.1f} mm, largest turn"
+        " {:.1f} deg).",
+        *all.carry_slip_mean_mm, all.carry_slip_max_mm, all.carry_turn_max_deg);
   }
   return md + "\n\n";
 }
 
 std::string MarkdownOverview(const SweepSpec& spec, const GroupFigures& all) {
-  std::string md = fmt::format("# Sweep {}\n\n{} episodes ({} failed to run) of {} in the spec, {} items.\n\n",
-                               spec.source.filename().string(), all.episodes, all.episodes_failed, spec.EpisodeCount(),
-                               all.items);
-  md += "| items | correct-sort rate (95 % CI) | recognition accuracy | grasp success | mean cycle per item | "
-        "the arm's least time (cycle / it) | picks per hour |\n"
-        "|---|---|---|---|---|---|---|\n";
-  md += fmt::format("| {} | {} ({:.1f}-{:.1f} %) | {} | {} | {} | {} | {} |\n\n", all.items, Percent(all.correct_sort_rate),
-                    100 * all.ci95.first, 100 * all.ci95.second, Percent(all.recognition_accuracy),
-                    Percent(all.grasp_success_rate),
+  std::string md =
+      fmt::format("# Sweep {}\n\n{} episodes ({} failed to run) of {} in the spec, {} items.\n\n",
+                  spec.source.filename().string(), all.episodes, all.episodes_failed, spec.EpisodeCount(), all.items);
+  md +=
+      "| items | correct-sort rate (95 % CI) | recognition accuracy | grasp success | mean cycle per item | "
+      "the arm's least time (cycle / it) | picks per hour |\n"
+      "|---|---|---|---|---|---|---|\n";
+  md += fmt::format("| {} | {} ({:.1f}-{:.1f} %) | {} | {} | {} | {} | {} |\n\n", all.items,
+                    Percent(all.correct_sort_rate), 100 * all.ci95.first, 100 * all.ci95.second,
+                    Percent(all.recognition_accuracy), Percent(all.grasp_success_rate),
                     all.mean_cycle_time_s ? fmt::format("{:.1f} s", *all.mean_cycle_time_s) : "n/a",
                     all.mean_cycle_bound_s && all.cycle_to_bound
                         ? fmt::format("{:.1f} s (x{:.2f})", *all.mean_cycle_bound_s, *all.cycle_to_bound)
@@ -279,14 +284,15 @@ std::string MarkdownOverview(const SweepSpec& spec, const GroupFigures& all) {
     md += fmt::format(
         "Unknown objects: {} of {} rejected ({}), {} sorted into a category bin ({}); known objects wrongly "
         "rejected: {} of {} ({}).\n\n",
-        all.unknown_rejected, all.unknown, Percent(Ratio(all.unknown_rejected, all.unknown)), all.unknown_in_category_bin,
-        Percent(Ratio(all.unknown_in_category_bin, all.unknown)), all.known_rejected, all.known,
-        Percent(Ratio(all.known_rejected, all.known)));
+        all.unknown_rejected, all.unknown, Percent(Ratio(all.unknown_rejected, all.unknown)),
+        all.unknown_in_category_bin, Percent(Ratio(all.unknown_in_category_bin, all.unknown)), all.known_rejected,
+        all.known, Percent(Ratio(all.known_rejected, all.known)));
   }
   md += "Outcomes: ";
   for (size_t i = 0; i < cell::kItemOutcomes.size(); ++i) {
     const auto o = cell::kItemOutcomes[i];
-    md += fmt::format("{} {}{}", cell::ToString(o), all.outcomes.at(o), i + 1 == cell::kItemOutcomes.size() ? ".\n" : ", ");
+    md += fmt::format("{} {}{}", cell::ToString(o), all.outcomes.at(o),
+                      i + 1 == cell::kItemOutcomes.size() ? ".\n" : ", ");
   }
   return md;
 }
@@ -299,7 +305,8 @@ std::string MarkdownAxisTable(const std::string& axis, const std::vector<AxisGro
     failures += (failures.empty() ? "" : " / ") + name;
   }
   std::string md = fmt::format(
-      "\n## By {0}\n\n| {0} | episodes | items | correct-sort rate | 95 % CI | failures ({1}) |\n|---|---|---|---|---|---|\n",
+      "\n## By {0}\n\n| {0} | episodes | items | correct-sort rate | 95 % CI | failures ({1}) "
+      "|\n|---|---|---|---|---|---|\n",
       axis, failures);
   for (const auto& g : groups) {
     const GroupFigures& f = g.figures;
@@ -322,7 +329,8 @@ void Plot(const std::filesystem::path& dir, const std::string& axis, const std::
     if (!f.correct_sort_rate) continue;
     std::string label = groups[i].label;
     std::replace(label.begin(), label.end(), '"', '\'');
-    rows += fmt::format("{} \"{}\" {} {} {}\n", i, label, 100 * *f.correct_sort_rate, 100 * f.ci95.first, 100 * f.ci95.second);
+    rows += fmt::format("{} \"{}\" {} {} {}\n", i, label, 100 * *f.correct_sort_rate, 100 * f.ci95.first,
+                        100 * f.ci95.second);
   }
   WriteTextFile(data, rows);
   const std::filesystem::path png = dir / ("plot_" + axis + ".png");
@@ -409,10 +417,14 @@ nlohmann::json CalibrationSummary(const std::vector<SweepRecord>& records) {
     duration_s.push_back(c.duration_s);
   }
   if (error_m.empty()) return nullptr;
-  return {{"episodes", error_m.size()},       {"ok", ok},
-          {"median_error_m", Median(error_m)}, {"max_error_m", Largest(error_m)},
-          {"median_error_rad", Median(error_rad)}, {"max_error_rad", Largest(error_rad)},
-          {"max_prior_error_m", Largest(prior_m)}, {"max_prior_error_rad", Largest(prior_rad)},
+  return {{"episodes", error_m.size()},
+          {"ok", ok},
+          {"median_error_m", Median(error_m)},
+          {"max_error_m", Largest(error_m)},
+          {"median_error_rad", Median(error_rad)},
+          {"max_error_rad", Largest(error_rad)},
+          {"max_prior_error_m", Largest(prior_m)},
+          {"max_prior_error_rad", Largest(prior_rad)},
           {"mean_duration_s", std::accumulate(duration_s.begin(), duration_s.end(), 0.0) / duration_s.size()}};
 }
 
@@ -433,7 +445,8 @@ nlohmann::json RunsSummary(const std::vector<SweepRecord>& records) {
   nlohmann::json failed = nlohmann::json::array();
   for (const auto& r : records) {
     ++by_status[ToString(r.status)];
-    if (!r.ok()) failed.push_back({{"episode", r.episode}, {"status", ToString(r.status)}, {"error", r.error.value_or("")}});
+    if (!r.ok())
+      failed.push_back({{"episode", r.episode}, {"status", ToString(r.status)}, {"error", r.error.value_or("")}});
   }
   nlohmann::json runs = by_status;
   runs["not_ok"] = failed;
@@ -458,15 +471,17 @@ nlohmann::json ResourcesSummary(const std::vector<SweepRecord>& records) {
 }
 
 std::string MarkdownRuns(const nlohmann::json& runs, const nlohmann::json& resources) {
-  std::string md = fmt::format("Worker runs: ok {}, crashed {}, timeout {}", runs["ok"].get<int>(), runs["crashed"].get<int>(),
-                               runs["timeout"].get<int>());
+  std::string md = fmt::format("Worker runs: ok {}, crashed {}, timeout {}", runs["ok"].get<int>(),
+                               runs["crashed"].get<int>(), runs["timeout"].get<int>());
   for (const auto& f : runs["not_ok"]) {
-    md += fmt::format("; episode {} {} ({})", f["episode"].get<int>(), f["status"].get<std::string>(), f["error"].get<std::string>());
+    md += fmt::format("; episode {} {} ({})", f["episode"].get<int>(), f["status"].get<std::string>(),
+                      f["error"].get<std::string>());
   }
   md += ".";
   if (resources.contains("worker_peak_memory_mb")) {
     const auto& m = resources["worker_peak_memory_mb"];
-    md += fmt::format(" Peak memory per worker: median {:.0f} MiB, largest {:.0f} MiB.", m["median"].get<double>(), m["max"].get<double>());
+    md += fmt::format(" Peak memory per worker: median {:.0f} MiB, largest {:.0f} MiB.", m["median"].get<double>(),
+                      m["max"].get<double>());
   }
   return md + "\n\n";
 }
@@ -494,8 +509,10 @@ nlohmann::json WriteSweepReport(const std::filesystem::path& dir, const SweepSpe
   summary["single_instance_categories"] = SingleInstanceCategories(records);
   if (!summary["single_instance_categories"].empty()) {
     std::string list;
-    for (const auto& c : summary["single_instance_categories"]) list += (list.empty() ? "" : ", ") + c.get<std::string>();
-    md += "\nRecognition of " + list + " was checked on that one object only: no other object of its category took part.\n";
+    for (const auto& c : summary["single_instance_categories"])
+      list += (list.empty() ? "" : ", ") + c.get<std::string>();
+    md += "\nRecognition of " + list +
+          " was checked on that one object only: no other object of its category took part.\n";
   }
   for (const auto& axis : spec.axes) {
     const std::vector<AxisGroup> groups = GroupByAxis(axis, records);

@@ -122,7 +122,8 @@ void ReviewEpisode(const std::filesystem::path& dir, const SweepRecord& record, 
   options.stills = dir / folder / "stills";
   const ReplayResult replay = ReplayRecord(record, options, build);
   ++review.episodes_replayed;
-  if (!replay.matches) review.mismatches.push_back(fmt::format("episode {}: {}", record.episode, replay.differences.front()));
+  if (!replay.matches)
+    review.mismatches.push_back(fmt::format("episode {}: {}", record.episode, replay.differences.front()));
   const auto attempts = AttemptsOf(replay.out / "metrics.json");
   for (const auto& f : FailuresOf(record.items, attempts, record.summary.run.sim_time_s)) {
     // Never decided about: the cell's last look before it failed shows where it was left.
@@ -143,13 +144,15 @@ void ReviewEpisode(const std::filesystem::path& dir, const SweepRecord& record, 
 
 std::string AttemptInWords(const AttemptLogEntry& a, int number) {
   const std::string called =
-      a.category.empty() ? "not described" : "called " + a.category + (a.confidence ? fmt::format(" ({:.2f})", *a.confidence) : "");
+      a.category.empty() ? "not described"
+                         : "called " + a.category + (a.confidence ? fmt::format(" ({:.2f})", *a.confidence) : "");
   if (!a.duration_s) {
     const std::string why = a.result.rfind("skipped: ", 0) == 0 ? a.result.substr(9) : a.result;
     return fmt::format("at {:.1f} s: seen, {}, not attempted: {}", a.time_s, called, Spaced(why));
   }
-  std::string text = fmt::format("attempt {} at {:.1f}-{:.1f} s: {}{}; {}; {}", number, a.time_s, a.time_s + *a.duration_s,
-                                 called, a.bin.empty() ? "" : " for bin " + a.bin, GraspInWords(a), ResultInWords(a));
+  std::string text =
+      fmt::format("attempt {} at {:.1f}-{:.1f} s: {}{}; {}; {}", number, a.time_s, a.time_s + *a.duration_s, called,
+                  a.bin.empty() ? "" : " for bin " + a.bin, GraspInWords(a), ResultInWords(a));
   if (a.squeezed_harder_in) text += "; squeezed harder during " + *a.squeezed_harder_in;
   return text;
 }
@@ -188,9 +191,15 @@ std::vector<ItemFailure> FailuresOf(const std::vector<ItemResult>& items, const 
 nlohmann::json ReviewJson(const SweepReview& review) {
   nlohmann::json failures = nlohmann::json::array();
   for (const auto& r : review.failures) {
-    failures.push_back({{"episode", r.episode}, {"seed", r.seed}, {"axes", r.axes}, {"item", r.failure.item},
-                        {"outcome", cell::ToString(r.failure.outcome)}, {"at_s", r.failure.at_s},
-                        {"log", r.failure.log}, {"clip", r.clip}, {"still", r.still},
+    failures.push_back({{"episode", r.episode},
+                        {"seed", r.seed},
+                        {"axes", r.axes},
+                        {"item", r.failure.item},
+                        {"outcome", cell::ToString(r.failure.outcome)},
+                        {"at_s", r.failure.at_s},
+                        {"log", r.failure.log},
+                        {"clip", r.clip},
+                        {"still", r.still},
                         {"decided_at_s", OrNull(r.failure.decided_at_s)}});
   }
   return {{"episodes_replayed", review.episodes_replayed},

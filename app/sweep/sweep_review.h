@@ -45,7 +45,7 @@ struct ReviewedFailure {
   uint64_t seed = 0;
   nlohmann::json axes;
   ItemFailure failure;
-  std::string clip;   ///< Relative to the sweep folder; empty when none could be cut.
+  std::string clip;  ///< Relative to the sweep folder; empty when none could be cut.
   /// The Kinect still of the last decision about it (relative), or, for an item never decided about, of
   /// the cell's last look before it failed; empty when none.
   std::string still;

@@ -12,8 +12,8 @@
 namespace sortcell::app {
 namespace {
 
-const std::set<std::string> kTopLevelKeys{"scene", "cell",  "object_set", "unknown_set",       "model",
-                                          "seed",  "episodes", "seeds",   "mode", "episode_timeout_s", "axes"};
+const std::set<std::string> kTopLevelKeys{"scene",    "cell",  "object_set", "unknown_set",       "model", "seed",
+                                          "episodes", "seeds", "mode",       "episode_timeout_s", "axes"};
 const std::set<std::string> kPathKeys{"scene", "cell", "object_set", "unknown_set", "model"};
 
 // Reads the spec's keys: files are relative to the spec's folder and must exist.
@@ -64,7 +64,8 @@ void MakePathsAbsolute(YAML::Node& node) {
 void OverrideAxis(YAML::Node& root, const std::string& name, YAML::Node value) {
   const std::vector<std::string>& names = SweepAxisNames();
   if (std::find(names.begin(), names.end(), name) == names.end()) {
-    throw std::invalid_argument("--set: unknown sweep spec key 'axes." + name + "' (expected " + OverrideKeysText() + ")");
+    throw std::invalid_argument("--set: unknown sweep spec key 'axes." + name + "' (expected " + OverrideKeysText() +
+                                ")");
   }
   if (name == "model") MakePathsAbsolute(value);
   // (yaml-cpp: assigning one Node to another rebinds shared nodes, so new nodes are built, not assigned.)
@@ -81,7 +82,8 @@ void OverrideAxis(YAML::Node& root, const std::string& name, YAML::Node value) {
 // One KEY=VALUE onto the spec's YAML; VALUE is YAML (a number, a word, [a, b], {min: a, max: b}).
 void ApplyOverride(YAML::Node& root, const std::string& text) {
   const size_t eq = text.find('=');
-  if (eq == std::string::npos || eq == 0) throw std::invalid_argument("--set: expected KEY=VALUE, found '" + text + "'");
+  if (eq == std::string::npos || eq == 0)
+    throw std::invalid_argument("--set: expected KEY=VALUE, found '" + text + "'");
   const std::string key = text.substr(0, eq);
   YAML::Node value;
   try {
@@ -120,7 +122,8 @@ void ReadEpisodes(const YamlReader& y, const YAML::Node& root, SweepSpec& spec) 
   }
   if (root["seeds"]) {
     const YAML::Node seeds = root["seeds"];
-    if (!seeds.IsSequence() || seeds.size() == 0) y.Fail("key 'seeds': expected a non-empty list, found " + NodeKind(seeds));
+    if (!seeds.IsSequence() || seeds.size() == 0)
+      y.Fail("key 'seeds': expected a non-empty list, found " + NodeKind(seeds));
     for (size_t i = 0; i < seeds.size(); ++i) {
       spec.seeds.push_back(static_cast<uint64_t>(y.Integer(seeds[i], "seeds[" + std::to_string(i) + "]")));
     }
@@ -156,7 +159,8 @@ nlohmann::json AxisValue(const SpecReader& r, const std::string& name, const YAM
   }
   if (name == "self_calibrate") {
     if (!v.IsScalar() || (v.Scalar() != "auto" && v.Scalar() != "on" && v.Scalar() != "off")) {
-      y.Fail("key '" + where + "': expected auto, on or off, found " + (v.IsScalar() ? "'" + v.Scalar() + "'" : NodeKind(v)));
+      y.Fail("key '" + where + "': expected auto, on or off, found " +
+             (v.IsScalar() ? "'" + v.Scalar() + "'" : NodeKind(v)));
     }
     return v.Scalar();
   }
@@ -182,7 +186,8 @@ SweepAxis ReadAxis(const SpecReader& r, const std::string& name, const YAML::Nod
   const std::string key = "axes." + name;
   if (node.IsSequence()) {
     if (node.size() == 0) y.Fail("key '" + key + "': expected at least one value");
-    for (size_t i = 0; i < node.size(); ++i) axis.values.push_back(AxisValue(r, name, node[i], key + "[" + std::to_string(i) + "]"));
+    for (size_t i = 0; i < node.size(); ++i)
+      axis.values.push_back(AxisValue(r, name, node[i], key + "[" + std::to_string(i) + "]"));
   } else if (node.IsMap()) {
     y.RejectUnknownKeys(node, key, {"min", "max"});
     if (name == "model") y.Fail("key '" + key + "': models are a list of files, not a range");
@@ -210,10 +215,10 @@ void ReadAxes(const SpecReader& r, const YAML::Node& root, SweepSpec& spec) {
 }  // namespace
 
 const std::vector<std::string>& SweepAxisNames() {
-  static const std::vector<std::string> names{"objects",     "light_intensity", "camera_shift_m", "camera_turn_rad",
-                                               "noise_scale", "friction_scale",  "mass_scale",     "model",
-                                               "reject_below", "placement",      "lying_fraction", "self_calibrate", "colour_jitter",
-                                               "unknown_objects"};
+  static const std::vector<std::string> names{"objects",       "light_intensity", "camera_shift_m", "camera_turn_rad",
+                                              "noise_scale",   "friction_scale",  "mass_scale",     "model",
+                                              "reject_below",  "placement",       "lying_fraction", "self_calibrate",
+                                              "colour_jitter", "unknown_objects"};
   return names;
 }
 
@@ -282,9 +287,8 @@ SweepSpec LoadSweepSpec(const std::filesystem::path& file, const std::vector<std
   ReadEpisodes(reader.yaml(), root, spec);
   ReadRunSettings(reader.yaml(), root, spec);
   ReadAxes(reader, root, spec);
-  const bool unknowns = std::any_of(spec.axes.begin(), spec.axes.end(), [](const SweepAxis& a) {
-    return a.name == "unknown_objects";
-  });
+  const bool unknowns =
+      std::any_of(spec.axes.begin(), spec.axes.end(), [](const SweepAxis& a) { return a.name == "unknown_objects"; });
   if (unknowns && spec.unknown_set.empty()) reader.yaml().Fail("axis 'unknown_objects' needs the key 'unknown_set'");
   if (!unknowns && !spec.unknown_set.empty()) reader.yaml().Fail("key 'unknown_set' needs the axis 'unknown_objects'");
   return spec;

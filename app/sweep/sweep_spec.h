@@ -47,8 +47,8 @@ struct SweepAxis {
 struct SweepSpec {
   std::filesystem::path source;
   std::filesystem::path scene, object_set, model;  ///< Absolute; model empty: the default.
-  std::filesystem::path cell;         ///< Absolute; empty: the default cell.
-  std::filesystem::path unknown_set;  ///< Absolute; empty: none (then no unknown_objects axis).
+  std::filesystem::path cell;                      ///< Absolute; empty: the default cell.
+  std::filesystem::path unknown_set;               ///< Absolute; empty: none (then no unknown_objects axis).
   uint64_t seed = 0;
   int episodes = 1;
   std::vector<uint64_t> seeds;  ///< When given, replaces `episodes`.

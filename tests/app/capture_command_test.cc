@@ -34,7 +34,7 @@ TEST(CliCapture, WritesEveryFile) {
   EXPECT_EQ(depth.cols, 640);
   double lo, hi;
   cv::minMaxLoc(depth, &lo, &hi);
-  EXPECT_EQ(lo, 0);  // Some invalid pixels (shadows, edges).
+  EXPECT_EQ(lo, 0);    // Some invalid pixels (shadows, edges).
   EXPECT_GT(hi, 900);  // Millimetres: the table is about a metre away.
   EXPECT_LT(hi, 4001);
   const cv::Mat rgb = assets::ReadImage(out / "rgb.png", assets::PixelFormat::kBgr8);
@@ -45,7 +45,10 @@ TEST(CliCapture, WritesEveryFile) {
   std::ifstream pcd(out / "cloud.pcd");
   std::string line, data_line;
   while (std::getline(pcd, line)) {
-    if (line.rfind("DATA", 0) == 0) { data_line = line; break; }
+    if (line.rfind("DATA", 0) == 0) {
+      data_line = line;
+      break;
+    }
   }
   EXPECT_EQ(data_line, "DATA binary_compressed");
   pcl::PointCloud<pcl::PointXYZRGB> cloud;

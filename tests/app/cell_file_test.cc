@@ -16,7 +16,8 @@ namespace {
 
 using sortcell_test::ErrorOf;
 
-const std::filesystem::path kDefault = std::filesystem::path(sortcell_test::kSource) / "scenes" / "cells" / "default.yaml";
+const std::filesystem::path kDefault =
+    std::filesystem::path(sortcell_test::kSource) / "scenes" / "cells" / "default.yaml";
 
 // A layout file in `dir` with `bins` (YAML list items) and `rest` (rules and the rest).
 std::filesystem::path Layout(const sortcell_test::TempDir& dir, const std::string& bins, const std::string& rest) {
@@ -44,7 +45,8 @@ TEST(CellFile, TheDefaultCellHasTodaysFourBinsSizedForTheBottlesAndAWildcard) {
 TEST(CellFile, TheDefaultBinsFragmentIsWrittenFromTheDefaultCell) {
   // scenes/cell.xml includes models/cell/bins.inc.xml: it must be what the cell file says
   // (`sortcell cell check scenes/cells/default.yaml --out DIR` writes it).
-  const std::string committed = ReadTextFile(std::filesystem::path(sortcell_test::kSource) / "models/cell/bins.inc.xml");
+  const std::string committed =
+      ReadTextFile(std::filesystem::path(sortcell_test::kSource) / "models/cell/bins.inc.xml");
   EXPECT_EQ(committed, BinsXml(ReadCellFile(kDefault)));
 }
 
@@ -77,7 +79,8 @@ TEST(CellFile, LayoutsTheRobotCannotWorkInAreRefusedWithTheReason) {
             std::string::npos);
   EXPECT_NE(error("  - {name: a, at: [0.5, 0.2], size: [0.2, 0.2]}\n").find("reaches into the pick area"),
             std::string::npos);
-  EXPECT_NE(error("  - {name: a, at: [0.15, 0.68], size: [0.2, 0.2]}\n").find("stands off the table"), std::string::npos);
+  EXPECT_NE(error("  - {name: a, at: [0.15, 0.68], size: [0.2, 0.2]}\n").find("stands off the table"),
+            std::string::npos);
   EXPECT_NE(error("  - {name: a, at: [0.72, 0.55], size: [0.2, 0.2]}\n").find("the arm cannot reach down into it"),
             std::string::npos);
   EXPECT_NE(error("  - {name: a, at: [0.15, 0.5], size: [0.05, 0.2]}\n").find("expected 0.08-0.6 m a side"),
@@ -93,9 +96,9 @@ TEST(CellFile, LayoutsTheRobotCannotWorkInAreRefusedWithTheReason) {
 
 TEST(CellCheckCli, SaysWhereEachCategoryGoesAndRefusesABadLayoutInOneLine) {
   sortcell_test::TempDir dir;
-  const auto ok = sortcell_test::RunSortcell("cell check " + kDefault.string() + " --objects " +
-                                             sortcell_test::kSource + "/scenes/objects/paper.yaml --out " +
-                                             (dir.path() / "out").string());
+  const auto ok =
+      sortcell_test::RunSortcell("cell check " + kDefault.string() + " --objects " + sortcell_test::kSource +
+                                 "/scenes/objects/paper.yaml --out " + (dir.path() / "out").string());
   EXPECT_EQ(ok.exit_code, 0) << ok.err;
   EXPECT_NE(ok.out.find("others       -> others"), std::string::npos) << ok.out;
   EXPECT_TRUE(std::filesystem::exists(dir.path() / "out" / "scene.xml"));

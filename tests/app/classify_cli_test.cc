@@ -35,8 +35,9 @@ fs::path SegmentedCapture() {
   const fs::path capture = TempPath("capture"), segmented = TempPath("segmented");
   if (fs::exists(segmented / "segments.json")) return segmented;
   EXPECT_EQ(RunSortcell("capture --scene " + kSource + "/scenes/cell.xml --out " + capture.string()).exit_code, 0);
-  const auto r = RunSortcell("segment --pcd " + (capture / "cloud.pcd").string() + " --camera " +
-                             (capture / "camera.json").string() + " --model " + kModel + " --out " + segmented.string());
+  const auto r =
+      RunSortcell("segment --pcd " + (capture / "cloud.pcd").string() + " --camera " +
+                  (capture / "camera.json").string() + " --model " + kModel + " --out " + segmented.string());
   EXPECT_EQ(r.exit_code, 0) << r.err;
   return segmented;
 }
@@ -50,7 +51,8 @@ TEST(ClassifyCli, SegmentAndClassifyNameTheSameCategory) {
   for (const auto& s : segments) {
     ASSERT_TRUE(s["category"].is_string()) << s.dump();
     categories.insert(s["category"].get<std::string>());
-    const auto r = RunSortcell("classify --pcd " + (segmented / s["file"].get<std::string>()).string() + " --model " + kModel);
+    const auto r =
+        RunSortcell("classify --pcd " + (segmented / s["file"].get<std::string>()).string() + " --model " + kModel);
     ASSERT_EQ(r.exit_code, 0) << r.err;
     const nlohmann::json c = nlohmann::json::parse(r.out);
     EXPECT_EQ(c["category"], s["category"]);
@@ -96,8 +98,10 @@ TEST(ClassifyCli, TheEpisodeSortsUnsureObjectsIntoTheRejectBin) {
   ASSERT_TRUE(fs::exists(kModel));
   const std::string out = TempPath("episode_reject");
   const auto r = RunSortcell("episode --scene " + kSource + "/scenes/cell.xml --object-set " + kSource +
-                             "/scenes/objects/paper.yaml --model " + kModel + " --seed 1 --objects 2 --place "
-                             "ball=0.60,-0.12 --place cup=0.42,0.14,1.0 --reject-below 1 --out " + out);
+                             "/scenes/objects/paper.yaml --model " + kModel +
+                             " --seed 1 --objects 2 --place "
+                             "ball=0.60,-0.12 --place cup=0.42,0.14,1.0 --reject-below 1 --out " +
+                             out);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const nlohmann::json m = ReadJson(fs::path(out) / "metrics.json");
   ASSERT_EQ(m["items"].size(), 2u);

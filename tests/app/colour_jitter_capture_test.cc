@@ -62,8 +62,9 @@ TEST(ColourJitterCapture, SameSeedSameColoursOtherThanTheObjectsOwn) {
 
 TEST(ColourJitterCapture, BadValuesAreRefused) {
   const std::string set = kSource + "/scenes/objects/paper.yaml";
-  ExpectOneLineError(RunSortcell("dataset --objects " + set + " --scenes 1 --colour-jitter 1.5 --out " + TempPath("j1")),
-                     "--colour-jitter");
+  ExpectOneLineError(
+      RunSortcell("dataset --objects " + set + " --scenes 1 --colour-jitter 1.5 --out " + TempPath("j1")),
+      "--colour-jitter");
   ExpectOneLineError(RunSortcell("dataset --objects " + set + " --colour-jitter 0.5 --out " + TempPath("j2")),
                      "--colour-jitter");
 }

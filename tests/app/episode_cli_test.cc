@@ -29,13 +29,15 @@ std::string Read(const std::string& file) {
 }
 
 TEST(EpisodeCli, UnknownObjectSet) {
-  ExpectOneLineError(RunSortcell("episode --scene " + kCell + " --object-set /nonexistent/set.yaml --out " + TempPath("a")),
-                     "object set '/nonexistent/set.yaml': file not found");
+  ExpectOneLineError(
+      RunSortcell("episode --scene " + kCell + " --object-set /nonexistent/set.yaml --out " + TempPath("a")),
+      "object set '/nonexistent/set.yaml': file not found");
 }
 
 TEST(EpisodeCli, MissingModel) {
-  ExpectOneLineError(RunSortcell("episode --scene " + kCell + " --model /nonexistent/m.model.json --out " + TempPath("b")),
-                     "/nonexistent/m.model.json");
+  ExpectOneLineError(
+      RunSortcell("episode --scene " + kCell + " --model /nonexistent/m.model.json --out " + TempPath("b")),
+      "/nonexistent/m.model.json");
 }
 
 TEST(EpisodeCli, NoCachedModelSaysHowToMakeOne) {
@@ -48,7 +50,8 @@ TEST(EpisodeCli, NoCachedModelSaysHowToMakeOne) {
   ExpectOneLineError(r, "no trained model at " + cache + "/paper-color-cvfh-norm.model.json");
   EXPECT_NE(r.err.find("--train-if-missing"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("sortcell train --objects " + kSet + " --out " + cache + "/paper-color-cvfh-norm.model.json"),
-            std::string::npos) << r.err;
+            std::string::npos)
+      << r.err;
 }
 
 TEST(EpisodeCli, BadSceneCountAndPlacement) {
@@ -97,7 +100,8 @@ TEST_F(SweepBadInput, MalformedSpecs) {
   ExpectOneLineError(RunSortcell("sweep " + Spec("type", "episodes: [2]\n") + " --out " + TempPath("s2")),
                      "key 'episodes': expected a non-negative integer");
   ExpectOneLineError(RunSortcell("sweep /nonexistent/spec.yaml --out " + TempPath("s3")), "file not found");
-  ExpectOneLineError(RunSortcell("sweep " + Spec("ok", "episodes: 2\n") + " --shard 3/2 --out " + TempPath("s4")), "--shard");
+  ExpectOneLineError(RunSortcell("sweep " + Spec("ok", "episodes: 2\n") + " --shard 3/2 --out " + TempPath("s4")),
+                     "--shard");
   ExpectOneLineError(RunSortcell("sweep " + Spec("ok2", "episodes: 2\n") + " -j 0 --out " + TempPath("s5")), "-j");
 }
 

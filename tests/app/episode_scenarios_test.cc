@@ -53,8 +53,9 @@ std::map<std::string, nlohmann::json> ByName(const nlohmann::json& metrics) {
 }
 
 TEST(EpisodeScenario, OneObjectOfEachCategorySortedIntoItsBin) {
-  const auto m = Episode("categories", "--seed 1 --objects 4 --place bottle1=0.40,-0.15,0.3 --place cup=0.42,0.14,1.0 "
-                                       "--place ball=0.60,-0.12 --place box=0.62,0.15,0.5");
+  const auto m = Episode("categories",
+                         "--seed 1 --objects 4 --place bottle1=0.40,-0.15,0.3 --place cup=0.42,0.14,1.0 "
+                         "--place ball=0.60,-0.12 --place box=0.62,0.15,0.5");
   ASSERT_EQ(m["items"].size(), 4u);
   for (const auto& item : m["items"]) {
     EXPECT_EQ(item["outcome"], "sorted") << item.dump();
@@ -81,15 +82,18 @@ TEST(EpisodeScenario, SixPaperObjectsAllSorted) {
   for (const auto& [phase, seconds] : m["summary"]["cycle_phases_bound_s"].items()) {
     const double ran = m["summary"]["cycle_phases_s"][phase].get<double>();
     const bool fingers = phase == "grasp" || phase == "regrasp" || phase == "release" || phase == "open";
-    if (fingers) EXPECT_DOUBLE_EQ(seconds.get<double>(), ran) << phase;
-    else EXPECT_LT(seconds.get<double>(), ran) << phase;
+    if (fingers)
+      EXPECT_DOUBLE_EQ(seconds.get<double>(), ran) << phase;
+    else
+      EXPECT_LT(seconds.get<double>(), ran) << phase;
     bounds += seconds.get<double>();
   }
   EXPECT_NEAR(bounds, m["summary"]["mean_cycle_bound_s"].get<double>(), 1e-6);
   EXPECT_NEAR(m["summary"]["cycle_to_bound"].get<double>(),
               m["summary"]["mean_cycle_time_s"].get<double>() / m["summary"]["mean_cycle_bound_s"].get<double>(), 1e-9);
   EXPECT_GT(m["summary"]["cycle_to_bound"].get<double>(), 1.0);
-  EXPECT_NEAR(m["summary"]["picks_per_hour"].get<double>(), 3600.0 * 6 / m["summary"]["sim_time_s"].get<double>(), 1e-6);
+  EXPECT_NEAR(m["summary"]["picks_per_hour"].get<double>(), 3600.0 * 6 / m["summary"]["sim_time_s"].get<double>(),
+              1e-6);
   // The wall-time profile accounts for the episode's wall time, most of it in physics and capture.
   const auto& profile = m["summary"]["profile_wall_s"];
   double total = 0;
@@ -105,7 +109,8 @@ TEST(EpisodeScenario, SixPaperObjectsAllSorted) {
   EXPECT_GT(physics["collision_s"].get<double>(), 0.0);
   EXPECT_GT(physics["constraint_s"].get<double>(), 0.0);
   EXPECT_GT(physics["smooth_s"].get<double>(), 0.0);
-  EXPECT_LT(physics["collision_s"].get<double>() + physics["constraint_s"].get<double>(), physics["step_s"].get<double>());
+  EXPECT_LT(physics["collision_s"].get<double>() + physics["constraint_s"].get<double>(),
+            physics["step_s"].get<double>());
   EXPECT_LT(physics["step_s"].get<double>(), m["summary"]["wall_time_s"].get<double>());
   EXPECT_NEAR(physics["steps"].get<double>(), m["summary"]["sim_time_s"].get<double>() / 0.002, 1.0);
   EXPECT_GT(physics["contacts_per_step"].get<double>(), 6.0);  // At least the objects resting on the table.
@@ -162,8 +167,9 @@ TEST(EpisodeScenario, ADenseSceneWithLyingObjectsIsSorted) {
 // The heaviest objects twice their mass on half their friction (the pads' own friction grips them):
 // carried without a drop, the hold's friction use logged and below slipping.
 TEST(EpisodeScenario, AHeavyLowFrictionObjectIsCarriedWithoutDropping) {
-  const auto m = Episode("heavy", "--seed 4 --objects 3 --mass-scale 2 --friction-scale 0.5 --place bottle1=0.45,-0.12 "
-                                  "--place box=0.55,0.12,0.4 --place bottle3=0.62,-0.05");
+  const auto m = Episode("heavy",
+                         "--seed 4 --objects 3 --mass-scale 2 --friction-scale 0.5 --place bottle1=0.45,-0.12 "
+                         "--place box=0.55,0.12,0.4 --place bottle3=0.62,-0.05");
   ASSERT_EQ(m["items"].size(), 3u);
   for (const auto& item : m["items"]) EXPECT_EQ(item["outcome"], "sorted") << item.dump();
   for (const auto& attempt : m["attempts"]) {
@@ -199,7 +205,8 @@ TEST(EpisodeScenario, ADisplacedCameraIsCalibratedBeforeSorting) {
 
 TEST(EpisodeScenario, OutOfReachObjectIsReportedAndTheRestSorted) {
   // x = 0.85 m: on the table and in the camera's view, beyond the arm's reach for a top-down grasp.
-  const auto m = Episode("reach", "--seed 4 --objects 3 --place box=0.85,0.0 --place ball=0.45,-0.1 --place cup=0.5,0.12");
+  const auto m =
+      Episode("reach", "--seed 4 --objects 3 --place box=0.85,0.0 --place ball=0.45,-0.1 --place cup=0.5,0.12");
   auto items = ByName(m);
   ASSERT_EQ(items.size(), 3u);
   EXPECT_EQ(items["box"]["outcome"], "unreachable") << items["box"].dump();
@@ -224,7 +231,8 @@ TEST(EpisodeScenario, SameSeedSameMetricsInEveryProcess) {
   const auto first = WithoutWallClock(Episode("aslr_0", "--seed 54 --objects 2"));
   ASSERT_FALSE(first.is_null());
   for (int run = 1; run < 5; ++run) {
-    EXPECT_EQ(WithoutWallClock(Episode("aslr_" + std::to_string(run), "--seed 54 --objects 2")), first) << "run " << run;
+    EXPECT_EQ(WithoutWallClock(Episode("aslr_" + std::to_string(run), "--seed 54 --objects 2")), first)
+        << "run " << run;
   }
 }
 
@@ -238,11 +246,13 @@ std::string SmallSweepSpec(const std::string& name, int seed, int episodes) {
 int StartSweepAndWaitForARecord(const std::string& spec, const std::string& out, const std::string& log) {
   const std::string pid_file = log + ".pid";
   std::system((std::string(SORTCELL_BINARY) + " sweep " + spec + " -j 2 --out " + out + " > " + log +
-               " 2>&1 & echo $! > " + pid_file).c_str());
+               " 2>&1 & echo $! > " + pid_file)
+                  .c_str());
   int pid = 0;
   std::ifstream(pid_file) >> pid;
   const auto start = std::chrono::steady_clock::now();
-  while (pid > 0 && Lines(out + "/results.jsonl").empty() && std::chrono::steady_clock::now() - start < std::chrono::seconds(300)) {
+  while (pid > 0 && Lines(out + "/results.jsonl").empty() &&
+         std::chrono::steady_clock::now() - start < std::chrono::seconds(300)) {
     std::this_thread::sleep_for(std::chrono::milliseconds(100));
   }
   return pid;
@@ -281,7 +291,9 @@ TEST(EpisodeScenario, SweepKilledAndResumedRunsEveryEpisodeOnce) {
 // episode, wall-clock figures aside.
 TEST(EpisodeScenario, SweepResultsDoNotDependOnTheExecutionPlan) {
   const std::string spec = SmallSweepSpec("plans", 30, 4);
-  const auto by_episode = [](const std::string& dir) { return sortcell_test::RecordsByEpisode(dir + "/results.jsonl"); };
+  const auto by_episode = [](const std::string& dir) {
+    return sortcell_test::RecordsByEpisode(dir + "/results.jsonl");
+  };
   const std::string one = TempPath("plan_j1"), two = TempPath("plan_j2"), merged = TempPath("plan_merged");
   for (const auto& dir : {one, two, merged}) std::filesystem::remove_all(dir);
   ASSERT_EQ(RunSortcell("sweep " + spec + " -j 1 --out " + one).exit_code, 0);
@@ -325,12 +337,13 @@ TEST(EpisodeScenario, SweepStoppedBySigtermEndsCleanlyAndResumes) {
     std::ifstream in(stdout_file);
     return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   };
-  while (said().find("stopped by") == std::string::npos && std::chrono::steady_clock::now() - start < std::chrono::seconds(300)) {
+  while (said().find("stopped by") == std::string::npos &&
+         std::chrono::steady_clock::now() - start < std::chrono::seconds(300)) {
     std::this_thread::sleep_for(std::chrono::milliseconds(100));
   }
   EXPECT_NE(said().find("stopped by SIGTERM"), std::string::npos) << said();
   std::this_thread::sleep_for(std::chrono::milliseconds(300));  // Its lock released as it exits.
-  const auto before = Lines(out + "/results.jsonl");  // Every line whole JSON (Lines parses them).
+  const auto before = Lines(out + "/results.jsonl");            // Every line whole JSON (Lines parses them).
   ASSERT_GE(before.size(), 1u);
   ASSERT_LT(before.size(), 6u) << "the sweep finished before it could be stopped";
   const auto r = RunSortcell("sweep " + spec + " -j 2 --resume --out " + out);

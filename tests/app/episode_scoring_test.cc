@@ -52,8 +52,10 @@ class ScorerTest : public ::testing::Test {
   }
   EpisodeScorer Scorer() const {
     const cell::CellLayout layout = ReadCellLayout(model_, CupCell());
-    return EpisodeScorer({{"a", "cup", Body("a"), 1, "cup"}, {"b", "cup", Body("b"), 2, "cup"},
-                          {"c", "ball", Body("c"), 3, "ball"}, {"d", "cup", Body("d"), 4, "cup"}},
+    return EpisodeScorer({{"a", "cup", Body("a"), 1, "cup"},
+                          {"b", "cup", Body("b"), 2, "cup"},
+                          {"c", "ball", Body("c"), 3, "ball"},
+                          {"d", "cup", Body("d"), 4, "cup"}},
                          4, {layout.table_min_xy, layout.table_max_xy});
   }
   // A 2x2 label image: pixel i shows object label i + 1.
@@ -75,10 +77,12 @@ TEST(SimLayout, ASceneWithoutTableOrBinSiteOrWithOtherBinsIsNamed) {
   CellFile no_bins = CupCell();
   no_bins.bins.clear();
   const sim::Model no_table = sim::Model::FromVirtualFiles(
-      {{"t.xml", "<mujoco><worldbody><geom name='floor' type='plane' size='1 1 0.1'/></worldbody></mujoco>"}}, "no table");
+      {{"t.xml", "<mujoco><worldbody><geom name='floor' type='plane' size='1 1 0.1'/></worldbody></mujoco>"}},
+      "no table");
   EXPECT_EQ(ErrorOf([&] { ReadCellLayout(no_table, no_bins); }), "scene 'no table': no table geom 'table_top'");
   const sim::Model no_site = sim::Model::FromVirtualFiles(
-      {{"b.xml", "<mujoco><worldbody><body name='bin_cup'><geom type='box' size='0.1 0.1 0.01'/></body></worldbody></mujoco>"}},
+      {{"b.xml",
+        "<mujoco><worldbody><body name='bin_cup'><geom type='box' size='0.1 0.1 0.01'/></body></worldbody></mujoco>"}},
       "no site");
   EXPECT_EQ(ErrorOf([&] { ReadCellLayout(no_site, CupCell()); }),
             "scene 'no site': bin 'bin_cup' has no box site 'bin_cup' (its floor centre, sized to its inside)");
@@ -115,8 +119,9 @@ TEST_F(ScorerTest, EveryOutcomeFromWhereObjectsEndedAndWhatWasTried) {
 TEST_F(ScorerTest, WrongBinUnreachableAndLeftOnTable) {
   EpisodeScorer scorer = Scorer();
   const std::vector<int> p1{1}, p2{2}, p3{3};
-  scorer.Observe(Labels(), {{&p1, std::string("cup"), 0.9}, {&p2, std::string("cup"), 0.7}, {&p3, std::string("cup"), 0.6}});
-  scorer.Unreachable(0);  // b: given up without a plan
+  scorer.Observe(Labels(),
+                 {{&p1, std::string("cup"), 0.9}, {&p2, std::string("cup"), 0.7}, {&p3, std::string("cup"), 0.6}});
+  scorer.Unreachable(0);        // b: given up without a plan
   Move("c", 0.45, 0.48, 0.03);  // c (a ball) in the cup bin
   const std::vector<ItemResult> items = scorer.Items(data_, sim::Bins(model_));
   EXPECT_EQ(items[1].outcome, cell::ItemOutcome::kUnreachable);
@@ -163,7 +168,7 @@ TEST(ItemTally, CountsOutcomesRecognitionAndCyclesOfItemsThatReachedABin) {
   EXPECT_FALSE(s.picks_per_hour.has_value());  // no simulated time
   run.sim_time_s = 90;
   EXPECT_DOUBLE_EQ(*SummarizeEpisode(items, 5, 3, run).picks_per_hour, 40.0);  // 1 sorted in 90 s
-  EXPECT_FALSE(s.mean_cycle_bound_s.has_value());  // no item with a bound
+  EXPECT_FALSE(s.mean_cycle_bound_s.has_value());                              // no item with a bound
   EXPECT_FALSE(s.cycle_to_bound.has_value());
 }
 
@@ -238,12 +243,13 @@ TEST(EpisodeMetrics, AMissingOrMistypedKeyIsAnErrorNamingIt) {
 
 TEST(Outcomes, EverySpellingReadsBack) {
   for (const auto o : cell::kItemOutcomes) EXPECT_EQ(cell::ParseItemOutcome(cell::ToString(o)), o);
-  for (const auto s : {cell::EpisodeStatus::kCompleted, cell::EpisodeStatus::kTimeLimit, cell::EpisodeStatus::kAttemptLimit,
-                       cell::EpisodeStatus::kSimDiverged}) {
+  for (const auto s : {cell::EpisodeStatus::kCompleted, cell::EpisodeStatus::kTimeLimit,
+                       cell::EpisodeStatus::kAttemptLimit, cell::EpisodeStatus::kSimDiverged}) {
     EXPECT_EQ(cell::ParseEpisodeStatus(cell::ToString(s)), s);
   }
-  for (const auto r : {cell::AttemptResult::kReleased, cell::AttemptResult::kMissed, cell::AttemptResult::kDropped,
-                       cell::AttemptResult::kPutBack, cell::AttemptResult::kMotionFailed, cell::AttemptResult::kSimDiverged}) {
+  for (const auto r :
+       {cell::AttemptResult::kReleased, cell::AttemptResult::kMissed, cell::AttemptResult::kDropped,
+        cell::AttemptResult::kPutBack, cell::AttemptResult::kMotionFailed, cell::AttemptResult::kSimDiverged}) {
     EXPECT_EQ(cell::ParseAttemptResult(cell::ToString(r)), r);
   }
   EXPECT_EQ(ErrorOf([] { cell::ParseEpisodeStatus("done"); }),

@@ -77,12 +77,18 @@ TEST(EpisodeSetup, ObjectsThatDoNotFitTheTableAreRefused) {
   std::mt19937_64 rng(1);
   const sim::PlacementArea area;  // 0.36 x 0.44 m
   const sim::PlacementOptions sparse;
-  EXPECT_EQ(ErrorOf([&] { DrawPoses({}, Discs({0.15, 0.15, 0.15}), area, sparse, rng); }),
+  EXPECT_EQ(ErrorOf([&] {
+              DrawPoses({}, Discs({0.15, 0.15, 0.15}), area, sparse, rng);
+            }),
             "--objects: 3 objects do not fit the table area (sparse placement) with the given placements");
   // One placed by hand in the middle leaves no room for a second large one.
-  EXPECT_EQ(ErrorOf([&] { DrawPoses({{"a", 0.5, 0.0, 0.0}}, Discs({0.15, 0.1}), area, sparse, rng); }),
+  EXPECT_EQ(ErrorOf([&] {
+              DrawPoses({{"a", 0.5, 0.0, 0.0}}, Discs({0.15, 0.1}), area, sparse, rng);
+            }),
             "--objects: 2 objects do not fit the table area (sparse placement) with the given placements");
-  EXPECT_EQ(ErrorOf([&] { DrawPoses({{"a", 0.5, 0.0, 0.0, true}}, Discs({0.03}), area, sparse, rng); }),
+  EXPECT_EQ(ErrorOf([&] {
+              DrawPoses({{"a", 0.5, 0.0, 0.0, true}}, Discs({0.03}), area, sparse, rng);
+            }),
             "--place: object 'a' cannot lie on its side (not taller than it is narrow)");
   const auto poses = DrawPoses({{"a", 0.5, 0.0, 0.3}}, Discs({0.03, 0.03}), area, sparse, rng);
   ASSERT_EQ(poses.size(), 2u);

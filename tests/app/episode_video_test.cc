@@ -16,9 +16,9 @@ namespace {
 nlohmann::json RunEpisode(const std::string& name, const std::string& extra) {
   const std::string out = sortcell_test::TestTempDir() + "episode_video_" + name;
   std::filesystem::remove_all(out);
-  const auto r = sortcell_test::RunSortcell(
-      std::string("episode --scene ") + SORTCELL_SOURCE_DIR + "/scenes/cell.xml --model " + SORTCELL_TEST_MODEL +
-      " --seed 7 --objects 2 --out " + out + " " + extra);
+  const auto r =
+      sortcell_test::RunSortcell(std::string("episode --scene ") + SORTCELL_SOURCE_DIR + "/scenes/cell.xml --model " +
+                                 SORTCELL_TEST_MODEL + " --seed 7 --objects 2 --out " + out + " " + extra);
   EXPECT_EQ(r.exit_code, 0) << r.err;
   std::ifstream in(out + "/metrics.json");
   return nlohmann::json::parse(in);

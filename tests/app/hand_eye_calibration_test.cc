@@ -31,7 +31,8 @@ TEST(MarkerSighting, FindsTheGrippersMarkerWhereTheSimulatorHasIt) {
   const cell::CellLayout layout = ReadCellLayout(model, ReadCellFile(DefaultCellFile()));
   sim::Data data(model);
   const std::vector<std::string> bodies = sim::FreeBodyNames(model);  // Off the table: the arm sweeps it.
-  for (size_t i = 0; i < bodies.size(); ++i) sim::StowObject(model, data, model.Id(mjOBJ_BODY, bodies[i]), static_cast<int>(i));
+  for (size_t i = 0; i < bodies.size(); ++i)
+    sim::StowObject(model, data, model.Id(mjOBJ_BODY, bodies[i]), static_cast<int>(i));
   sim::KinectCamera kinect(model, "kinect");
   sim::KinectNoiseParams noise;
   std::mt19937_64 rng(1);

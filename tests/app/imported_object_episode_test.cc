@@ -23,17 +23,22 @@ TEST(ImportedObjectEpisode, AUserObjectFromItsUrdfIsSortedIntoItsBin) {
   const auto user = sortcell_test::WriteUserObject(dir.path() / "user");
   const auto set = dir.path() / "set.yaml";
   std::ofstream(set) << "name: mine\nobjects:\n  - {name: thing, category: others, instance: thing, urdf: "
-                     << user.urdf.string() << "}\n  - {name: ball, category: ball, instance: ball, model: "
-                     << sortcell_test::kSource << "/models/objects/ball.inc.xml}\n";
+                     << user.urdf.string()
+                     << "}\n  - {name: ball, category: ball, instance: ball, model: " << sortcell_test::kSource
+                     << "/models/objects/ball.inc.xml}\n";
   // The set's own model, from random cell scenes of it (fewer than the default recipe's, for time).
   const auto data = dir.path() / "scenes", model = dir.path() / "model.json";
-  ASSERT_EQ(sortcell_test::RunSortcell("dataset --objects " + set.string() + " --scenes 30 --out " + data.string()).exit_code, 0);
+  ASSERT_EQ(
+      sortcell_test::RunSortcell("dataset --objects " + set.string() + " --scenes 30 --out " + data.string()).exit_code,
+      0);
   ASSERT_EQ(sortcell_test::RunSortcell("train --dataset " + data.string() + " --descriptor color-cvfh-norm --out " +
-                                       model.string()).exit_code, 0);
+                                       model.string())
+                .exit_code,
+            0);
   const auto out = dir.path() / "episode";
-  const auto r = sortcell_test::RunSortcell("episode --scene " + sortcell_test::kCell + " --object-set " + set.string() +
-                                            " --model " + model.string() + " --seed 3 --place thing=0.5,0.05,0.4 " +
-                                            "--place ball=0.45,-0.15 --out " + out.string());
+  const auto r = sortcell_test::RunSortcell(
+      "episode --scene " + sortcell_test::kCell + " --object-set " + set.string() + " --model " + model.string() +
+      " --seed 3 --place thing=0.5,0.05,0.4 " + "--place ball=0.45,-0.15 --out " + out.string());
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto metrics = nlohmann::json::parse(std::ifstream(out / "metrics.json"));
   ASSERT_EQ(metrics["items"].size(), 2u);

@@ -31,8 +31,9 @@ TEST(IkCommand, SolutionsReproduceThePoseAndNearestIsOneOfThem) {
   ASSERT_TRUE(j["nearest"].is_number_integer());
   const int nearest = j["nearest"];
   for (int i = 0; i < 6; ++i) {
-    EXPECT_NEAR(std::remainder(j["nearest_q"][i].get<double>() - j["solutions"][nearest]["q"][i].get<double>(), 2 * M_PI),
-                0.0, 1e-12);
+    EXPECT_NEAR(
+        std::remainder(j["nearest_q"][i].get<double>() - j["solutions"][nearest]["q"][i].get<double>(), 2 * M_PI), 0.0,
+        1e-12);
   }
 }
 
@@ -40,8 +41,9 @@ TEST(IkCommand, TcpPoseAndUnreachable) {
   const robot::Joints q = (robot::Joints() << 2.9, -1.3, 1.7, -1.97, -1.5708, 0.2).finished();
   const Eigen::Isometry3d X = robot::TcpPose(q);
   const Eigen::Vector3d rpy = robot::RpyFromRotation(X.linear());
-  const nlohmann::json j = IkJson({X.translation().x(), X.translation().y(), X.translation().z(), rpy[0], rpy[1], rpy[2]},
-                                  {2.9, -1.3, 1.7, -1.97, -1.5708, 0.2}, true);
+  const nlohmann::json j =
+      IkJson({X.translation().x(), X.translation().y(), X.translation().z(), rpy[0], rpy[1], rpy[2]},
+             {2.9, -1.3, 1.7, -1.97, -1.5708, 0.2}, true);
   ASSERT_EQ(j["status"], "ok");
   const int nearest = j["nearest"];
   for (int i = 0; i < 6; ++i) EXPECT_NEAR(j["nearest_q"][i].get<double>(), q[i], 1e-9);
@@ -77,8 +79,8 @@ TEST(KinematicsCommands, BadValuesThrowNamingTheOption) {
 
 TEST(KinematicsCommands, NegativeNumbersAreValuesOnTheCommandLine) {
   const std::string out = sortcell_test::TestTempDir() + "ik_negative.json";
-  const std::string command =
-      std::string(SORTCELL_BINARY) + " ik --pose 0.4 -0.2 0.1 3.14 0 -1.57 --q-near 2.4 -1.3 2.2 -2.5 -1.57 -0.7 > " + out;
+  const std::string command = std::string(SORTCELL_BINARY) +
+                              " ik --pose 0.4 -0.2 0.1 3.14 0 -1.57 --q-near 2.4 -1.3 2.2 -2.5 -1.57 -0.7 > " + out;
   ASSERT_EQ(std::system(command.c_str()), 0);
   std::ifstream in(out);
   const nlohmann::json j = nlohmann::json::parse(in);

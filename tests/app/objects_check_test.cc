@@ -47,12 +47,12 @@ TEST(ObjectsCheck, OurProduceWrittenAsUrdfObjectsImportsWithTheirMassAndSize) {
   const std::string source = SORTCELL_SOURCE_DIR;
   const auto set = dir.path() / "urdf";
   const std::string export_command = "python3 " + source + "/models/tools/export_urdf.py " + source +
-                                     "/scenes/objects/produce.yaml --per-category 1 --out " + set.string() +
-                                     " > " + (dir.path() / "export.txt").string() + " 2>&1";
+                                     "/scenes/objects/produce.yaml --per-category 1 --out " + set.string() + " > " +
+                                     (dir.path() / "export.txt").string() + " 2>&1";
   ASSERT_EQ(std::system(export_command.c_str()), 0) << export_command;
   const auto out = dir.path() / "out";
-  const auto r = sortcell_test::RunSortcell("objects check " + (set / "objects.yaml").string() + " --out " +
-                                            out.string());
+  const auto r =
+      sortcell_test::RunSortcell("objects check " + (set / "objects.yaml").string() + " --out " + out.string());
   ASSERT_TRUE(r.exit_code == 0 || r.exit_code == 1) << r.err << r.out;  // 1: a plate is too wide to grasp
   const auto check = nlohmann::json::parse(std::ifstream(out / "check.json"));
   ASSERT_EQ(check.at("objects").size(), 10u);  // one of each produce category

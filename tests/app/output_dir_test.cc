@@ -49,7 +49,9 @@ TEST(WriteTextFile, AFullDiskIsAnErrorNamingTheFile) {
   EXPECT_EQ(RuntimeErrorOf([] { WriteTextFile("/dev/full", "short"); }),
             "cannot write '/dev/full': No space left on device")
       << "a short text fails at close, not at <<";
-  EXPECT_EQ(RuntimeErrorOf([] { WriteJson("/dev/full", {{"k", 1}}); }),
+  EXPECT_EQ(RuntimeErrorOf([] {
+              WriteJson("/dev/full", {{"k", 1}});
+            }),
             "cannot write '/dev/full': No space left on device");
 }
 
@@ -72,8 +74,8 @@ TEST(RemoveStalePartialFiles, RemovesOnlyWhatAnEndedWriterLeft) {
   const sortcell_test::TempDir dir("output_dir");
   const std::string dead = std::to_string(PidOfAnEndedProcess());
   const std::string alive = std::to_string(::getpid());
-  for (const std::string& name : std::vector<std::string>{"summary.json.partial" + dead, "spec.yaml.partial" + alive, "notes.partial",
-                                 "notes.partialx1", "keep.json"}) {
+  for (const std::string& name : std::vector<std::string>{"summary.json.partial" + dead, "spec.yaml.partial" + alive,
+                                                          "notes.partial", "notes.partialx1", "keep.json"}) {
     std::ofstream(dir / name) << "x";
   }
   std::filesystem::create_directories(dir / "episodes");

@@ -21,7 +21,8 @@ using sortcell_test::RunSortcell;
 
 using sortcell_test::kRoot;
 
-PickResult Pick(const std::string& scene, const std::string& object, const std::string& bin, const fs::path& video = {}) {
+PickResult Pick(const std::string& scene, const std::string& object, const std::string& bin,
+                const fs::path& video = {}) {
   PickOptions options;
   options.scene = kRoot / scene;
   options.object = object;
@@ -96,9 +97,11 @@ TEST(Pick, ResultJsonHasTheDocumentedFields) {
 TEST(PickCli, UnknownObjectOrBinIsOneLineExitTwo) {
   const std::string scene = (kRoot / "scenes/cell.xml").string();
   const std::string out = " --out " + sortcell_test::TestTempDir() + "pick_cli";
-  ExpectOneLineError(RunSortcell("pick --scene " + scene + " --object teapot --bin cup" + out), "no object named 'teapot'");
+  ExpectOneLineError(RunSortcell("pick --scene " + scene + " --object teapot --bin cup" + out),
+                     "no object named 'teapot'");
   ExpectOneLineError(RunSortcell("pick --scene " + scene + " --object cup --bin trash" + out), "no bin named 'trash'");
-  ExpectOneLineError(RunSortcell("pick --scene " + scene + " --object table --bin cup" + out), "no object named 'table'");
+  ExpectOneLineError(RunSortcell("pick --scene " + scene + " --object table --bin cup" + out),
+                     "no object named 'table'");
   ExpectOneLineError(RunSortcell("pick --scene missing.xml --object cup --bin cup" + out), "missing.xml");
   ExpectOneLineError(RunSortcell("pick --scene " + scene + " --object cup" + out), "--bin");
 }

@@ -33,14 +33,16 @@ TEST(RecognitionCli, SegmentRejectsMissingAndNonPcdFiles) {
   std::ofstream(Dir() + "/flat.pcd") << "VERSION .7\nFIELDS x y z rgb\nSIZE 4 4 4 4\nTYPE F F F U\nCOUNT 1 1 1 1\n"
                                         "WIDTH 1\nHEIGHT 1\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS 1\nDATA ascii\n0 0 1 0\n";
   // An unorganized cloud segments (below), but cannot be background-subtracted pixel by pixel.
-  ExpectOneLineError(RunSortcell("segment --pcd " + Dir() + "/flat.pcd --background " + Dir() + "/flat.pcd --out " + Dir() + "/s"),
-                     "--background: PCD '" + Dir() + "/flat.pcd' is unorganized (height 1)");
+  ExpectOneLineError(
+      RunSortcell("segment --pcd " + Dir() + "/flat.pcd --background " + Dir() + "/flat.pcd --out " + Dir() + "/s"),
+      "--background: PCD '" + Dir() + "/flat.pcd' is unorganized (height 1)");
   ExpectOneLineError(RunSortcell("segment --pcd " + Dir() + "/flat.pcd --clustering fancy --out " + Dir() + "/s"),
                      "--clustering");
 }
 
 TEST(RecognitionCli, SegmentsAnUnorganizedRealCaptureWithoutAnOverlay) {
-  const std::filesystem::path real = std::filesystem::path(SORTCELL_SOURCE_DIR) / ".." / "shared" / "real" / "mosd-learn" / "learn0.pcd";
+  const std::filesystem::path real =
+      std::filesystem::path(SORTCELL_SOURCE_DIR) / ".." / "shared" / "real" / "mosd-learn" / "learn0.pcd";
   if (!std::filesystem::exists(real)) GTEST_SKIP() << "no " << real << " beside this checkout";
   pcl::PointCloud<pcl::PointXYZRGB> cloud;
   ASSERT_EQ(pcl::io::loadPCDFile(real.string(), cloud), 0);
@@ -65,11 +67,13 @@ TEST(RecognitionCli, SegmentsAnUnorganizedRealCaptureWithoutAnOverlay) {
 }
 
 TEST(RecognitionCli, SegmentSaysWhenACloudHasNoTableOrNoDepth) {
-  const std::string header = "VERSION .7\nFIELDS x y z rgb\nSIZE 4 4 4 4\nTYPE F F F U\nCOUNT 1 1 1 1\n"
-                             "WIDTH 2\nHEIGHT 2\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS 4\nDATA ascii\n";
+  const std::string header =
+      "VERSION .7\nFIELDS x y z rgb\nSIZE 4 4 4 4\nTYPE F F F U\nCOUNT 1 1 1 1\n"
+      "WIDTH 2\nHEIGHT 2\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS 4\nDATA ascii\n";
   std::ofstream(Dir() + "/four.pcd") << header << "0 0 1 0\n0.01 0 1 0\n0 0.01 1 0\n0.01 0.01 1 0\n";
-  ExpectOneLineError(RunSortcell("segment --pcd " + Dir() + "/four.pcd --out " + Dir() + "/s"),
-                     "PCD '" + Dir() + "/four.pcd': segmentation: no supporting plane found (0 sampled inliers of 1, need 200)");
+  ExpectOneLineError(
+      RunSortcell("segment --pcd " + Dir() + "/four.pcd --out " + Dir() + "/s"),
+      "PCD '" + Dir() + "/four.pcd': segmentation: no supporting plane found (0 sampled inliers of 1, need 200)");
   std::ofstream(Dir() + "/nan.pcd") << header << "nan nan nan 0\nnan nan nan 0\nnan nan nan 0\nnan nan nan 0\n";
   ExpectOneLineError(RunSortcell("segment --pcd " + Dir() + "/nan.pcd --out " + Dir() + "/s"),
                      "PCD '" + Dir() + "/nan.pcd': segmentation: the cloud has no valid point (all NaN)");
@@ -81,19 +85,23 @@ TEST(RecognitionCli, TrainAndEvalRejectUnknownDescriptorMissingDatasetAndBadMode
   ExpectOneLineError(RunSortcell("train --dataset /nonexistent --descriptor cvfh --out " + Dir() + "/m.json"),
                      "dataset '/nonexistent': no manifest.json");
   std::ofstream(Dir() + "/bad.model.json") << "{\"format\": \"something else\"}";
-  ExpectOneLineError(RunSortcell("eval --dataset " + Dir() + " --model " + Dir() + "/bad.model.json --out " + Dir() + "/e"),
-                     "not a SortCell recognition model");
-  ExpectOneLineError(RunSortcell("train --dataset " + Dir() + " --descriptor cvfh --label colour --out " + Dir() + "/m"),
-                     "--label: unknown label kind 'colour'");
+  ExpectOneLineError(
+      RunSortcell("eval --dataset " + Dir() + " --model " + Dir() + "/bad.model.json --out " + Dir() + "/e"),
+      "not a SortCell recognition model");
+  ExpectOneLineError(
+      RunSortcell("train --dataset " + Dir() + " --descriptor cvfh --label colour --out " + Dir() + "/m"),
+      "--label: unknown label kind 'colour'");
 }
 
 TEST(RecognitionCli, TrainFromASetRejectsAMissingSetAndRecipeOptions) {
   ExpectOneLineError(RunSortcell("train --objects " + Dir() + "/none.yaml --out " + Dir() + "/m.json"), "none.yaml");
   ExpectOneLineError(RunSortcell("train --out " + Dir() + "/m.json"), "give --dataset DIR or --objects SET.yaml");
   // The recipe is the default model's: its descriptor and labels are not the user's to change here.
-  ExpectOneLineError(RunSortcell("train --objects " + Dir() + "/none.yaml --descriptor cvfh --out " + Dir() + "/m.json"),
-                     "--descriptor");
-  ExpectOneLineError(RunSortcell("train --objects a.yaml --dataset " + Dir() + " --out " + Dir() + "/m.json"), "--dataset");
+  ExpectOneLineError(
+      RunSortcell("train --objects " + Dir() + "/none.yaml --descriptor cvfh --out " + Dir() + "/m.json"),
+      "--descriptor");
+  ExpectOneLineError(RunSortcell("train --objects a.yaml --dataset " + Dir() + " --out " + Dir() + "/m.json"),
+                     "--dataset");
 }
 
 TEST(RecognitionCli, ExperimentAndDatasetRejectBadValues) {

@@ -12,17 +12,15 @@
 
 namespace {
 
-using sortcell_test::RunSortcell;
 using sortcell_test::kRoot;
+using sortcell_test::RunSortcell;
 
 nlohmann::json ReadJson(const std::filesystem::path& file) {
   std::ifstream in(file);
   return nlohmann::json::parse(in);
 }
 
-std::string Dir(const std::string& name) {
-  return sortcell_test::TestTempDir() + "recognition_e2e_" + name;
-}
+std::string Dir(const std::string& name) { return sortcell_test::TestTempDir() + "recognition_e2e_" + name; }
 
 TEST(RecognitionE2e, SmallExperiment3ColourBeatsShapeAlone) {
   const std::string out = Dir("exp3");
@@ -68,7 +66,8 @@ TEST(RecognitionE2e, DatasetTrainEvalOnTwoColoursOfOneShape) {
   for (const std::string kind : {"cvfh", "color-cvfh-norm"}) {
     const auto t = RunSortcell("train --dataset " + train + " --descriptor " + kind + " --out " + Dir(kind + ".json"));
     ASSERT_EQ(t.exit_code, 0) << t.err;
-    const auto e = RunSortcell("eval --dataset " + test + " --model " + Dir(kind + ".json") + " --out " + Dir("eval_" + kind));
+    const auto e =
+        RunSortcell("eval --dataset " + test + " --model " + Dir(kind + ".json") + " --out " + Dir("eval_" + kind));
     ASSERT_EQ(e.exit_code, 0) << e.err;
     accuracy[kind] = ReadJson(Dir("eval_" + kind) + "/results.json")["accuracy"].get<double>();
   }

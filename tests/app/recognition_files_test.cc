@@ -260,8 +260,15 @@ TEST(EvaluateModel, RejectsASampleOfAClassTheModelDoesNotKnow) {
 
 // Classes whose names need quoting in CSV: a comma, a double quote.
 Evaluation EvaluationWithAwkwardNames() {
-  Evaluation e{perception::DescriptorKind::kCvfh, perception::ConfusionMatrix({"apple, red", "say \"cheese\""}),
-               {}, 1, 0.5, 0.75, 10, 4, 0.5};
+  Evaluation e{perception::DescriptorKind::kCvfh,
+               perception::ConfusionMatrix({"apple, red", "say \"cheese\""}),
+               {},
+               1,
+               0.5,
+               0.75,
+               10,
+               4,
+               0.5};
   e.confusion.Add(0, 0, 2);
   e.confusion.Add(1, 0);
   e.confusion.Add(1, 1);

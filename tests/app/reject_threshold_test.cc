@@ -28,8 +28,8 @@ nlohmann::json EvalOnScenes(const std::string& objects, int scenes) {
   const auto d = RunSortcell("dataset --objects " + kSource + "/scenes/objects/" + objects + ".yaml --scenes " +
                              std::to_string(scenes) + " --seed 9000 --placement sparse,dense --out " + data.string());
   EXPECT_EQ(d.exit_code, 0) << d.err;
-  const auto e = RunSortcell("eval --dataset " + data.string() + " --model " + SORTCELL_TEST_MODEL + " --out " +
-                             out.string());
+  const auto e =
+      RunSortcell("eval --dataset " + data.string() + " --model " + SORTCELL_TEST_MODEL + " --out " + out.string());
   EXPECT_EQ(e.exit_code, 0) << e.err;
   return nlohmann::json::parse(std::ifstream(out / "results.json"));
 }

@@ -45,7 +45,8 @@ void WriteView(const fs::path& folder, const std::string& instance, int video, i
       colour.at<cv::Vec3b>(v, u) = bgr;
     }
   }
-  const std::string stem = (folder / (instance + "_" + std::to_string(video) + "_" + std::to_string(frame) + "_")).string();
+  const std::string stem =
+      (folder / (instance + "_" + std::to_string(video) + "_" + std::to_string(frame) + "_")).string();
   assets::WritePng(stem + "crop.png", colour);
   assets::WritePng(stem + "depthcrop.png", depth);
   assets::WritePng(stem + "maskcrop.png", mask);
@@ -184,8 +185,8 @@ fs::path RealBananaOnly(const std::string& name) {
 TEST(RgbdObjects, ImportTrainAndEvalRunOnTheDatasetsFormat) {
   const fs::path root = WriteSmallDataset("rgbd_small");
   const fs::path out = fs::path(sortcell_test::TestTempDir()) / "rgbd_small_out";
-  const auto r = sortcell_test::RunSortcell("dataset --from-rgbd-objects " + root.string() + " --out " +
-                                            (out / "data").string());
+  const auto r =
+      sortcell_test::RunSortcell("dataset --from-rgbd-objects " + root.string() + " --out " + (out / "data").string());
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const app::Dataset d = app::LoadDataset(out / "data");
   EXPECT_EQ(d.samples.size(), 31u);
@@ -197,7 +198,9 @@ TEST(RgbdObjects, ImportTrainAndEvalRunOnTheDatasetsFormat) {
   EXPECT_EQ(d.samples[0].elevation_deg, 30);
   const fs::path model = out / "model.json";
   ASSERT_EQ(sortcell_test::RunSortcell("train --dataset " + (out / "data").string() +
-                                       " --descriptor color-cvfh-norm --out " + model.string()).exit_code, 0);
+                                       " --descriptor color-cvfh-norm --out " + model.string())
+                .exit_code,
+            0);
   const auto eval = sortcell_test::RunSortcell("eval --dataset " + (out / "data").string() + " --model " +
                                                model.string() + " --out " + (out / "eval").string());
   ASSERT_EQ(eval.exit_code, 0) << eval.err;
@@ -222,7 +225,9 @@ TEST(RgbdObjects, ImportTrainAndEvalRunOnTheDatasetsFormat) {
   const fs::path banana = RealBananaOnly("rgbd_banana_unknown");
   if (banana.empty()) GTEST_SKIP() << "no ../shared/real/rgbd-object/banana beside this checkout";
   ASSERT_EQ(sortcell_test::RunSortcell("dataset --from-rgbd-objects " + banana.string() + " --out " +
-                                       (out / "banana").string()).exit_code, 0);
+                                       (out / "banana").string())
+                .exit_code,
+            0);
   const auto unknown = sortcell_test::RunSortcell("eval --dataset " + (out / "banana").string() + " --model " +
                                                   model.string() + " --out " + (out / "eval_banana").string());
   ASSERT_EQ(unknown.exit_code, 0) << unknown.err;
@@ -255,20 +260,25 @@ TEST(RgbdObjects, TheCommandRefusesAMixOfSourcesAndAnEmptyFolder) {
       sortcell_test::RunSortcell("dataset --from-rgbd-objects " + empty.string() + " --out " + out),
       "no <instance>_<video>_<frame>_crop.png view in it");
   EXPECT_EQ(sortcell_test::RunSortcell("dataset --from-rgbd-objects " + empty.string() +
-                                       " --objects scenes/objects/paper.yaml --out " + out).exit_code, 2);
-  EXPECT_EQ(sortcell_test::RunSortcell("dataset --from-rgbd-objects " + empty.string() + " --views 5 --out " + out)
-                .exit_code, 2);
+                                       " --objects scenes/objects/paper.yaml --out " + out)
+                .exit_code,
+            2);
+  EXPECT_EQ(
+      sortcell_test::RunSortcell("dataset --from-rgbd-objects " + empty.string() + " --views 5 --out " + out).exit_code,
+      2);
   sortcell_test::ExpectOneLineError(sortcell_test::RunSortcell("dataset --out " + out), "--from-rgbd-objects DIR");
 }
 
 TEST(RgbdObjects, ExperimentOneRunsOnAnImportedDataset) {
   const fs::path root = WriteSmallDataset("rgbd_three", 3);
   const fs::path out = fs::path(sortcell_test::TestTempDir()) / "rgbd_three_out";
-  ASSERT_EQ(sortcell_test::RunSortcell("dataset --from-rgbd-objects " + root.string() + " --out " +
-                                       (out / "data").string()).exit_code, 0);
+  ASSERT_EQ(
+      sortcell_test::RunSortcell("dataset --from-rgbd-objects " + root.string() + " --out " + (out / "data").string())
+          .exit_code,
+      0);
   const std::string data = " --data " + (out / "data").string();
-  const auto unseen = sortcell_test::RunSortcell("experiment 1 --split unseen-instance" + data + " --out " +
-                                                 (out / "unseen").string());
+  const auto unseen =
+      sortcell_test::RunSortcell("experiment 1 --split unseen-instance" + data + " --out " + (out / "unseen").string());
   ASSERT_EQ(unseen.exit_code, 0) << unseen.err;
   const nlohmann::json results = nlohmann::json::parse(std::ifstream(out / "unseen" / "results.json"));
   EXPECT_EQ(results["trials"], 3);  // Every instance held out once.
@@ -297,7 +307,8 @@ TEST(RgbdObjects, ReadsTheRealSample) {
   const fs::path sample = RealBananaOnly("rgbd_banana_root");
   if (sample.empty()) GTEST_SKIP() << "no ../shared/real/rgbd-object/banana beside this checkout";
   const fs::path out = fs::path(sortcell_test::TestTempDir()) / "rgbd_banana";
-  const auto r = sortcell_test::RunSortcell("dataset --from-rgbd-objects " + sample.string() + " --out " + out.string());
+  const auto r =
+      sortcell_test::RunSortcell("dataset --from-rgbd-objects " + sample.string() + " --out " + out.string());
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const app::Dataset d = app::LoadDataset(out);
   EXPECT_EQ(d.samples.size() + d.capture["skipped"].size(), 100u);

@@ -21,8 +21,9 @@ struct Result {
 inline Result RunSortcell(const std::string& args) {
   // One file per test and call, in this process's own folder.
   static int call = 0;
-  const std::string stem = TestTempDir() + "sortcell_" + ::testing::UnitTest::GetInstance()->current_test_info()->name() +
-                           "_" + std::to_string(++call);
+  const std::string stem = TestTempDir() + "sortcell_" +
+                           ::testing::UnitTest::GetInstance()->current_test_info()->name() + "_" +
+                           std::to_string(++call);
   const std::string command =
       std::string(SORTCELL_BINARY) + " " + args + " > " + stem + "_stdout.txt 2> " + stem + "_stderr.txt";
   const int status = std::system(command.c_str());

@@ -56,7 +56,8 @@ class LocalCluster {
     const int port = FreePortPair();
     env_ = "SORTCELL_SLURMCTLD_PORT=" + std::to_string(port) + " SORTCELL_SLURMD_PORT=" + std::to_string(port + 1) +
            " SLURM_CONF=" + dir_ + "/slurm.conf ";
-    status_ = std::system((env_ + kSource + "/scripts/slurm_local_cluster.sh start " + dir_ + " > " + dir_ + ".log 2>&1").c_str());
+    status_ = std::system(
+        (env_ + kSource + "/scripts/slurm_local_cluster.sh start " + dir_ + " > " + dir_ + ".log 2>&1").c_str());
   }
   ~LocalCluster() { std::system((kSource + "/scripts/slurm_local_cluster.sh stop " + dir_).c_str()); }
   LocalCluster(const LocalCluster&) = delete;
@@ -82,8 +83,8 @@ TEST(SlurmSweep, AJobArrayOfShardsAndItsMergeGiveTheUnshardedSummary) {
   const std::string spec = sortcell_test::SmallSweepSpec(dir / "spec.yaml", 43, 4);
   const std::string out = (dir / "out").string();
   // At most 10 minutes: a job that never leaves the queue fails the test rather than hanging it.
-  const std::string submit = cluster.env() + "SORTCELL=" + SORTCELL_BINARY + " SORTCELL_SLURM_WAIT=1 timeout 600 " + kSource +
-                             "/scripts/slurm_sweep.sh " + spec + " 2 " + out + " -j 1 > " + out + ".log 2>&1";
+  const std::string submit = cluster.env() + "SORTCELL=" + SORTCELL_BINARY + " SORTCELL_SLURM_WAIT=1 timeout 600 " +
+                             kSource + "/scripts/slurm_sweep.sh " + spec + " 2 " + out + " -j 1 > " + out + ".log 2>&1";
   ASSERT_EQ(std::system(submit.c_str()), 0) << ReadFile(out + ".log") << ReadFile(out + "/slurm/merge.log");
   for (const char* shard : {"/shard1/results.jsonl", "/shard2/results.jsonl"}) {
     EXPECT_EQ(sortcell_test::Lines(out + shard).size(), 2u) << shard << ": each shard ran its 2 episodes";

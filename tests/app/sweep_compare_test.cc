@@ -145,14 +145,13 @@ TEST(SweepCompare, TheCommandPrintsWritesThePageAndRefusesWhatIsNoSweep) {
   EXPECT_NE(html.find("sorted (not kept)"), std::string::npos);  // B kept episode 2 only.
   EXPECT_TRUE(std::filesystem::exists(tmp.path() / "cmp/compare.json"));
 
-  sortcell_test::ExpectOneLineError(
-      sortcell_test::RunSortcell("compare " + a.string() + " " + tmp.path().string() + " --out " +
-                                 (tmp.path() / "cmp2").string()),
-      "not a sweep folder (no results.jsonl)");
+  sortcell_test::ExpectOneLineError(sortcell_test::RunSortcell("compare " + a.string() + " " + tmp.path().string() +
+                                                               " --out " + (tmp.path() / "cmp2").string()),
+                                    "not a sweep folder (no results.jsonl)");
   std::ofstream(b / "results.jsonl", std::ios::app) << "{not json\n";
-  sortcell_test::ExpectOneLineError(
-      sortcell_test::RunSortcell("compare " + a.string() + " " + b.string() + " --out " + (tmp.path() / "cmp3").string()),
-      "sweep --resume");
+  sortcell_test::ExpectOneLineError(sortcell_test::RunSortcell("compare " + a.string() + " " + b.string() + " --out " +
+                                                               (tmp.path() / "cmp3").string()),
+                                    "sweep --resume");
 }
 
 }  // namespace

@@ -127,7 +127,8 @@ TEST(SweepFaults, AFullDiskStopsTheSweepNamingTheFileAndKeepsWhatFinished) {
   EXPECT_EQ(WEXITSTATUS(status), 2);
   const std::string err = ReadFile(dir / "full.err");
   const std::string expected = "sortcell sweep: error: cannot write '" + out + "/results.jsonl': File too large\n";
-  EXPECT_TRUE(err.size() >= expected.size() && err.compare(err.size() - expected.size(), expected.size(), expected) == 0)
+  EXPECT_TRUE(err.size() >= expected.size() &&
+              err.compare(err.size() - expected.size(), expected.size(), expected) == 0)
       << "the last line names the file: " << err;
   // The records that fitted (their number depends on this run's wall-clock digits) are kept whole,
   // each as the uninterrupted run's.
@@ -173,7 +174,8 @@ TEST(SweepFaults, ADivergingSimulationIsRecordedWithItsOutcomeAndTheSweepGoesOn)
   // The cell scene with its relative includes intact: beside a link to the models.
   std::filesystem::create_directories(dir / "scenes");
   std::filesystem::create_symlink(std::string(SORTCELL_SOURCE_DIR) + "/models", dir / "models");
-  std::filesystem::create_symlink(std::string(SORTCELL_SOURCE_DIR) + "/scenes/flange_tool.inc.xml", dir / "scenes/flange_tool.inc.xml");
+  std::filesystem::create_symlink(std::string(SORTCELL_SOURCE_DIR) + "/scenes/flange_tool.inc.xml",
+                                  dir / "scenes/flange_tool.inc.xml");
   std::string scene = ReadFile(sortcell_test::kSweepScene);
   const std::string cell = "<include file=\"../models/cell/cell.inc.xml\"/>";
   ASSERT_NE(scene.find(cell), std::string::npos);
@@ -183,7 +185,8 @@ TEST(SweepFaults, ADivergingSimulationIsRecordedWithItsOutcomeAndTheSweepGoesOn)
   spec_text.replace(0, spec_text.find('\n'), "scene: " + (dir / "scenes/diverging.xml").string());
   std::ofstream(dir / "diverge.yaml") << spec_text;
 
-  const auto r = RunSortcell("sweep " + (dir / "diverge.yaml").string() + " -j 2 --metrics-only --out " + (dir / "out").string());
+  const auto r =
+      RunSortcell("sweep " + (dir / "diverge.yaml").string() + " -j 2 --metrics-only --out " + (dir / "out").string());
   EXPECT_EQ(r.exit_code, 0) << r.err;
   EXPECT_FALSE(std::filesystem::exists(dir / "out" / "episodes" / "000000")) << "--metrics-only: only the record stays";
   const auto records = Lines(dir / "out" / "results.jsonl");

@@ -146,8 +146,9 @@ TEST(SweepReport, WorkerRunsAndTheirMemoryAreSummarised) {
   EXPECT_EQ(summary["runs"]["not_ok"][0]["episode"], 1);
   EXPECT_EQ(summary["resources"]["worker_peak_memory_mb"]["max"], 500.0);
   EXPECT_EQ(summary["resources"]["worker_peak_memory_mb"]["median"], 500.0) << "the upper median of two";
-  EXPECT_NE(Read(dir / "summary.md").find("Worker runs: ok 1, crashed 0, timeout 1; episode 1 timeout (killed after 1 s). "
-                                          "Peak memory per worker: median 500 MiB, largest 500 MiB."),
+  EXPECT_NE(Read(dir / "summary.md")
+                .find("Worker runs: ok 1, crashed 0, timeout 1; episode 1 timeout (killed after 1 s). "
+                      "Peak memory per worker: median 500 MiB, largest 500 MiB."),
             std::string::npos)
       << Read(dir / "summary.md");
 }
@@ -156,7 +157,8 @@ TEST(SweepRecord, StatusSpellings) {
   for (const RunStatus s : {RunStatus::kOk, RunStatus::kCrashed, RunStatus::kTimeout}) {
     EXPECT_EQ(ParseRunStatus(ToString(s)), s);
   }
-  EXPECT_EQ(ErrorOf([] { ParseRunStatus("exploded"); }), "unknown run status 'exploded' (expected ok, crashed, timeout)");
+  EXPECT_EQ(ErrorOf([] { ParseRunStatus("exploded"); }),
+            "unknown run status 'exploded' (expected ok, crashed, timeout)");
 }
 
 TEST(SweepResults, OldResultsReadAndWriteBackTheSameKeys) {
@@ -170,9 +172,10 @@ TEST(SweepResults, OldResultsReadAndWriteBackTheSameKeys) {
   EXPECT_EQ(r.items[1].name, "cup");
   // Written back: the same keys and values, plus the summary figures added since.
   nlohmann::json back = r;
-  for (const char* key : {"picks_per_hour", "cycle_phases_s", "tracking_max_error_rad", "torque_saturated_samples", "profile_wall_s",
-                          "physics_profile", "carry_slip_max_mm", "carry_slip_mean_mm", "carries", "carry_turn_max_deg",
-                          "calibration", "mean_cycle_bound_s", "cycle_to_bound", "cycle_phases_bound_s"}) {
+  for (const char* key :
+       {"picks_per_hour", "cycle_phases_s", "tracking_max_error_rad", "torque_saturated_samples", "profile_wall_s",
+        "physics_profile", "carry_slip_max_mm", "carry_slip_mean_mm", "carries", "carry_turn_max_deg", "calibration",
+        "mean_cycle_bound_s", "cycle_to_bound", "cycle_phases_bound_s"}) {
     ASSERT_TRUE(back["summary"].contains(key)) << key;
     back["summary"].erase(key);
   }
@@ -232,7 +235,8 @@ TEST(SweepLock, OneSweepAtATimeInAFolder) {
       FAIL() << "a second lock was taken";
     } catch (const std::invalid_argument& e) {
       EXPECT_NE(std::string(e.what()).find("another sweep is running in it (it holds " + (dir / "sweep.lock").string()),
-                std::string::npos) << e.what();
+                std::string::npos)
+          << e.what();
     }
   }
   EXPECT_NO_THROW(SweepLock again(dir.path())) << "released when the first ended";
@@ -280,8 +284,8 @@ TEST(SweepResults, BadLinesNameTheFileTheLineAndTheKey) {
          "summary.grasps: expected a number, found string");
   expect(ErrorWithLine2("status", Changed([](nlohmann::json& j) { j["status"] = "exploded"; })), "status",
          "status: unknown run status 'exploded'");
-  expect(ErrorWithLine2("outcome", Changed([](nlohmann::json& j) { j["items"][1]["outcome"] = "vanished"; })), "outcome",
-         "items[1].outcome: unknown item outcome 'vanished'");
+  expect(ErrorWithLine2("outcome", Changed([](nlohmann::json& j) { j["items"][1]["outcome"] = "vanished"; })),
+         "outcome", "items[1].outcome: unknown item outcome 'vanished'");
   expect(ErrorWithLine2("episode", Changed([](nlohmann::json& j) { j.erase("episode"); })), "episode",
          "episode: missing");
   expect(ErrorWithLine2("axes", Changed([](nlohmann::json& j) { j["axes"] = 3; })), "axes", "axes: expected an object");
@@ -317,7 +321,8 @@ SweepSpec TextAxisSpec(const std::string& name, const std::vector<std::string>& 
 
 TEST(SweepReport, CsvQuotesAValueWithAComma) {
   const TempDir dir("report_csv");
-  const std::vector<std::string> models{"/models/a,b.model.json", "/models/plain.model.json", "/models/say \"hi\".model.json"};
+  const std::vector<std::string> models{"/models/a,b.model.json", "/models/plain.model.json",
+                                        "/models/say \"hi\".model.json"};
   const SweepSpec spec = TextAxisSpec("model", models);
   std::vector<SweepRecord> records;
   for (int i = 0; i < 3; ++i) records.push_back(OkRecord(i, {{"model", models[i]}}));
@@ -336,10 +341,12 @@ TEST(SweepReport, CsvQuotesAValueWithAComma) {
 TEST(SweepReport, APlacementAxisIsGroupedByMode) {
   const TempDir dir("report_placement");
   const SweepSpec spec = TextAxisSpec("placement", {"dense", "clustered"});
-  const std::vector<SweepRecord> records{OkRecord(0, {{"placement", "dense"}}), OkRecord(1, {{"placement", "clustered"}})};
+  const std::vector<SweepRecord> records{OkRecord(0, {{"placement", "dense"}}),
+                                         OkRecord(1, {{"placement", "clustered"}})};
   const nlohmann::json summary = WriteSweepReport(dir.path(), spec, records);
   EXPECT_EQ(summary["by_axis"]["placement"]["dense"]["items"], 2);
-  EXPECT_NE(Read(dir / "summary.md").find("| clustered | 1 | 2 | 50.0 % |"), std::string::npos) << Read(dir / "summary.md");
+  EXPECT_NE(Read(dir / "summary.md").find("| clustered | 1 | 2 | 50.0 % |"), std::string::npos)
+      << Read(dir / "summary.md");
   EXPECT_THROW(WriteSweepReport(dir.path(), spec, {OkRecord(0, {{"placement", 3}})}), std::invalid_argument);
 }
 
@@ -358,7 +365,8 @@ TEST(SweepReport, PicksPerHourAndTheCycleByPhasePooledOverEpisodes) {
   EXPECT_EQ(summary["torque_saturated_samples"], 5);
   EXPECT_DOUBLE_EQ(summary["tracking_max_error_rad"].get<double>(), 0.02);
   EXPECT_NE(Read(dir / "summary.md").find("mean simulated seconds per attempt: approach 3.00, carry 0.50."),
-            std::string::npos) << Read(dir / "summary.md");
+            std::string::npos)
+      << Read(dir / "summary.md");
 }
 
 TEST(SweepReport, FailuresByObjectAndTheCalibrations) {
@@ -392,7 +400,8 @@ TEST(SweepReport, AFailedWriteIsAnErrorNamingTheFile) {
     WriteSweepReport(dir / "not_there", spec, {OkRecord(0, {})});
     FAIL() << "no exception";
   } catch (const std::runtime_error& e) {
-    EXPECT_NE(std::string(e.what()).find("cannot write '" + (dir / "not_there").string() + "/summary."), std::string::npos)
+    EXPECT_NE(std::string(e.what()).find("cannot write '" + (dir / "not_there").string() + "/summary."),
+              std::string::npos)
         << e.what();
   }
 }
@@ -447,12 +456,16 @@ TEST(EpisodeSet, AnUnknownKeyIsRejectedWithTheValidOnes) {
   std::function<int()> run;
   AddEpisodeCommand(app, run, {});
   const CLI::App& episode = *app.get_subcommand("episode");
-  const std::string error = ErrorOf([&] { ExpandEpisodeSets(episode, {"sortcell", "episode", "--set", "nois-scale=1"}); });
+  const std::string error = ErrorOf([&] {
+    ExpandEpisodeSets(episode, {"sortcell", "episode", "--set", "nois-scale=1"});
+  });
   EXPECT_NE(error.find("--set: unknown key 'nois-scale' (valid keys: "), std::string::npos) << error;
-  for (const char* key : {"noise-scale", "seed", "time-limit", "objects"}) EXPECT_NE(error.find(key), std::string::npos) << key;
+  for (const char* key : {"noise-scale", "seed", "time-limit", "objects"})
+    EXPECT_NE(error.find(key), std::string::npos) << key;
   EXPECT_EQ(error.find("help"), std::string::npos) << error;
-  EXPECT_NE(ErrorOf([&] { ExpandEpisodeSets(episode, {"sortcell", "episode", "--set", "seed"}); })
-                .find("--set: expected KEY=VALUE, found 'seed'"),
+  EXPECT_NE(ErrorOf([&] {
+              ExpandEpisodeSets(episode, {"sortcell", "episode", "--set", "seed"});
+            }).find("--set: expected KEY=VALUE, found 'seed'"),
             std::string::npos);
 }
 
@@ -471,7 +484,8 @@ std::filesystem::path WriteSweepSpec(const TempDir& dir, const std::string& body
 
 TEST(SweepSet, OverridesKeysOfTheSpec) {
   const TempDir dir("sweep_set");
-  const auto file = WriteSweepSpec(dir, "seed: 1\nseeds: [3, 7]\naxes:\n  objects: [2, 4]\n  noise_scale: {min: 1, max: 2}\n");
+  const auto file =
+      WriteSweepSpec(dir, "seed: 1\nseeds: [3, 7]\naxes:\n  objects: [2, 4]\n  noise_scale: {min: 1, max: 2}\n");
   const SweepSpec spec = LoadSweepSpec(
       file, {"seed=9", "episodes=5", "axes.objects=3", "axes.light_intensity=[0.5, 1.5]", "episode_timeout_s=60"});
   EXPECT_EQ(spec.seed, 9u);
@@ -505,9 +519,10 @@ TEST(SweepSet, UnknownOrBadOverridesAreRejected) {
 
 TEST(SweepCli, UnknownSetKeyIsAOneLineError) {
   const TempDir dir("sweep_cli_set");
-  sortcell_test::ExpectOneLineError(sortcell_test::RunSortcell("sweep " + WriteSweepSpec(dir, "episodes: 2\n").string() +
-                                                               " --set episodez=3 --out " + (dir / "out").string()),
-                                    "--set: unknown sweep spec key 'episodez'");
+  sortcell_test::ExpectOneLineError(
+      sortcell_test::RunSortcell("sweep " + WriteSweepSpec(dir, "episodes: 2\n").string() + " --set episodez=3 --out " +
+                                 (dir / "out").string()),
+      "--set: unknown sweep spec key 'episodez'");
 }
 
 // A --resume re-runs a damaged middle line's episode (tests/app/episode_scenarios_test.cc); one that is
@@ -518,10 +533,12 @@ TEST(SweepCli, ARefusedResumeLeavesADamagedFileAsItWas) {
   const auto out = dir / "out";
   std::filesystem::create_directories(out);
   std::filesystem::copy_file(spec, out / "spec.yaml");
-  const std::string results = Dump(OkRecord(0, {})) + "\n" + R"({"episode":1,"sta)" + "\n" + Dump(OkRecord(2, {})) + "\n";
+  const std::string results =
+      Dump(OkRecord(0, {})) + "\n" + R"({"episode":1,"sta)" + "\n" + Dump(OkRecord(2, {})) + "\n";
   WriteFile(out / "results.jsonl", results);
-  sortcell_test::ExpectOneLineError(sortcell_test::RunSortcell("sweep " + spec.string() + " --resume --out " + out.string()),
-                                    "/nonexistent/m.model.json");
+  sortcell_test::ExpectOneLineError(
+      sortcell_test::RunSortcell("sweep " + spec.string() + " --resume --out " + out.string()),
+      "/nonexistent/m.model.json");
   EXPECT_EQ(Read(out / "results.jsonl"), results);
 }
 

@@ -19,12 +19,14 @@ TEST(SweepReplay, AFailedEpisodeIsReviewedWithAClipAndReplayedExactly) {
   const TempDir tmp;
   // A plate (wider than the gripper's stroke every way: never graspable) beside a cup.
   const std::string models = std::string(SORTCELL_SOURCE_DIR) + "/models/objects/";
-  std::ofstream(tmp.path() / "set.yaml")
-      << "name: plate_and_cup\nobjects:\n"
-      << "  - {name: plate1, category: others, instance: plate1, model: " << models << "plate1.inc.xml}\n"
-      << "  - {name: cup, category: cup, instance: cup, model: " << models << "cup.inc.xml}\n";
-  std::ofstream(tmp.path() / "spec.yaml") << "scene: " << kSweepScene << "\nobject_set: " << (tmp.path() / "set.yaml").string()
-                                          << "\nmodel: " << SORTCELL_TEST_MODEL << "\nseed: 3\nepisodes: 1\naxes:\n  objects: [2]\n";
+  std::ofstream(tmp.path() / "set.yaml") << "name: plate_and_cup\nobjects:\n"
+                                         << "  - {name: plate1, category: others, instance: plate1, model: " << models
+                                         << "plate1.inc.xml}\n"
+                                         << "  - {name: cup, category: cup, instance: cup, model: " << models
+                                         << "cup.inc.xml}\n";
+  std::ofstream(tmp.path() / "spec.yaml")
+      << "scene: " << kSweepScene << "\nobject_set: " << (tmp.path() / "set.yaml").string()
+      << "\nmodel: " << SORTCELL_TEST_MODEL << "\nseed: 3\nepisodes: 1\naxes:\n  objects: [2]\n";
   const std::filesystem::path sweep = tmp.path() / "sweep";
   const auto s = RunSortcell("sweep " + (tmp.path() / "spec.yaml").string() + " --review --out " + sweep.string());
   ASSERT_EQ(s.exit_code, 0) << s.err;
@@ -51,11 +53,12 @@ TEST(SweepReplay, AFailedEpisodeIsReviewedWithAClipAndReplayedExactly) {
   // The report page, opened in headless Chromium: no console error, the table filters, the clip plays;
   // its screenshot is kept in the build folder (test_output/).
   ASSERT_TRUE(std::filesystem::exists(sweep / "report/index.html"));
-  const std::filesystem::path shots = std::filesystem::path(SORTCELL_BINARY).parent_path().parent_path() / "test_output";
+  const std::filesystem::path shots =
+      std::filesystem::path(SORTCELL_BINARY).parent_path().parent_path() / "test_output";
   std::filesystem::create_directories(shots);
-  const std::string browser = std::string(SORTCELL_SOURCE_DIR) + "/scripts/report_in_browser.py " +
-                              (sweep / "report/index.html").string() + " --screenshot " +
-                              (shots / "report_in_browser.png").string() + " > " + (tmp.path() / "browser.json").string();
+  const std::string browser =
+      std::string(SORTCELL_SOURCE_DIR) + "/scripts/report_in_browser.py " + (sweep / "report/index.html").string() +
+      " --screenshot " + (shots / "report_in_browser.png").string() + " > " + (tmp.path() / "browser.json").string();
   EXPECT_EQ(std::system(browser.c_str()), 0) << ReadFile((tmp.path() / "browser.json").string());
   const auto seen = nlohmann::json::parse(ReadFile((tmp.path() / "browser.json").string()));
   EXPECT_EQ(seen["clips"].size(), 1u);

@@ -25,8 +25,10 @@ AttemptLogEntry Dropped() {
   a.width_m = 0.071;
   a.result = "dropped";
   a.truth_object = "cup";
-  a.phases = {{"reach", 31.0, "empty", 0.087}, {"grasp", 31.5, "holding", 0.041},
-              {"lift", 32.5, "holding", 0.041}, {"carry", 34.2, "empty", 0.080}};
+  a.phases = {{"reach", 31.0, "empty", 0.087},
+              {"grasp", 31.5, "holding", 0.041},
+              {"lift", 32.5, "holding", 0.041},
+              {"carry", 34.2, "empty", 0.080}};
   return a;
 }
 
@@ -49,9 +51,10 @@ ItemResult Item(const std::string& name, cell::ItemOutcome outcome, double x, do
 }
 
 TEST(SweepReview, AttemptsAreToldInWords) {
-  EXPECT_EQ(AttemptInWords(Dropped(), 2),
-            "attempt 2 at 30.0-36.0 s: called cup (0.91) for bin cup; closed at 41 mm on a 71 mm wide view; dropped during "
-            "carry at 34.2 s");
+  EXPECT_EQ(
+      AttemptInWords(Dropped(), 2),
+      "attempt 2 at 30.0-36.0 s: called cup (0.91) for bin cup; closed at 41 mm on a 71 mm wide view; dropped during "
+      "carry at 34.2 s");
   EXPECT_EQ(AttemptInWords(Skipped(0.5, 0.1), 0), "at 12.0 s: seen, called others, not attempted: too wide");
   AttemptLogEntry released = Dropped();
   released.result = "released";
@@ -60,10 +63,9 @@ TEST(SweepReview, AttemptsAreToldInWords) {
 }
 
 TEST(SweepReview, EachFailedItemFailsWhenItsLogSays) {
-  const std::vector<ItemResult> items = {Item("cup", cell::ItemOutcome::kDropped, 0.3, 0.2),
-                                         Item("plate", cell::ItemOutcome::kUngraspable, 0.5, 0.1),
-                                         Item("ball", cell::ItemOutcome::kSorted, 0.4, -0.2),
-                                         Item("box", cell::ItemOutcome::kLeftOnTable, 0.6, -0.3)};
+  const std::vector<ItemResult> items = {
+      Item("cup", cell::ItemOutcome::kDropped, 0.3, 0.2), Item("plate", cell::ItemOutcome::kUngraspable, 0.5, 0.1),
+      Item("ball", cell::ItemOutcome::kSorted, 0.4, -0.2), Item("box", cell::ItemOutcome::kLeftOnTable, 0.6, -0.3)};
   const auto failures = FailuresOf(items, {Skipped(0.51, 0.11), Dropped()}, 80.0);
   ASSERT_EQ(failures.size(), 3u);  // The sorted ball is no failure.
   EXPECT_EQ(failures[0].item, "cup");
@@ -109,7 +111,8 @@ TEST(SweepReview, AnEpisodeThatCannotBeReplayedCostsOnlyItsOwnReview) {
   const SweepReview review = ReviewSweep(tmp.path());
   EXPECT_EQ(review.episodes_replayed, 0);
   ASSERT_EQ(review.not_replayed.size(), 1u);
-  EXPECT_EQ(review.not_replayed[0].find("episode 4: recorded before sweeps kept what a replay needs"), 0u) << review.not_replayed[0];
+  EXPECT_EQ(review.not_replayed[0].find("episode 4: recorded before sweeps kept what a replay needs"), 0u)
+      << review.not_replayed[0];
   EXPECT_TRUE(std::filesystem::exists(tmp.path() / "review.json"));
 }
 

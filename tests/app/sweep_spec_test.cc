@@ -13,16 +13,19 @@ namespace {
 std::filesystem::path WriteSpec(const std::string& name, const std::string& body) {
   const std::filesystem::path file = std::filesystem::path(sortcell_test::TestTempDir()) / (name + ".yaml");
   std::ofstream(file) << "scene: " << SORTCELL_SOURCE_DIR << "/scenes/cell.xml\nobject_set: " << SORTCELL_SOURCE_DIR
-                      << "/scenes/objects/paper.yaml\n" << body;
+                      << "/scenes/objects/paper.yaml\n"
+                      << body;
   return file;
 }
 
 TEST(SweepSpec, ShippedSpecsLoad) {
   for (const char* name : {"paper_objects_100", "robustness_random", "calibration_grid"}) {
-    const SweepSpec spec = LoadSweepSpec(std::filesystem::path(SORTCELL_SOURCE_DIR) / "scenes/sweeps" / (std::string(name) + ".yaml"));
+    const SweepSpec spec =
+        LoadSweepSpec(std::filesystem::path(SORTCELL_SOURCE_DIR) / "scenes/sweeps" / (std::string(name) + ".yaml"));
     EXPECT_GT(spec.EpisodeCount(), 0) << name;
   }
-  const SweepSpec paper = LoadSweepSpec(std::filesystem::path(SORTCELL_SOURCE_DIR) / "scenes/sweeps/paper_objects_100.yaml");
+  const SweepSpec paper =
+      LoadSweepSpec(std::filesystem::path(SORTCELL_SOURCE_DIR) / "scenes/sweeps/paper_objects_100.yaml");
   EXPECT_EQ(paper.EpisodeCount(), 100);
   for (int i = 0; i < 100; ++i) {
     const int k = paper.Episode(i).second["objects"].get<int>();
@@ -32,7 +35,8 @@ TEST(SweepSpec, ShippedSpecsLoad) {
 }
 
 TEST(SweepSpec, RandomDrawsAreDeterministicAndInRange) {
-  const SweepSpec spec = LoadSweepSpec(WriteSpec("random", "seed: 5\nepisodes: 20\naxes:\n  light_intensity: {min: 0.5, max: 1.5}\n  objects: [2, 4]\n"));
+  const SweepSpec spec = LoadSweepSpec(WriteSpec(
+      "random", "seed: 5\nepisodes: 20\naxes:\n  light_intensity: {min: 0.5, max: 1.5}\n  objects: [2, 4]\n"));
   EXPECT_EQ(spec.EpisodeCount(), 20);
   std::set<double> distinct;
   for (int i = 0; i < 20; ++i) {
@@ -63,10 +67,11 @@ TEST(SweepSpec, GridCoversEveryCellWithTheSameSeeds) {
 }
 
 TEST(SweepSpec, GridRangesAreDrawnPerRepeatAlikeInEveryCell) {
-  const SweepSpec spec = LoadSweepSpec(WriteSpec("grid_range", "mode: grid\nepisodes: 5\naxes:\n"
-                                                               "  placement: [dense, clustered]\n"
-                                                               "  objects: {min: 4, max: 6}\n"
-                                                               "  lying_fraction: [0.3]\n"));
+  const SweepSpec spec = LoadSweepSpec(WriteSpec("grid_range",
+                                                 "mode: grid\nepisodes: 5\naxes:\n"
+                                                 "  placement: [dense, clustered]\n"
+                                                 "  objects: {min: 4, max: 6}\n"
+                                                 "  lying_fraction: [0.3]\n"));
   ASSERT_EQ(spec.EpisodeCount(), 10);
   std::set<int> counts;
   for (int repeat = 0; repeat < 5; ++repeat) {
@@ -85,8 +90,9 @@ TEST(SweepSpec, GridRangesAreDrawnPerRepeatAlikeInEveryCell) {
 }
 
 TEST(SweepSpec, SelfCalibrationIsAnAxisOfWords) {
-  const SweepSpec spec = LoadSweepSpec(WriteSpec("calibrate", "mode: grid\nepisodes: 1\naxes:\n"
-                                                              "  self_calibrate: [on, off]\n"));
+  const SweepSpec spec = LoadSweepSpec(WriteSpec("calibrate",
+                                                 "mode: grid\nepisodes: 1\naxes:\n"
+                                                 "  self_calibrate: [on, off]\n"));
   ASSERT_EQ(spec.EpisodeCount(), 2);
   EXPECT_EQ(spec.Episode(0).second["self_calibrate"], "on");
   EXPECT_EQ(spec.Episode(1).second["self_calibrate"], "off");
@@ -110,12 +116,15 @@ TEST(SweepSpec, BadSpecsNameTheKey) {
   EXPECT_NE(error("calibrate", "axes:\n  self_calibrate: [on, sometimes]\n")
                 .find("key 'axes.self_calibrate[1]': expected auto, on or off, found 'sometimes'"),
             std::string::npos);
-  EXPECT_NE(error("lying", "axes:\n  lying_fraction: [1.5]\n").find("key 'axes.lying_fraction[0]': expected a fraction"),
-            std::string::npos);
+  EXPECT_NE(
+      error("lying", "axes:\n  lying_fraction: [1.5]\n").find("key 'axes.lying_fraction[0]': expected a fraction"),
+      std::string::npos);
   EXPECT_NE(error("mode", "mode: sometimes\n").find("key 'mode': expected random or grid"), std::string::npos);
   EXPECT_NE(error("model", "model: nowhere.json\n").find("key 'model': file"), std::string::npos);
   EXPECT_NE(error("negative", "axes:\n  mass_scale: [0]\n").find("expected a value > 0"), std::string::npos);
-  EXPECT_NE(ErrorOf([] { LoadSweepSpec("/nonexistent/spec.yaml"); }).find("sweep spec '/nonexistent/spec.yaml': file not found"),
+  EXPECT_NE(ErrorOf([] {
+              LoadSweepSpec("/nonexistent/spec.yaml");
+            }).find("sweep spec '/nonexistent/spec.yaml': file not found"),
             std::string::npos);
 }
 

@@ -62,7 +62,8 @@ TEST(ImageFile, AJpegTextureDecodes) {
   const cv::Scalar mean = cv::mean(image);
   EXPECT_NEAR(mean[0], 40, 3);
   EXPECT_NEAR(mean[2], 200, 3);
-  EXPECT_NEAR(cv::mean(ReadImage(dir.path() / "skin.jpg", PixelFormat::kGrey8))[0], 0.114 * 40 + 0.587 * 60 + 0.299 * 200, 3);
+  EXPECT_NEAR(cv::mean(ReadImage(dir.path() / "skin.jpg", PixelFormat::kGrey8))[0],
+              0.114 * 40 + 0.587 * 60 + 0.299 * 200, 3);
   // A grey JPEG spread to three channels.
   sortcell_test::WriteJpeg(dir.path() / "grey.jpg", cv::Mat(16, 16, CV_8UC1, cv::Scalar(90)));
   const cv::Vec3b grey = ReadImage(dir.path() / "grey.jpg", PixelFormat::kBgr8).at<cv::Vec3b>(3, 3);

@@ -23,11 +23,13 @@ namespace assets = sortcell::assets;
 using sortcell_test::WriteUserObject;
 
 // A solid box's inertia about its own centre, and moved to `about` (parallel axes).
-Eigen::Matrix3d BoxInertia(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, double density, const Eigen::Vector3d& about) {
+Eigen::Matrix3d BoxInertia(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, double density,
+                           const Eigen::Vector3d& about) {
   const Eigen::Vector3d s = hi - lo, c = (hi + lo) / 2;
   const double m = density * s.prod();
-  Eigen::Matrix3d I = Eigen::Vector3d(s.y() * s.y() + s.z() * s.z(), s.x() * s.x() + s.z() * s.z(),
-                                      s.x() * s.x() + s.y() * s.y()).asDiagonal();
+  Eigen::Matrix3d I =
+      Eigen::Vector3d(s.y() * s.y() + s.z() * s.z(), s.x() * s.x() + s.z() * s.z(), s.x() * s.x() + s.y() * s.y())
+          .asDiagonal();
   I *= m / 12;
   const Eigen::Vector3d d = c - about;
   return I + m * (d.squaredNorm() * Eigen::Matrix3d::Identity() - d * d.transpose());
@@ -65,7 +67,8 @@ TEST(ObjectImport, AUrdfWithATextureAndTwoConvexPieces) {
   EXPECT_TRUE(r.com.isApprox(com, 1e-6)) << r.com.transpose();
   const Eigen::Matrix3d I = BoxInertia(lo1, hi1, density, com) + BoxInertia(lo2, hi2, density, com);
   const Eigen::Vector3d expected = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(I).eigenvalues();
-  EXPECT_TRUE(r.principal_inertia.isApprox(expected, 1e-6)) << r.principal_inertia.transpose() << " vs " << expected.transpose();
+  EXPECT_TRUE(r.principal_inertia.isApprox(expected, 1e-6))
+      << r.principal_inertia.transpose() << " vs " << expected.transpose();
   EXPECT_LT(r.principal_inertia.maxCoeff(), 1e-3);  // not the URDF's placeholder
 
   // Written into the cache (texture converted to PNG), nothing beside the user's files.
@@ -80,7 +83,8 @@ TEST(ObjectImport, AUrdfWithATextureAndTwoConvexPieces) {
                                                      {imported.fragment}, "test");
   const int body = model.Id(mjOBJ_BODY, "thing");
   EXPECT_NEAR(model->body_mass[body], 0.3, 1e-9);
-  Eigen::Vector3d mj_inertia(model->body_inertia[3 * body], model->body_inertia[3 * body + 1], model->body_inertia[3 * body + 2]);
+  Eigen::Vector3d mj_inertia(model->body_inertia[3 * body], model->body_inertia[3 * body + 1],
+                             model->body_inertia[3 * body + 2]);
   std::sort(mj_inertia.data(), mj_inertia.data() + 3);
   EXPECT_TRUE(mj_inertia.isApprox(expected, 1e-5)) << mj_inertia.transpose();
   int colliding = 0;
@@ -93,11 +97,12 @@ TEST(ObjectImport, AUrdfWithATextureAndTwoConvexPieces) {
 TEST(ObjectImport, ASpherePrimitiveIsAsWideAsItsEquator) {
   sortcell_test::TempDir dir;
   const std::filesystem::path urdf = dir.path() / "ball.urdf";
-  std::ofstream(urdf) << "<robot name='ball'><link name='ball'>"
-                         "<inertial><mass value='0.2'/><inertia ixx='1e-3' iyy='1e-3' izz='1e-3' ixy='0' ixz='0' iyz='0'/></inertial>"
-                         "<visual><geometry><sphere radius='0.035'/></geometry></visual>"
-                         "<collision><geometry><sphere radius='0.035'/></geometry></collision>"
-                         "</link></robot>";
+  std::ofstream(urdf)
+      << "<robot name='ball'><link name='ball'>"
+         "<inertial><mass value='0.2'/><inertia ixx='1e-3' iyy='1e-3' izz='1e-3' ixy='0' ixz='0' iyz='0'/></inertial>"
+         "<visual><geometry><sphere radius='0.035'/></geometry></visual>"
+         "<collision><geometry><sphere radius='0.035'/></geometry></collision>"
+         "</link></robot>";
   assets::ObjectSource source;
   source.name = "ball";
   source.urdf = urdf;
@@ -112,8 +117,15 @@ TEST(ObjectImport, ASpherePrimitiveIsAsWideAsItsEquator) {
 }
 
 TEST(ObjectImport, BoxMassPropertiesAndMinimumWidth) {
-  const auto hull = assets::ConvexHull({{0, 0, 0}, {0.2, 0, 0}, {0, 0.1, 0}, {0.2, 0.1, 0},
-                                        {0, 0, 0.05}, {0.2, 0, 0.05}, {0, 0.1, 0.05}, {0.2, 0.1, 0.05}, {0.1, 0.05, 0.02}});
+  const auto hull = assets::ConvexHull({{0, 0, 0},
+                                        {0.2, 0, 0},
+                                        {0, 0.1, 0},
+                                        {0.2, 0.1, 0},
+                                        {0, 0, 0.05},
+                                        {0.2, 0, 0.05},
+                                        {0, 0.1, 0.05},
+                                        {0.2, 0.1, 0.05},
+                                        {0.1, 0.05, 0.02}});
   EXPECT_EQ(hull.vertices.size(), 8u);  // the inner point is not on the hull
   EXPECT_TRUE(assets::IsClosedAndOriented(hull));
   const auto m = assets::MassPropertiesOf(hull);

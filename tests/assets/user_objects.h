@@ -39,7 +39,8 @@ inline std::string ObjCube(double side) {
   const double h = side / 2;
   std::string obj = "mtllib cube.mtl\no cube\n";
   for (int k = 0; k < 8; ++k) {
-    obj += "v " + std::to_string(k & 1 ? h : -h) + " " + std::to_string(k & 2 ? h : -h) + " " + std::to_string(k & 4 ? h : -h) + "\n";
+    obj += "v " + std::to_string(k & 1 ? h : -h) + " " + std::to_string(k & 2 ? h : -h) + " " +
+           std::to_string(k & 4 ? h : -h) + "\n";
   }
   obj += "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nusemtl skin\n";
   const int quads[6][4] = {{1, 3, 4, 2}, {5, 6, 8, 7}, {1, 2, 6, 5}, {3, 7, 8, 4}, {1, 5, 7, 3}, {2, 4, 8, 6}};
@@ -77,22 +78,27 @@ inline UserObject WriteUserObject(const std::filesystem::path& dir, const std::s
   std::ofstream(o.visual) << ObjCube(0.05);
   std::ofstream(dir / "meshes" / "cube.mtl") << "newmtl skin\nmap_Kd skin.jpg \n";
   WriteJpeg(o.texture, cv::Mat(64, 64, CV_8UC3, cv::Scalar(40, 60, 200)));
-  std::ofstream(o.collision) << "solid pieces\n" << StlBox({-0.03, -0.02, 0}, {0.03, 0.02, 0.10})
+  std::ofstream(o.collision) << "solid pieces\n"
+                             << StlBox({-0.03, -0.02, 0}, {0.03, 0.02, 0.10})
                              << StlBox({0.04, -0.01, 0.03}, {0.06, 0.01, 0.07}) << "endsolid pieces\n";
-  std::ofstream(o.urdf) << "<robot name=\"thing\"><link name=\"base_link\">\n"
-                           "<visual><origin xyz=\"0.1 0.2 0.35\" rpy=\"0 0 0\"/><geometry><mesh filename=\"meshes/cube.obj\"/>"
-                           "</geometry></visual>\n"
-                           "<collision><origin xyz=\"0.1 0.2 0.3\" rpy=\"0 0 0\"/><geometry><mesh filename=\"meshes/pieces.stl\" "
-                           "scale=\"1 1 1\"/></geometry></collision>\n"
-                           "<inertial><mass value=\"" + mass + "\"/><inertia ixx=\"1e-3\" ixy=\"0\" ixz=\"0\" iyy=\"1e-3\" "
-                           "iyz=\"0\" izz=\"1e-3\"/></inertial>\n</link></robot>\n";
+  std::ofstream(o.urdf)
+      << "<robot name=\"thing\"><link name=\"base_link\">\n"
+         "<visual><origin xyz=\"0.1 0.2 0.35\" rpy=\"0 0 0\"/><geometry><mesh filename=\"meshes/cube.obj\"/>"
+         "</geometry></visual>\n"
+         "<collision><origin xyz=\"0.1 0.2 0.3\" rpy=\"0 0 0\"/><geometry><mesh filename=\"meshes/pieces.stl\" "
+         "scale=\"1 1 1\"/></geometry></collision>\n"
+         "<inertial><mass value=\"" +
+             mass +
+             "\"/><inertia ixx=\"1e-3\" ixy=\"0\" ixz=\"0\" iyy=\"1e-3\" "
+             "iyz=\"0\" izz=\"1e-3\"/></inertial>\n</link></robot>\n";
   return o;
 }
 
 // An object set of the one object `urdf` (category cup), written into `dir`.
 inline std::string SetWith(const std::filesystem::path& dir, const std::string& urdf) {
   const auto set = dir / "set.yaml";
-  std::ofstream(set) << "name: mine\nobjects:\n  - {name: thing, category: cup, instance: thing, urdf: " << urdf << "}\n";
+  std::ofstream(set) << "name: mine\nobjects:\n  - {name: thing, category: cup, instance: thing, urdf: " << urdf
+                     << "}\n";
   return set.string();
 }
 

@@ -86,7 +86,7 @@ TEST(BinFill, StrayPointsTheWallsAndTheArmAreNotContents) {
   const CellLayout layout = OneBin();
   BinFill bins(layout);
   perception::Cloud cloud;
-  AddBlock(cloud, {0.40, -0.53, 0.10}, {0.40, -0.525, 0.10});  // 2 points: stray pixels.
+  AddBlock(cloud, {0.40, -0.53, 0.10}, {0.40, -0.525, 0.10});   // 2 points: stray pixels.
   AddBlock(cloud, {0.545, -0.58, 0.05}, {0.555, -0.38, 0.10});  // the near wall
   AddBlock(cloud, {0.38, -0.55, 0.20}, {0.52, -0.41, 0.25});    // the gripper above the bin
   const std::vector<Capsule> arm{{{0.45, -0.48, 0.20}, {0.45, -0.48, 0.40}, 0.10}};

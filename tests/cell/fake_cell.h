@@ -26,9 +26,9 @@ class FakeCell : public sortcell::cell::CellIo {
   bool slip_on_carry = false;
   std::vector<sortcell::perception::Cloud::Ptr> clouds;
   int captures = 0;
-  std::vector<std::string> motions;  // Phase of every Follow, in order (a phase's parts as one).
+  std::vector<std::string> motions;                  // Phase of every Follow, in order (a phase's parts as one).
   std::vector<sortcell::robot::Joints> motion_ends;  // Where each of them left the arm.
-  std::string fault_on;  // The cell stops under the first motion of this phase.
+  std::string fault_on;                              // The cell stops under the first motion of this phase.
 
   // The clock starts at `start_s`, not 0: budgets count from the policy's start.
   explicit FakeCell(const sortcell::robot::Joints& q, double start_s = 100.0) : q_(q), now_(start_s) {
@@ -78,7 +78,8 @@ class FakeCell : public sortcell::cell::CellIo {
       Open(left, right);
     }
   }
-  sortcell::cell::MotionResult HoldUntil(std::string_view, double max_seconds, const std::function<bool()>& done) override {
+  sortcell::cell::MotionResult HoldUntil(std::string_view, double max_seconds,
+                                         const std::function<bool()>& done) override {
     const double start = now_;
     while (now_ - start < max_seconds) {
       now_ += 0.002;

@@ -42,38 +42,39 @@ CameraCalibration Calibration() {
 // test process trains it again, and under the sanitizers a render and its descriptor take a third of a
 // second).
 perception::RecognitionModel TrainModel() {
-    const CameraCalibration calibration = Calibration();
-    perception::SegmentationParams params;
-    std::vector<Eigen::VectorXf> rows;
-    std::vector<int> labels, groups;
-    int group = 0;
-    for (double x : {0.40, 0.50, 0.60}) {
-      for (double y : {-0.15, 0.15}) {
-        for (int c = 0; c < 2; ++c) {
-          Cylinder object = c == 0 ? kBottle : kCup;
-          object.xy = {x, y};
-          const auto cloud = sortcell_test::RenderTable({object}, calibration.X_WC);
-          const auto segmented = perception::SegmentObjects(*cloud, calibration.X_WC, calibration.background.get(), params);
-          if (segmented.segments.empty()) continue;
-          const auto parts = perception::ComputeDescriptorParts(*segmented.segments[0].cloud_C);
-          if (parts.status != perception::DescriptorStatus::kOk) continue;
-          rows.push_back(perception::AssembleDescriptor(parts, perception::DescriptorKind::kColorCvfhNorm));
-          labels.push_back(c);
-          groups.push_back(group++ % 6);
-        }
+  const CameraCalibration calibration = Calibration();
+  perception::SegmentationParams params;
+  std::vector<Eigen::VectorXf> rows;
+  std::vector<int> labels, groups;
+  int group = 0;
+  for (double x : {0.40, 0.50, 0.60}) {
+    for (double y : {-0.15, 0.15}) {
+      for (int c = 0; c < 2; ++c) {
+        Cylinder object = c == 0 ? kBottle : kCup;
+        object.xy = {x, y};
+        const auto cloud = sortcell_test::RenderTable({object}, calibration.X_WC);
+        const auto segmented =
+            perception::SegmentObjects(*cloud, calibration.X_WC, calibration.background.get(), params);
+        if (segmented.segments.empty()) continue;
+        const auto parts = perception::ComputeDescriptorParts(*segmented.segments[0].cloud_C);
+        if (parts.status != perception::DescriptorStatus::kOk) continue;
+        rows.push_back(perception::AssembleDescriptor(parts, perception::DescriptorKind::kColorCvfhNorm));
+        labels.push_back(c);
+        groups.push_back(group++ % 6);
       }
     }
-    Eigen::MatrixXf x(rows.size(), rows.empty() ? 0 : rows[0].size());
-    for (size_t i = 0; i < rows.size(); ++i) x.row(i) = rows[i].transpose();
-    perception::RecognitionModel m;
-    m.descriptor = perception::DescriptorKind::kColorCvfhNorm;
-    m.classes = {"bottle", "cup"};
-    perception::SvmGrid grid;
-    grid.C = {16};
-    grid.gamma = {1.0 / 32};
-    m.classifier = perception::SvmClassifier::Train(x, labels, groups, 2, grid);
-    m.train_samples = static_cast<int>(rows.size());
-    return m;
+  }
+  Eigen::MatrixXf x(rows.size(), rows.empty() ? 0 : rows[0].size());
+  for (size_t i = 0; i < rows.size(); ++i) x.row(i) = rows[i].transpose();
+  perception::RecognitionModel m;
+  m.descriptor = perception::DescriptorKind::kColorCvfhNorm;
+  m.classes = {"bottle", "cup"};
+  perception::SvmGrid grid;
+  grid.C = {16};
+  grid.gamma = {1.0 / 32};
+  m.classifier = perception::SvmClassifier::Train(x, labels, groups, 2, grid);
+  m.train_samples = static_cast<int>(rows.size());
+  return m;
 }
 
 const perception::RecognitionModel& Model() {
@@ -88,8 +89,8 @@ struct Recorder : PolicyObserver {
   std::vector<AttemptResult> results;
   std::vector<robot::GraspStatus> skipped;
   std::vector<std::optional<std::string>> categories;  // Of the last observation.
-  std::vector<Eigen::Vector2d> centres;                 // Their footprint centres.
-  std::vector<std::string> attempted;                   // Category of each attempt.
+  std::vector<Eigen::Vector2d> centres;                // Their footprint centres.
+  std::vector<std::string> attempted;                  // Category of each attempt.
   const FakeCell* cell = nullptr;
 
   void Observed(const perception::Cloud&, const Observation& o, double) override {
@@ -116,10 +117,10 @@ struct Recorder : PolicyObserver {
     squeezed_harder_in.push_back(r.pick.squeezed_harder_in);
     recentred_m.push_back(r.pick.recentred_m);
   }
-  std::vector<double> recentred_m;  // Per attempt; 0 where the first grasp was centred.
+  std::vector<double> recentred_m;              // Per attempt; 0 where the first grasp was centred.
   std::vector<std::string> squeezed_harder_in;  // Per attempt; empty where the grip held as it was.
-  bool phase_sums_match = true;          // Every attempt's phases add up to its duration.
-  std::vector<std::string> last_phases;  // Of the last attempt.
+  bool phase_sums_match = true;                 // Every attempt's phases add up to its duration.
+  std::vector<std::string> last_phases;         // Of the last attempt.
 };
 
 struct SortRun {
@@ -131,8 +132,8 @@ struct SortRun {
 };
 
 SortRun Sort(const std::vector<Cylinder>& objects, std::deque<bool> grasps, PolicyOptions options = {},
-         CellLayout layout = Layout(), const perception::RecognitionModel& model = Model(), bool drop_on_lift = false,
-         const std::string& fault_on = "", bool slip_on_carry = false) {
+             CellLayout layout = Layout(), const perception::RecognitionModel& model = Model(),
+             bool drop_on_lift = false, const std::string& fault_on = "", bool slip_on_carry = false) {
   const CameraCalibration calibration = Calibration();
   FakeCell cell(layout.q_observe);
   cell.clouds = {sortcell_test::RenderTable(objects, calibration.X_WC)};
@@ -177,8 +178,8 @@ TEST(SortingPolicy, SortsAnObjectItHoldsAndMovesThroughThePhases) {
   // The next view is captured during the carry, where the arm leaves the camera's view (the second
   // capture). The arm stays in the bin after the release and goes home, straight up first, when the
   // episode ends.
-  const std::vector<std::string> expected{"approach", "descend", "reach", "lift", "carry", "lower", "place",
-                                          "retreat", "home"};
+  const std::vector<std::string> expected{"approach", "descend", "reach",   "lift", "carry",
+                                          "lower",    "place",   "retreat", "home"};
   EXPECT_EQ(run.motions, expected);
   EXPECT_EQ(run.captures, 2);
   // The attempt's phases, gripper ones included, account for all of its time.
@@ -332,7 +333,8 @@ TEST(SortingPolicy, AGraspThatClosedOffCentreIsMadeAgainOverTheObject) {
     return robot::TcpPose(cell.motion_ends.at(i));
   };
   const Eigen::Isometry3d X_WT_reach = at("reach"), X_WT_recentre = at("recentre");
-  const Eigen::Vector3d moved_T = X_WT_reach.linear().transpose() * (X_WT_recentre.translation() - X_WT_reach.translation());
+  const Eigen::Vector3d moved_T =
+      X_WT_reach.linear().transpose() * (X_WT_recentre.translation() - X_WT_reach.translation());
   EXPECT_LT((moved_T - Eigen::Vector3d(0, 0.012, 0)).norm(), 1e-4) << moved_T.transpose();
   // A centred grasp is left as it is.
   const SortRun calm = Sort({kBottle}, {true}, options);
@@ -376,7 +378,9 @@ TEST(SortingPolicy, RejectsBudgetsOutOfRange) {
   const CameraCalibration calibration = Calibration();
   PolicyOptions options;
   options.max_attempts = 0;
-  const auto error = [&] { return sortcell_test::ErrorOf([&] { SortingPolicy(cell, layout, calibration, Model(), options); }); };
+  const auto error = [&] {
+    return sortcell_test::ErrorOf([&] { SortingPolicy(cell, layout, calibration, Model(), options); });
+  };
   EXPECT_EQ(error(), "policy options: attempt limits must be at least 1");
   options = {};
   options.max_attempts_per_position = 0;

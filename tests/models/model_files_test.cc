@@ -109,7 +109,8 @@ TEST(ModelFiles, EveryFragmentIsIncludedOrListedInAnObjectSet) {
     for (size_t at = referencing.find(name); at != std::string::npos; at = referencing.find(name, at + 1)) {
       const size_t end = at + name.size();
       const bool starts = at == 0 || std::string("\"'/ ").find(referencing[at - 1]) != std::string::npos;
-      const bool ends = end == referencing.size() || std::string("\"'\n\r,} ").find(referencing[end]) != std::string::npos;
+      const bool ends =
+          end == referencing.size() || std::string("\"'\n\r,} ").find(referencing[end]) != std::string::npos;
       if (starts && ends) return true;
     }
     return false;

@@ -18,7 +18,7 @@ using sortcell_test::SphereFront;
 constexpr float kTol = 1e-4f;
 
 TEST(HsvHistogram, BlocksCountEveryPointAndHueOnlyChromaticOnes) {
-  Cloud cloud = CylinderFront(0.03, 0.1, 1.0, 200, 20, 20);   // red
+  Cloud cloud = CylinderFront(0.03, 0.1, 1.0, 200, 20, 20);  // red
   const int red = static_cast<int>(cloud.size());
   Cloud grey = CylinderFront(0.03, 0.05, 1.0, 128, 128, 128);  // achromatic
   cloud += grey;
@@ -108,8 +108,8 @@ TEST(Descriptor, AFragmentHasTheCvfhStatusNoPartsAndCannotBeAssembled) {
     AssembleDescriptor(parts, DescriptorKind::kColorCvfhNorm);
     FAIL() << "no exception";
   } catch (const std::invalid_argument& e) {
-    EXPECT_EQ(std::string(e.what()), "descriptor parts: " + parts.detail +
-                                         " (status too_few_points): no descriptor to assemble");
+    EXPECT_EQ(std::string(e.what()),
+              "descriptor parts: " + parts.detail + " (status too_few_points): no descriptor to assemble");
   }
 }
 

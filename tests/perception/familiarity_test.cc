@@ -101,8 +101,9 @@ TEST(Familiarity, RefusesBadInput) {
   // it leaves no view a rival of another group (refused, not a scale of infinity).
   std::vector<int> lone(Familiarity::kMaxReference + 1, 0);
   lone.back() = 1;
-  EXPECT_NE(ErrorOf([&] { Familiarity::Fit(Eigen::MatrixXf::Ones(static_cast<Eigen::Index>(lone.size()), 500), lone); })
-                .find("another group"),
+  EXPECT_NE(ErrorOf([&] {
+              Familiarity::Fit(Eigen::MatrixXf::Ones(static_cast<Eigen::Index>(lone.size()), 500), lone);
+            }).find("another group"),
             std::string::npos);
   const Familiarity f = Familiarity::Fit(x, groups);
   EXPECT_NE(ErrorOf([&] { f.Of(Eigen::VectorXf::Zero(308)); }).find("expected 500 raw parts"), std::string::npos);

@@ -30,7 +30,8 @@ Cloud::Ptr PlaneWithMarker(const Eigen::Vector3d& centre, const Eigen::Vector3d&
       point.x = static_cast<float>(p.x()), point.y = static_cast<float>(p.y()), point.z = static_cast<float>(p.z());
       unsigned char grey = 255;
       const double a = (p - centre).dot(s) / kSide + 0.5, b = (p - centre).dot(t) / kSide + 0.5;
-      if (id >= 0 && a >= 0 && a < 1 && b >= 0 && b < 1) grey = marker.at<unsigned char>(static_cast<int>(b * 600), static_cast<int>(a * 600));
+      if (id >= 0 && a >= 0 && a < 1 && b >= 0 && b < 1)
+        grey = marker.at<unsigned char>(static_cast<int>(b * 600), static_cast<int>(a * 600));
       point.r = point.g = point.b = grey;
     }
   }

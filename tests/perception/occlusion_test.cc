@@ -27,8 +27,10 @@ OccludedScene FarBehindNear() {
     for (int c = 0; c < kWidth; ++c) {
       double z = 1.2;
       int segment = -1;
-      if (r >= 5 && r < 15 && c >= 17 && c < 30) z = 0.7, segment = 1;
-      else if (r >= 5 && r < 15 && c >= 5 && c < 15) z = 0.9, segment = 0;
+      if (r >= 5 && r < 15 && c >= 17 && c < 30)
+        z = 0.7, segment = 1;
+      else if (r >= 5 && r < 15 && c >= 5 && c < 15)
+        z = 0.9, segment = 0;
       const int i = r * kWidth + c;
       scene.cloud.points[i] = sortcell_test::Point(0.01 * c, 0.01 * r, z, 100, 100, 100);
       if (r >= 5 && r < 15 && (c == 15 || c == 16)) scene.cloud.points[i].z = std::numeric_limits<float>::quiet_NaN();

@@ -123,11 +123,13 @@ TEST(SvmClassifier, SameDataSameModel) {
 
 TEST(SvmClassifier, RejectsTooFewGroupsAndOneClass) {
   const Data d = Blobs(10, 5, 1);
-  EXPECT_NE(ErrorOf([&] { SvmClassifier::Train(d.x, d.y, std::vector<int>(d.y.size(), 0), 3, SmallGrid()); })
-                .find("1 groups for 3-fold"),
+  EXPECT_NE(ErrorOf([&] {
+              SvmClassifier::Train(d.x, d.y, std::vector<int>(d.y.size(), 0), 3, SmallGrid());
+            }).find("1 groups for 3-fold"),
             std::string::npos);
-  EXPECT_NE(ErrorOf([&] { SvmClassifier::Train(d.x, std::vector<int>(d.y.size(), 1), d.groups, 3, SmallGrid()); })
-                .find("fewer than two classes"),
+  EXPECT_NE(ErrorOf([&] {
+              SvmClassifier::Train(d.x, std::vector<int>(d.y.size(), 1), d.groups, 3, SmallGrid());
+            }).find("fewer than two classes"),
             std::string::npos);
 }
 

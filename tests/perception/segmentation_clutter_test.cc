@@ -69,7 +69,8 @@ class TouchingBoxes : public ::testing::Test {
     sim::FrameTruth truth;
     const sim::KinectFrame frame = kinect_->Capture(*data_, &noise_, &rng_, &truth);
     const perception::SegmentationParams params = cell::CellSegmentation(cell::CellLayout());
-    const auto result = perception::SegmentObjects(*sim::ToOrganizedCloud(frame), truth.X_WC, background_.get(), params);
+    const auto result =
+        perception::SegmentObjects(*sim::ToOrganizedCloud(frame), truth.X_WC, background_.get(), params);
     std::vector<std::vector<int>> segments;
     for (const auto& s : result.segments) segments.push_back(s.indices);
     return perception::ScoreSegmentation(std::vector<int>(truth.labels.begin<uint16_t>(), truth.labels.end<uint16_t>()),
@@ -89,7 +90,8 @@ TEST_F(TouchingBoxes, ALyingBoxAgainstAStandingOneComesApart) {
   sim::PlacementOptions dense;
   dense.mode = sim::PlacementMode::kDense;
   dense.lying_fraction = 1;
-  const std::vector<sim::ObjectShape> shapes{sim::ObjectShapeOf(*model_, Body(0)), sim::ObjectShapeOf(*model_, Body(1))};
+  const std::vector<sim::ObjectShape> shapes{sim::ObjectShapeOf(*model_, Body(0)),
+                                             sim::ObjectShapeOf(*model_, Body(1))};
   for (uint64_t seed = 0; seed < 4; ++seed) {
     std::mt19937_64 rng(seed);
     const auto poses = sim::SampleClutter(shapes, {{0.50, 0.0, 0.3 * static_cast<double>(seed), false}},
@@ -122,7 +124,8 @@ TEST(TouchingPaperObjects, ReddishPairsComeApartAtTheirContact) {
   std::mt19937_64 rng(3);
   const std::vector<std::string>& names = kinect.object_names();
   const auto park_all = [&] {
-    for (size_t i = 0; i < names.size(); ++i) sim::ParkObject(model, data, model.Id(mjOBJ_BODY, names[i]), static_cast<int>(i));
+    for (size_t i = 0; i < names.size(); ++i)
+      sim::ParkObject(model, data, model.Id(mjOBJ_BODY, names[i]), static_cast<int>(i));
   };
   sim::ResetToObserve(model, data);
   park_all();
@@ -135,10 +138,14 @@ TEST(TouchingPaperObjects, ReddishPairsComeApartAtTheirContact) {
     std::string a, b;
     uint64_t seed;
   };
-  for (const Arrangement& arrangement : {Arrangement{"cup", "box", 2}, {"cup", "box", 15}, {"cup", "box", 38},
-                                         {"bottle1", "cup", 15}, {"bottle1", "cup", 25}}) {
+  for (const Arrangement& arrangement : {Arrangement{"cup", "box", 2},
+                                         {"cup", "box", 15},
+                                         {"cup", "box", 38},
+                                         {"bottle1", "cup", 15},
+                                         {"bottle1", "cup", 25}}) {
     const std::vector<int> bodies{model.Id(mjOBJ_BODY, arrangement.a), model.Id(mjOBJ_BODY, arrangement.b)};
-    const std::vector<sim::ObjectShape> shapes{sim::ObjectShapeOf(model, bodies[0]), sim::ObjectShapeOf(model, bodies[1])};
+    const std::vector<sim::ObjectShape> shapes{sim::ObjectShapeOf(model, bodies[0]),
+                                               sim::ObjectShapeOf(model, bodies[1])};
     rng.seed(arrangement.seed);
     const auto poses = sim::SampleClutter(shapes, {}, sim::PlacementArea(), dense, rng);
     ASSERT_TRUE(poses.has_value());

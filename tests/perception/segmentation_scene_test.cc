@@ -53,14 +53,14 @@ struct Shot : sim::KinectFrame {
   cv::Mat labels;
   Eigen::Isometry3d X_WC;
 };
-Shot Shoot(sim::KinectCamera& kinect, const sim::Data& data, const sim::KinectNoiseParams* noise, std::mt19937_64* rng) {
+Shot Shoot(sim::KinectCamera& kinect, const sim::Data& data, const sim::KinectNoiseParams* noise,
+           std::mt19937_64* rng) {
   sim::FrameTruth truth;
   Shot shot{kinect.Capture(data, noise, rng, &truth), truth.labels, truth.X_WC};
   return shot;
 }
 
-Check Evaluate(const perception::SegmentationResult& r, const Shot& frame,
-               const std::vector<std::string>& names) {
+Check Evaluate(const perception::SegmentationResult& r, const Shot& frame, const std::vector<std::string>& names) {
   Check c;
   std::map<int, int> mask;
   for (auto it = frame.labels.begin<uint16_t>(); it != frame.labels.end<uint16_t>(); ++it) {
@@ -71,8 +71,8 @@ Check Evaluate(const perception::SegmentationResult& r, const Shot& frame,
   for (const auto& s : r.segments) {
     std::map<int, int> votes;
     for (int i : s.indices) ++votes[frame.labels.at<uint16_t>(i / frame.labels.cols, i % frame.labels.cols)];
-    const auto best = std::max_element(votes.begin(), votes.end(),
-                                       [](const auto& a, const auto& b) { return a.second < b.second; });
+    const auto best =
+        std::max_element(votes.begin(), votes.end(), [](const auto& a, const auto& b) { return a.second < b.second; });
     EXPECT_NE(best->first, 0) << "a segment of " << s.indices.size() << " px is not an object (table piece?)";
     if (best->first == 0) continue;
     EXPECT_EQ(matched.count(best->first), 0u) << names[best->first - 1] << " split into two segments";
@@ -117,7 +117,8 @@ TEST(SegmentationScene, CellSceneEveryObjectFoundWithAndWithoutBackground) {
   }
   // The cell's own segmentation (convex clusters): one segment per object too; the cup's inside, seen
   // over its rim, joins its wall.
-  const auto r = perception::SegmentObjects(*cloud, frame.X_WC, background.get(), cell::CellSegmentation(cell::CellLayout()));
+  const auto r =
+      perception::SegmentObjects(*cloud, frame.X_WC, background.get(), cell::CellSegmentation(cell::CellLayout()));
   const Check c = Evaluate(r, frame, names);
   EXPECT_EQ(c.objects, 6);
   EXPECT_EQ(c.segments, 6) << c.report;

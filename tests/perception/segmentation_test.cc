@@ -155,8 +155,9 @@ TEST(Segmentation, NoSupportingPlaneIsAStatusNotAnError) {
   sparse.at(3, 3) = sortcell_test::Point(0, 0, 1, 1, 1, 1);
   const SegmentationResult r = SegmentObjects(sparse, std::nullopt, nullptr);
   EXPECT_EQ(r.status, SegmentationStatus::kNoPlane);
-  EXPECT_EQ(r.detail, "segmentation: no supporting plane found (0 sampled inliers of 1, need 200): expected "
-                      "objects standing on a table or floor");
+  EXPECT_EQ(r.detail,
+            "segmentation: no supporting plane found (0 sampled inliers of 1, need 200): expected "
+            "objects standing on a table or floor");
   EXPECT_TRUE(r.segments.empty());
 
   // With a pose the plane must be horizontal in the world: a wall-like view has none.
@@ -229,16 +230,18 @@ TEST(PcdIo, ReadsAnOpenNiStyleXyzrgbaCaptureAndRejectsBadFiles) {
                                            "WIDTH 640\nHEIGHT 480\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS 307200\n"
                                            "DATA binary_compressed\nabc";
   EXPECT_EQ(ErrorOf([&] { LoadCloud(dir + "/truncated.pcd", true); }),
-            "PCD '" + dir + "/truncated.pcd': not a readable PCD file (the header claims more points than the file "
-            "holds)");
+            "PCD '" + dir +
+                "/truncated.pcd': not a readable PCD file (the header claims more points than the file "
+                "holds)");
   // Found by fuzzing (fuzz/regressions/pcd): PCL 1.13 allocates a compressed block's stored size
   // unchecked, and reads a field by its name whatever its size.
   std::ofstream(dir + "/huge_block.pcd") << "VERSION .7\nFIELDS x y z rgb\nSIZE 4 4 4 4\nTYPE F F F U\nCOUNT 1 1 1 1\n"
                                             "WIDTH 2\nHEIGHT 1\nPOINTS 2\nDATA binary_compressed\n"
                                          << std::string("\x10\x00\x00\x00\xff\xff\xff\xff", 8) << std::string(16, '\0');
   EXPECT_EQ(ErrorOf([&] { LoadCloud(dir + "/huge_block.pcd", false); }),
-            "PCD '" + dir + "/huge_block.pcd': not a readable PCD file (damaged compressed data: sizes do not match the "
-            "header)");
+            "PCD '" + dir +
+                "/huge_block.pcd': not a readable PCD file (damaged compressed data: sizes do not match the "
+                "header)");
   std::ofstream(dir + "/short_rgb.pcd") << "VERSION .7\nFIELDS x y z rgb\nSIZE 4 4 4 1\nTYPE F F F U\nCOUNT 1 1 1 1\n"
                                            "WIDTH 1\nHEIGHT 1\nPOINTS 1\nDATA ascii\n0.1 0.2 0.3 7\n";
   EXPECT_EQ(ErrorOf([&] { LoadCloud(dir + "/short_rgb.pcd", false); }),

@@ -27,8 +27,8 @@ Cloud::Ptr Scene() {
   }
   for (double u = 0; u <= 0.08; u += 0.002) {
     for (double y = -0.05; y <= 0.05; y += 0.002) {
-      raw.push_back(Point(0.1 + u, y, 0.85 + u, 30, 30, 200));   // A box's face, 45 degrees to the camera,
-      raw.push_back(Point(0.1 - u, y, 0.85 + u, 30, 30, 200));   // and the face beside it.
+      raw.push_back(Point(0.1 + u, y, 0.85 + u, 30, 30, 200));  // A box's face, 45 degrees to the camera,
+      raw.push_back(Point(0.1 - u, y, 0.85 + u, 30, 30, 200));  // and the face beside it.
     }
   }
   std::mt19937 rng(5);
@@ -73,7 +73,8 @@ TEST(SupervoxelVoxelNormals, TheSupervoxelsOfPclsOwnVoxelNormals) {
     ASSERT_EQ(sv->voxels_->size(), b.voxels_->size()) << "supervoxel " << label;
     for (size_t k = 0; k < sv->voxels_->size(); ++k) {
       EXPECT_EQ((*sv->voxels_)[k].getVector3fMap(), (*b.voxels_)[k].getVector3fMap()) << "supervoxel " << label;
-      const Eigen::Vector3f n_pcl = (*sv->normals_)[k].getNormalVector3fMap(), n = (*b.normals_)[k].getNormalVector3fMap();
+      const Eigen::Vector3f n_pcl = (*sv->normals_)[k].getNormalVector3fMap(),
+                            n = (*b.normals_)[k].getNormalVector3fMap();
       if (!n_pcl.allFinite()) {  // The far point's voxel: a fit of one place, no normal either way.
         EXPECT_FALSE(n.allFinite()) << "supervoxel " << label << " voxel " << k << ": " << n.transpose();
         continue;

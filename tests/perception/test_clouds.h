@@ -22,8 +22,7 @@ inline PointT Point(double x, double y, double z, uint8_t r, uint8_t g, uint8_t 
 }
 
 // The camera-facing half of an upright cylinder (axis along the camera's y) at distance z0, 2 mm spacing.
-inline Cloud CylinderFront(double radius, double height, double z0, uint8_t r, uint8_t g, uint8_t b,
-                           double x0 = 0.0) {
+inline Cloud CylinderFront(double radius, double height, double z0, uint8_t r, uint8_t g, uint8_t b, double x0 = 0.0) {
   Cloud cloud;
   for (double y = -height / 2; y <= height / 2; y += 0.002) {
     for (double a = -M_PI / 2; a <= M_PI / 2; a += 0.002 / radius) {

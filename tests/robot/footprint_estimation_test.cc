@@ -130,12 +130,14 @@ TEST(FootprintEstimation, TurnedBoxIsPinchedAcrossItsNarrowSide) {
 }
 
 TEST(FootprintEstimation, RejectsTooFewPointsAndACameraAbove) {
-  EXPECT_NE(sortcell_test::ErrorOf([] { EstimateFootprint({Eigen::Vector3d(0.5, 0, 0.1)}, kCamera, 0.0); })
-                .find("at least 10 object points"),
+  EXPECT_NE(sortcell_test::ErrorOf([] {
+              EstimateFootprint({Eigen::Vector3d(0.5, 0, 0.1)}, kCamera, 0.0);
+            }).find("at least 10 object points"),
             std::string::npos);
   const auto points = VisibleCylinder(Eigen::Vector2d(0.5, 0), 0.03, 0.1, 0.01);
-  EXPECT_NE(sortcell_test::ErrorOf([&] { EstimateFootprint(points, Eigen::Vector3d(0.5, 0, 1.0), 0.0); })
-                .find("right above the object"),
+  EXPECT_NE(sortcell_test::ErrorOf([&] {
+              EstimateFootprint(points, Eigen::Vector3d(0.5, 0, 1.0), 0.0);
+            }).find("right above the object"),
             std::string::npos);
 }
 
@@ -148,7 +150,9 @@ TEST(FootprintEstimation, AFullWidthTopIsBelowABottlesShoulder) {
   std::vector<Eigen::Vector3d> bottle;
   for (double z = 0.0005; z < 0.224; z += 0.002) {
     const double shoulder = (z - 0.16) / 0.035;
-    const double r = z < 0.16 ? 0.033 : z < 0.19 ? std::fmax(0.0135, 0.033 * std::sqrt(std::fmax(0.0, 1 - shoulder * shoulder))) : 0.0135;
+    const double r = z < 0.16   ? 0.033
+                     : z < 0.19 ? std::fmax(0.0135, 0.033 * std::sqrt(std::fmax(0.0, 1 - shoulder * shoulder)))
+                                : 0.0135;
     for (int i = 0; i < 90; ++i) {
       const Eigen::Vector2d n(std::cos(2 * M_PI * i / 90), std::sin(2 * M_PI * i / 90));
       if (n.dot(to_camera) > 0) bottle.emplace_back(c.x() + r * n.x(), c.y() + r * n.y(), z);

@@ -61,7 +61,7 @@ TEST(GripperControl, CaughtAfterOpeningWhenShortOfTheGapOrPressed) {
   EXPECT_FALSE(CaughtAfterOpening(s, 0.08));
   EXPECT_TRUE(CaughtAfterOpening(s, 0.085));  // stopped 5 mm short: something in the way
   s.right_pad_force = 3;
-  EXPECT_TRUE(CaughtAfterOpening(s, 0.08));   // something presses a pad
+  EXPECT_TRUE(CaughtAfterOpening(s, 0.08));  // something presses a pad
   s.right_pad_force = 0;
   s.left_half_gap = s.right_half_gap = kMaxGap / 2;
   EXPECT_FALSE(CaughtAfterOpening(s, 0.2));  // beyond the stroke: open as far as it goes

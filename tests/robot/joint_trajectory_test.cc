@@ -39,7 +39,7 @@ TEST(SmoothProfile, ReachesTheDistanceWithTheRightDurationAndNoJumpInAcceleratio
   EXPECT_NEAR(s, 1.0, 1e-12);
   EXPECT_NEAR(sd, 1.0, 1e-12);
   cruise.Evaluate(0.5, s, sd, sdd);
-  EXPECT_NEAR(sdd, 2.0, 1e-12);  // the peak, mid-ramp
+  EXPECT_NEAR(sdd, 2.0, 1e-12);                  // the peak, mid-ramp
   for (const double t : {0.0, 1.0, 2.0, 3.0}) {  // where the phases meet, the acceleration is zero
     cruise.Evaluate(t, s, sd, sdd);
     EXPECT_NEAR(sdd, 0.0, 1e-9) << t;
@@ -155,8 +155,8 @@ TEST(PlanJointMove, PerJointLimitsBoundEveryJoint) {
       for (int j = 0; j < 6; ++j) {
         ASSERT_LE(std::abs(t.qd[k][j]), limits.speed[j] + kSlack);
         ASSERT_LE(std::abs(t.qdd[k][j]), limits.acceleration[j] + kSlack);
-        tightest = std::max({tightest, std::abs(t.qd[k][j]) / limits.speed[j],
-                             std::abs(t.qdd[k][j]) / limits.acceleration[j]});
+        tightest = std::max(
+            {tightest, std::abs(t.qd[k][j]) / limits.speed[j], std::abs(t.qdd[k][j]) / limits.acceleration[j]});
       }
     }
     EXPECT_NEAR(tightest, 1.0, 1e-3);  // No slower than the limits make it.
@@ -179,7 +179,8 @@ TEST(BlendMoves, JoinsWithoutStoppingWithinTheLimitsAndEndsAtTheGoal) {
   EXPECT_LT(seam, blended.size());
   double slowest = 1e9;  // The arm never stops on the way between the two cruises.
   for (int k = 1; k + 1 < blended.size(); ++k) {
-    if (k > first.size() / 2 && k < blended.size() - second.size() / 2) slowest = std::min(slowest, blended.qd[k].norm());
+    if (k > first.size() / 2 && k < blended.size() - second.size() / 2)
+      slowest = std::min(slowest, blended.qd[k].norm());
     for (int j = 0; j < 6; ++j) {
       ASSERT_LE(std::abs(blended.qd[k][j]), limits.speed[j] + kSlack);
       ASSERT_LE(std::abs(blended.qdd[k][j]), limits.acceleration[j] + kSlack);

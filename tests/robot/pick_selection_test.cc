@@ -162,7 +162,8 @@ TEST(PickSelection, FingersPassAboveAShorterNeighbour) {
     n.discs.emplace_back(Eigen::Vector2d(0.565, 0.0), 0.033);
     n.disc_top_z.push_back(top);
     for (int k = 0; k < 12; ++k) {
-      n.p_xy.push_back(Eigen::Vector2d(0.565, 0.0) + 0.033 * Eigen::Vector2d(std::cos(k * M_PI / 6), std::sin(k * M_PI / 6)));
+      n.p_xy.push_back(Eigen::Vector2d(0.565, 0.0) +
+                       0.033 * Eigen::Vector2d(std::cos(k * M_PI / 6), std::sin(k * M_PI / 6)));
       n.p_z.push_back(top);
     }
     return n;

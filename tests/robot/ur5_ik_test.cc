@@ -22,7 +22,8 @@ Joints RandomJoints(std::mt19937_64& rng) {
 bool Contains(const IkResult& ik, const Joints& q, double tolerance) {
   for (int k = 0; k < ik.count; ++k) {
     bool same = true;
-    for (int i = 0; i < 6; ++i) same = same && std::abs(std::remainder(ik.solutions[k].q[i] - q[i], 2 * M_PI)) < tolerance;
+    for (int i = 0; i < 6; ++i)
+      same = same && std::abs(std::remainder(ik.solutions[k].q[i] - q[i], 2 * M_PI)) < tolerance;
     if (same) return true;
   }
   return false;
@@ -67,7 +68,8 @@ TEST(Ur5Ik, NoDuplicatesModulo2Pi) {
     for (int a = 0; a < ik.count; ++a) {
       for (int b = a + 1; b < ik.count; ++b) {
         double diff = 0;
-        for (int i = 0; i < 6; ++i) diff = std::fmax(diff, std::abs(std::remainder(ik.solutions[a].q[i] - ik.solutions[b].q[i], 2 * M_PI)));
+        for (int i = 0; i < 6; ++i)
+          diff = std::fmax(diff, std::abs(std::remainder(ik.solutions[a].q[i] - ik.solutions[b].q[i], 2 * M_PI)));
         ASSERT_GT(diff, 1e-7);
       }
     }
@@ -95,7 +97,7 @@ TEST(Ur5Ik, WristSingularPinsQ6) {
         EXPECT_NEAR(std::remainder(s.q[3] + s.q[5] - q[3] - q[5], 2 * M_PI), 0.0, 1e-9);
       }
     }
-    EXPECT_EQ(singular, 2);  // elbow up and down; the two wrist branches coincide
+    EXPECT_EQ(singular, 2);             // elbow up and down; the two wrist branches coincide
     ExpectAllReproduce(ik, X, kTight);  // exactly singular: pinning loses nothing
   }
 }

@@ -39,10 +39,10 @@ TEST(Ur5Kinematics, ToolDownPoseOfTheObserveKeyframe) {
 
 TEST(Ur5Kinematics, RpyRoundTripAndConvention) {
   const Eigen::Matrix3d R = RotationFromRpy(0.3, -0.4, 2.5);
-  const Eigen::Matrix3d expected = (Eigen::AngleAxisd(2.5, Eigen::Vector3d::UnitZ()) *
-                                    Eigen::AngleAxisd(-0.4, Eigen::Vector3d::UnitY()) *
-                                    Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitX()))
-                                       .toRotationMatrix();
+  const Eigen::Matrix3d expected =
+      (Eigen::AngleAxisd(2.5, Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(-0.4, Eigen::Vector3d::UnitY()) *
+       Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitX()))
+          .toRotationMatrix();
   EXPECT_TRUE(R.isApprox(expected, 1e-14));
   EXPECT_TRUE(RpyFromRotation(R).isApprox(Eigen::Vector3d(0.3, -0.4, 2.5), 1e-12));
   // Gimbal lock: pitch = pi/2, the rotation is still reproduced.

@@ -29,7 +29,7 @@ TEST(AccelerationLimits, FitTheTorqueLimitsWithPayloadEverywhereAboveTheTable) {
   const ArmIo arm(model);
   std::array<int, 6> dof{};
   const char* names[] = {"shoulder_pan_joint", "shoulder_lift_joint", "elbow_joint",
-                         "wrist_1_joint", "wrist_2_joint", "wrist_3_joint"};
+                         "wrist_1_joint",      "wrist_2_joint",       "wrist_3_joint"};
   for (int i = 0; i < 6; ++i) dof[i] = model->jnt_dofadr[mj_name2id(model.get(), mjOBJ_JOINT, names[i])];
 
   const robot::Joints acceleration = robot::Ur5AccelerationLimits(), limit = robot::Ur5TorqueLimits();

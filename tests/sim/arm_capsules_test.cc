@@ -42,7 +42,8 @@ TEST(ArmCapsules, CoverTheSimulatedArmsGeoms) {
       const Eigen::Vector3d p(data->geom_xpos[3 * g], data->geom_xpos[3 * g + 1], data->geom_xpos[3 * g + 2]);
       double inside = 1e9;
       for (const auto& c : capsules) inside = std::min(inside, DistanceToSegment(p, c.a, c.b) - c.radius);
-      EXPECT_LE(inside, 0.0) << "geom " << g << " of body " << mj_id2name(model.get(), mjOBJ_BODY, model->geom_bodyid[g]);
+      EXPECT_LE(inside, 0.0) << "geom " << g << " of body "
+                             << mj_id2name(model.get(), mjOBJ_BODY, model->geom_bodyid[g]);
     }
   }
 }

@@ -106,7 +106,8 @@ std::vector<double> Nearest(const std::vector<ObjectShape>& shapes, const std::v
       EXPECT_TRUE((v.array() >= area.min.array() - 1e-9).all() && (v.array() <= area.max.array() + 1e-9).all());
     }
     for (size_t j = 0; j < poses.size(); ++j) {
-      if (j != i) nearest[i] = std::min(nearest[i], Separation(Outline(shapes[i], poses[i]), Outline(shapes[j], poses[j])));
+      if (j != i)
+        nearest[i] = std::min(nearest[i], Separation(Outline(shapes[i], poses[i]), Outline(shapes[j], poses[j])));
     }
   }
   return nearest;
@@ -146,13 +147,17 @@ TEST_F(PaperCell, ClusteredScenesFormGroupsApart) {
     // Groups: objects within touching distance, chained.
     std::vector<int> group(poses->size());
     for (size_t i = 0; i < group.size(); ++i) group[i] = static_cast<int>(i);
-    const auto root = [&](int i) { while (group[i] != i) i = group[i]; return i; };
+    const auto root = [&](int i) {
+      while (group[i] != i) i = group[i];
+      return i;
+    };
     const auto separation = [&](size_t i, size_t j) {
       return Separation(Outline(shapes[i], (*poses)[i]), Outline(shapes[j], (*poses)[j]));
     };
     for (size_t i = 0; i < poses->size(); ++i) {
       for (size_t j = 0; j < i; ++j) {
-        if (separation(i, j) < options.contact_gap_m + 0.001) group[root(static_cast<int>(i))] = root(static_cast<int>(j));
+        if (separation(i, j) < options.contact_gap_m + 0.001)
+          group[root(static_cast<int>(i))] = root(static_cast<int>(j));
       }
     }
     for (size_t i = 0; i < poses->size(); ++i) {
@@ -182,8 +187,9 @@ TEST_F(PaperCell, FixedPosesStayAndTooManyObjectsAreReported) {
   tiny.max = tiny.min + Eigen::Vector2d(0.1, 0.1);
   EXPECT_FALSE(SampleClutter(shapes, {}, tiny, options, rng, 20).has_value());
   options.lying_fraction = 2;
-  EXPECT_NE(sortcell_test::ErrorOf([&] { SampleClutter(shapes, {}, PlacementArea(), options, rng); })
-                .find("lying fraction must be in [0, 1]"),
+  EXPECT_NE(sortcell_test::ErrorOf([&] {
+              SampleClutter(shapes, {}, PlacementArea(), options, rng);
+            }).find("lying fraction must be in [0, 1]"),
             std::string::npos);
 }
 
@@ -222,7 +228,8 @@ TEST_F(PaperCell, PlacedSceneStartsApartAndComesToRest) {
       const Eigen::Vector3d p(data->xpos[3 * b], data->xpos[3 * b + 1], data->xpos[3 * b + 2]);
       EXPECT_LT((p - start[i]).norm(), 0.005) << "seed " << seed << ": " << names_[i] << " moved";
       const double* v = data->cvel + 6 * b;
-      EXPECT_LT(Eigen::Vector3d(v[3], v[4], v[5]).norm(), 0.01) << "seed " << seed << ": " << names_[i] << " not at rest";
+      EXPECT_LT(Eigen::Vector3d(v[3], v[4], v[5]).norm(), 0.01)
+          << "seed " << seed << ": " << names_[i] << " not at rest";
     }
   }
 }

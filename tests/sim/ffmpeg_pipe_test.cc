@@ -104,8 +104,9 @@ namespace sortcell::sim {
 namespace {
 
 int FramesOf(const std::filesystem::path& video) {
-  const std::string command = "ffprobe -v error -count_frames -select_streams v:0 -show_entries stream=nb_read_frames -of csv=p=0 '" +
-                              video.string() + "'";
+  const std::string command =
+      "ffprobe -v error -count_frames -select_streams v:0 -show_entries stream=nb_read_frames -of csv=p=0 '" +
+      video.string() + "'";
   FILE* pipe = popen(command.c_str(), "r");
   if (!pipe) return -1;
   int frames = -1;

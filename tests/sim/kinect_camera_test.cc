@@ -168,8 +168,8 @@ TEST(KinectCamera, TableTopLiesWhereTheCellSaysAndEveryObjectIsLabelled) {
                    bottle2 = colour_of("bottle2");
   EXPECT_GT(bottle1[1], bottle1[0]);  // green tea: green over red and blue
   EXPECT_GT(bottle1[1], bottle1[2]);
-  EXPECT_GT(ball[0], ball[1] + 60);   // red ball
-  EXPECT_GT(bottle2[0], bottle2[1]);  // amber/red bottle
+  EXPECT_GT(ball[0], ball[1] + 60);              // red ball
+  EXPECT_GT(bottle2[0], bottle2[1]);             // amber/red bottle
   EXPECT_GT(box[0] + box[1] + box[2], 3 * 140);  // white box
 }
 
@@ -220,7 +220,8 @@ TEST(KinectCamera, AScenePastTheRenderersTextureLimitIsRefusedNotDrawnWhite) {
   const auto scene_with = [](int count) {
     std::string textures, materials;
     for (int i = 0; i < count; ++i) {
-      textures += "<texture name=\"t" + std::to_string(i) + "\" type=\"2d\" builtin=\"flat\" width=\"4\" height=\"4\" rgb1=\"1 0 0\"/>";
+      textures += "<texture name=\"t" + std::to_string(i) +
+                  "\" type=\"2d\" builtin=\"flat\" width=\"4\" height=\"4\" rgb1=\"1 0 0\"/>";
       materials += "<material name=\"m" + std::to_string(i) + "\" texture=\"t" + std::to_string(i) + "\"/>";
     }
     std::string scene = kWallScene;

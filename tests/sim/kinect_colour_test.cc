@@ -52,7 +52,7 @@ TEST(KinectColour, BlurSoftensAStepAndClipsAtEightBits) {
   p.exposure = 2.0;  // Bright side clips at 255, never wraps.
   std::mt19937_64 rng(1);
   const cv::Mat out = ApplyKinectColour(step, p, rng);
-  EXPECT_GT(out.at<cv::Vec3b>(10, 14)[1], 20);   // The dark side next to the edge picks up light.
+  EXPECT_GT(out.at<cv::Vec3b>(10, 14)[1], 20);  // The dark side next to the edge picks up light.
   EXPECT_LT(out.at<cv::Vec3b>(10, 14)[1], 255);
   EXPECT_EQ(out.at<cv::Vec3b>(10, 25)[1], 255);
   EXPECT_EQ(out.at<cv::Vec3b>(10, 2)[1], 0);
@@ -63,7 +63,8 @@ TEST(KinectColour, NoiseIsSeededAndHasTheGivenSpread) {
   p.noise_sigma = 3.0;
   const cv::Mat grey = Flat({128, 128, 128});
   std::mt19937_64 a(7), b(7), c(8);
-  const cv::Mat na = ApplyKinectColour(grey, p, a), nb = ApplyKinectColour(grey, p, b), nc = ApplyKinectColour(grey, p, c);
+  const cv::Mat na = ApplyKinectColour(grey, p, a), nb = ApplyKinectColour(grey, p, b),
+                nc = ApplyKinectColour(grey, p, c);
   EXPECT_EQ(cv::norm(na, nb, cv::NORM_INF), 0.0);
   EXPECT_GT(cv::norm(na, nc, cv::NORM_INF), 0.0);
   cv::Scalar mean, spread;
@@ -83,8 +84,8 @@ TEST(KinectColour, DisabledLeavesTheRenderAsItIs) {
 TEST(KinectColour, TheDefaultsDarkenAndDesaturateLikeTheRealSensor) {
   std::mt19937_64 rng(1);
   const cv::Vec3b out = ApplyKinectColour(Flat({230, 213, 56}), KinectColourParams{}, rng).at<cv::Vec3b>(10, 10);
-  EXPECT_LT(out[0], 200);                               // Darker (exposure 0.83).
-  EXPECT_GT(out[2], 56);                                // The blue of a yellow rises (saturation 0.74).
+  EXPECT_LT(out[0], 200);  // Darker (exposure 0.83).
+  EXPECT_GT(out[2], 56);   // The blue of a yellow rises (saturation 0.74).
 }
 
 TEST(KinectColour, JitterStaysInItsRanges) {

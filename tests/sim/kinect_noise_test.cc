@@ -109,8 +109,8 @@ TEST(KinectNoise, ProjectorShadowFallsLeftOfAForegroundEdge) {
   for (int v = 0; v < 480; v += 60) {
     const cv::Mat row = shadow.row(v);
     EXPECT_NEAR(cv::countNonZero(row), expected, 1.5) << "row " << v;
-    EXPECT_EQ(cv::countNonZero(row.colRange(320, 640)), 0);   // Nothing on or right of the slab.
-    EXPECT_EQ(row.at<unsigned char>(0, 319), 255);             // The band touches the edge.
+    EXPECT_EQ(cv::countNonZero(row.colRange(320, 640)), 0);  // Nothing on or right of the slab.
+    EXPECT_EQ(row.at<unsigned char>(0, 319), 255);           // The band touches the edge.
   }
   // With noise on, those pixels have no depth.
   std::mt19937_64 rng(5);

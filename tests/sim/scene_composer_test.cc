@@ -16,8 +16,8 @@ const std::filesystem::path kModels = SORTCELL_SOURCE_DIR "/models";
 using sortcell_test::ErrorOf;
 
 TEST(SceneComposer, ComposesTheCellWithChosenObjects) {
-  const Model scene = LoadComposedCell(kModels, {kModels / "objects/apple1.inc.xml", kModels / "objects/box.inc.xml"},
-                                       "two objects");
+  const Model scene =
+      LoadComposedCell(kModels, {kModels / "objects/apple1.inc.xml", kModels / "objects/box.inc.xml"}, "two objects");
   EXPECT_EQ(FreeBodyNames(scene), (std::vector<std::string>{"apple1", "box"}));
   EXPECT_NO_THROW(scene.Id(mjOBJ_SITE, "tcp"));  // The gripper sits on the flange.
   EXPECT_NO_THROW(scene.Id(mjOBJ_CAMERA, "kinect"));
@@ -42,7 +42,9 @@ TEST(SceneComposer, RendererAndCameraRejectMisuse) {
   mj_forward(scene.get(), data.get());
   OffscreenRenderer renderer(scene);
   cv::Mat rgb, depth;
-  EXPECT_NE(ErrorOf([&] { renderer.Render(data, {scene->ncam, 640, 480}, rgb, depth); }).find("camera id"),
+  EXPECT_NE(ErrorOf([&] {
+              renderer.Render(data, {scene->ncam, 640, 480}, rgb, depth);
+            }).find("camera id"),
             std::string::npos);
   KinectCamera kinect(scene);
   const KinectNoiseParams noise;

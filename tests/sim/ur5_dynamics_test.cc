@@ -21,7 +21,7 @@ class Ur5DynamicsAgreement : public ::testing::Test {
  protected:
   Ur5DynamicsAgreement() : model_(Model::FromFile(kCell)), data_(model_), arm_(model_) {
     const char* names[] = {"shoulder_pan_joint", "shoulder_lift_joint", "elbow_joint",
-                           "wrist_1_joint", "wrist_2_joint", "wrist_3_joint"};
+                           "wrist_1_joint",      "wrist_2_joint",       "wrist_3_joint"};
     for (int i = 0; i < 6; ++i) dof_[i] = model_->jnt_dofadr[mj_name2id(model_.get(), mjOBJ_JOINT, names[i])];
     for (const char* finger : {"finger_left_joint", "finger_right_joint"}) {
       finger_qpos_.push_back(model_->jnt_qposadr[mj_name2id(model_.get(), mjOBJ_JOINT, finger)]);
