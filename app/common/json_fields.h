@@ -106,6 +106,12 @@ void ReadAddedField(const nlohmann::json& json, const std::string& path, const c
   if (json.is_object() && json.contains(key)) ReadField(json, path, key, out);
 }
 
+/// As ReadNullable, for a key that later versions added: absent leaves `out` as it is.
+template <typename T>
+void ReadAddedNullable(const nlohmann::json& json, const std::string& path, const char* key, std::optional<T>& out) {
+  if (json.is_object() && json.contains(key)) ReadNullable(json, path, key, out);
+}
+
 /// A value or JSON null.
 template <typename T>
 nlohmann::json OrNull(const std::optional<T>& value) {

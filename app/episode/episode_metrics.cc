@@ -40,8 +40,10 @@ int ItemTally::Count(cell::ItemOutcome outcome) const {
 
 std::optional<double> Ratio(double a, int b) { return b > 0 ? std::optional<double>(a / b) : std::nullopt; }
 
-std::optional<double> CycleToBound(const ItemTally& tally) {
-  return tally.cycle_bound_s > 0 ? std::optional<double>(tally.bounded_cycle_s / tally.cycle_bound_s) : std::nullopt;
+std::optional<double> ItemTally::MeanCycleBound() const { return Ratio(cycle_bound_s, bounded); }
+
+std::optional<double> ItemTally::CycleToBound() const {
+  return cycle_bound_s > 0 ? std::optional<double>(bounded_cycle_s / cycle_bound_s) : std::nullopt;
 }
 
 std::optional<double> PicksPerHour(int sorted, double sim_time_s) {
@@ -61,8 +63,8 @@ EpisodeSummary SummarizeEpisode(const std::vector<ItemResult>& items, int attemp
   s.grasps = grasps;
   s.grasp_success_rate = Ratio(grasps, attempts);
   s.mean_cycle_time_s = Ratio(tally.cycle_s, tally.completed);
-  s.mean_cycle_bound_s = Ratio(tally.cycle_bound_s, tally.bounded);
-  s.cycle_to_bound = CycleToBound(tally);
+  s.mean_cycle_bound_s = tally.MeanCycleBound();
+  s.cycle_to_bound = tally.CycleToBound();
   s.picks_per_hour = PicksPerHour(tally.Count(cell::ItemOutcome::kSorted), run.sim_time_s);
   s.run = run;
   return s;
@@ -132,7 +134,7 @@ void from_json(const nlohmann::json& j, ItemResult& v) {
   ReadField(j, "", "attempts", v.attempts);
   ReadField(j, "", "outcome", v.outcome);
   ReadNullable(j, "", "cycle_time_s", v.cycle_time_s);
-  if (j.contains("cycle_bound_s")) ReadNullable(j, "", "cycle_bound_s", v.cycle_bound_s);  // Added later.
+  ReadAddedNullable(j, "", "cycle_bound_s", v.cycle_bound_s);
   ReadField(j, "", "final_xyz", v.final_xyz);
   ReadAddedField(j, "", "rule_bin", v.rule_bin);
   ReadAddedField(j, "", "bin", v.bin);
@@ -213,8 +215,8 @@ void from_json(const nlohmann::json& j, EpisodeSummary& v) {
   v.picks_per_hour = PicksPerHour(v.outcomes.at(cell::ItemOutcome::kSorted), v.run.sim_time_s);
   ReadAddedField(j, path, "cycle_phases_s", v.run.cycle_phases_s);
   ReadAddedField(j, path, "cycle_phases_bound_s", v.run.cycle_phases_bound_s);
-  if (j.contains("mean_cycle_bound_s")) ReadNullable(j, path, "mean_cycle_bound_s", v.mean_cycle_bound_s);
-  if (j.contains("cycle_to_bound")) ReadNullable(j, path, "cycle_to_bound", v.cycle_to_bound);
+  ReadAddedNullable(j, path, "mean_cycle_bound_s", v.mean_cycle_bound_s);
+  ReadAddedNullable(j, path, "cycle_to_bound", v.cycle_to_bound);
   ReadAddedField(j, path, "profile_wall_s", v.run.profile_wall_s);
   ReadAddedField(j, path, "physics_profile", v.run.physics_profile);
   ReadAddedField(j, path, "tracking_max_error_rad", v.run.tracking_max_error_rad);

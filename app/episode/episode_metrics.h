@@ -157,6 +157,10 @@ struct ItemTally {
 
   void Add(const ItemResult& item);
   int Count(cell::ItemOutcome outcome) const;
+  /// The mean cycle bound of the items that have one, or null.
+  std::optional<double> MeanCycleBound() const;
+  /// Their cycles over their bounds, or null without bounds.
+  std::optional<double> CycleToBound() const;
 };
 
 /// The episode summary over `items`: outcome counts, correct-sort rate, recognition accuracy (of the
@@ -165,8 +169,6 @@ EpisodeSummary SummarizeEpisode(const std::vector<ItemResult>& items, int attemp
 
 /// a / b, or null when b is 0.
 std::optional<double> Ratio(double a, int b);
-/// The items' cycles over their bounds, or null without bounds.
-std::optional<double> CycleToBound(const ItemTally& tally);
 /// Items sorted per simulated hour, or null without simulated time.
 std::optional<double> PicksPerHour(int sorted, double sim_time_s);
 

@@ -89,8 +89,8 @@ GroupFigures Figures(const Tally& t) {
   f.grasp_success_rate = Ratio(t.grasps, t.attempts);
   f.grasp_attempts = t.attempts;
   f.mean_cycle_time_s = Ratio(t.items.cycle_s, t.items.completed);
-  f.mean_cycle_bound_s = Ratio(t.items.cycle_bound_s, t.items.bounded);
-  f.cycle_to_bound = CycleToBound(t.items);
+  f.mean_cycle_bound_s = t.items.MeanCycleBound();
+  f.cycle_to_bound = t.items.CycleToBound();
   f.sim_time_s = t.sim_s;
   f.episode_wall_time_s = t.wall_s;
   if (t.wall_s > 0) f.real_time_factor = t.sim_s / t.wall_s;
