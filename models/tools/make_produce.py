@@ -12,7 +12,7 @@ texture on a visual mesh; the object touches the world through a simple primitiv
 
 The training variety (VARIETY): six more members of each category, <category>v<k>, for training only,
 covering each category's real colour range (scenes/objects/produce_variety.yaml, for a set's
-training_variety; produce.yaml does not name it yet, see the README; not in scenes/produce.xml). They have their own seed; the set's own instances are
+training_variety; produce.yaml does not name it yet, see docs/cell.md, Your own objects; not in scenes/produce.xml). They have their own seed; the set's own instances are
 drawn exactly as before.
 
 Reproducible: everything is drawn from one seeded generator per instance. The outputs are committed;

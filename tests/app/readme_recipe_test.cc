@@ -1,5 +1,5 @@
-// The README's sharded-sweep recipe for GNU parallel, run as the README writes it (read from
-// README.md, with the test's spec and output folder for its SPEC and OUT and this build's sortcell):
+// The sharded-sweep recipe for GNU parallel in docs/sorting-and-sweeps.md (`sortcell sweep`), run as written (read
+// from that page, with the test's spec and output folder for its SPEC and OUT and this build's sortcell):
 // shards in parallel, merged, --resume writing the summary, which must equal the unsharded run's.
 #include <gtest/gtest.h>
 
@@ -24,7 +24,7 @@ using sortcell_test::ReadFile;
 
 // The recipe's commands: the lines after its "SPEC=... OUT=..." line up to the Slurm comment.
 std::string ParallelRecipe() {
-  const std::string readme = ReadFile(kSource + "/README.md");
+  const std::string readme = ReadFile(kSource + "/docs/sorting-and-sweeps.md");
   const size_t heading = readme.find("# GNU parallel");
   const size_t first = readme.find('\n', readme.find("SPEC=", heading)) + 1;
   const size_t last = readme.find("# Slurm", first);
@@ -39,7 +39,7 @@ std::string ParallelRecipe() {
 TEST(ReadmeRecipe, GnuParallelShardsMergeToTheUnshardedSummary) {
   if (std::system("command -v parallel > /dev/null 2>&1") != 0) GTEST_SKIP() << "GNU parallel is not installed";
   const std::string recipe = ParallelRecipe();
-  ASSERT_NE(recipe.find("parallel "), std::string::npos) << "no recipe found in README.md";
+  ASSERT_NE(recipe.find("parallel "), std::string::npos) << "no recipe found in docs/sorting-and-sweeps.md";
   const sortcell_test::TempDir dir("recipe");
   const std::string spec = (dir / "spec.yaml").string(), out = (dir / "out").string();
   std::ofstream(spec) << "scene: " << kSource << "/scenes/cell.xml\nobject_set: " << kSource
