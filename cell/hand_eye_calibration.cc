@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "cell/motion_sequencer.h"
+#include "common/enum_names.h"
 #include "perception/cloud_pinhole.h"
 #include "robot/gripper_geometry.h"
 #include "robot/ik_selection.h"
@@ -50,23 +51,17 @@ MarkerShowing Show(CellIo& io, std::optional<perception::Pinhole>& pinhole) {
 
 }  // namespace
 
-const char* ToString(HandEyeStatus status) {
-  switch (status) {
-    case HandEyeStatus::kOk:
-      return "ok";
-    case HandEyeStatus::kTooFewSightings:
-      return "too_few_sightings";
-    case HandEyeStatus::kFault:
-      return "fault";
-  }
-  return "?";
-}
+constexpr EnumNames<HandEyeStatus, 3> kHandEyeStatusNames{{{HandEyeStatus::kOk, "ok"},
+                                                           {HandEyeStatus::kTooFewSightings, "too_few_sightings"},
+                                                           {HandEyeStatus::kFault, "fault"}}};
+
+const char* ToString(HandEyeStatus status) { return NameOf(kHandEyeStatusNames, status); }
 
 std::vector<std::optional<robot::Joints>> MarkerShowingJoints(const Eigen::Isometry3d& X_WC_prior,
                                                               const robot::Joints& q_start,
                                                               const HandEyeCalibrationParams& params) {
   std::vector<std::optional<robot::Joints>> joints;
-  robot::Joints q = q_start;
+  robot::Joints q = q_start;  // NOLINT(performance-unnecessary-copy-initialization): follows the arm (below)
   // Row by row, each row the other way: short moves between neighbouring places.
   int row = 0;
   for (double z : params.zs) {

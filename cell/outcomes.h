@@ -54,7 +54,7 @@ const char* ToString(ItemOutcome outcome);
 const char* ToString(EpisodeStatus status);
 
 /// The inverse of ToString.
-/// @throws std::invalid_argument "unknown <what> '<text>' (expected a, b, ...)".
+/// @throws std::invalid_argument "unknown <what> '<text>' (expected a, b or c)".
 AttemptResult ParseAttemptResult(std::string_view text);
 ItemOutcome ParseItemOutcome(std::string_view text);
 EpisodeStatus ParseEpisodeStatus(std::string_view text);

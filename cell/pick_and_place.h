@@ -75,10 +75,10 @@ struct PickReport {
 /// goes home (kMotionFailed); a missed grasp or a drop goes home too; a bin that cannot be reached
 /// sends the object back to where it was grasped (kPutBack); a fault of the cell ends it at once
 /// (kSimDiverged).
-PickReport PickAndPlace(MotionSequencer& motions, const PickRequest& request, const PickHooks& hooks = {});
+PickReport PickAndPlace(MotionSequencer& run, const PickRequest& request, const PickHooks& hooks = {});
 
 /// From where an attempt left the arm: straight up to `X_WT_exit` (if any), then home, one motion.
-bool GoHome(MotionSequencer& motions, const std::optional<Eigen::Isometry3d>& X_WT_exit, const robot::Joints& q_home,
+bool GoHome(MotionSequencer& run, const std::optional<Eigen::Isometry3d>& X_WT_exit, const robot::Joints& q_home,
             const ArmSpeeds& lines);
 
 }  // namespace sortcell::cell

@@ -3,7 +3,7 @@
 #include "fuzz/fuzz_input.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
-  const std::filesystem::path root = sortcell_fuzz::ScratchDir();
+  const std::filesystem::path& root = sortcell_fuzz::ScratchDir();
   for (const char* name : {"input.obj", "input.stl"}) {
     const std::filesystem::path file = root / name;
     sortcell_fuzz::WriteInput(file, data, size);

@@ -4,7 +4,7 @@
 #include "fuzz/fuzz_input.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
-  const std::filesystem::path root = sortcell_fuzz::ScratchDir();
+  const std::filesystem::path& root = sortcell_fuzz::ScratchDir();
   sortcell_fuzz::LinkFromSource(root, "models");
   const std::filesystem::path file = root / "scenes/objects/input.yaml";
   sortcell_fuzz::WriteInput(file, data, size);

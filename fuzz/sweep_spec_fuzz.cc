@@ -5,7 +5,7 @@
 #include "fuzz/fuzz_input.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
-  const std::filesystem::path root = sortcell_fuzz::ScratchDir();
+  const std::filesystem::path& root = sortcell_fuzz::ScratchDir();
   for (const char* name :
        {"models", "scenes/cell.xml", "scenes/produce.xml", "scenes/flange_tool.inc.xml", "scenes/objects"}) {
     sortcell_fuzz::LinkFromSource(root, name);

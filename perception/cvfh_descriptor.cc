@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "common/enum_names.h"
 #include "perception/normal_estimation.h"
 #include "perception/seconds_since.h"
 
@@ -28,17 +29,11 @@ const CvfhResult& Unusable(CvfhResult& result, DescriptorStatus status, std::str
 
 }  // namespace
 
-const char* ToString(DescriptorStatus status) {
-  switch (status) {
-    case DescriptorStatus::kOk:
-      return "ok";
-    case DescriptorStatus::kTooFewPoints:
-      return "too_few_points";
-    case DescriptorStatus::kNoHistogram:
-      return "no_histogram";
-  }
-  return "unknown";
-}
+constexpr EnumNames<DescriptorStatus, 3> kDescriptorStatusNames{{{DescriptorStatus::kOk, "ok"},
+                                                                 {DescriptorStatus::kTooFewPoints, "too_few_points"},
+                                                                 {DescriptorStatus::kNoHistogram, "no_histogram"}}};
+
+const char* ToString(DescriptorStatus status) { return NameOf(kDescriptorStatusNames, status); }
 
 CvfhResult ComputeCvfh(const Cloud& object_C, const CvfhParams& params) {
   auto valid = std::make_shared<Cloud>();

@@ -6,6 +6,7 @@
 #include <utility>
 #include <vector>
 
+#include "common/enum_names.h"
 #include "perception/seconds_since.h"
 
 namespace sortcell::perception {
@@ -24,35 +25,21 @@ Eigen::VectorXf NormalisedCvfh(const Eigen::VectorXf& raw) {
 
 }  // namespace
 
-std::string DescriptorName(DescriptorKind kind) {
-  switch (kind) {
-    case DescriptorKind::kCvfh:
-      return "cvfh";
-    case DescriptorKind::kColorCvfh:
-      return "color-cvfh";
-    case DescriptorKind::kColorCvfhNorm:
-      return "color-cvfh-norm";
-  }
-  return "";
-}
+constexpr EnumNames<DescriptorKind, 3> kDescriptorKindNames{{{DescriptorKind::kCvfh, "cvfh"},
+                                                             {DescriptorKind::kColorCvfh, "color-cvfh"},
+                                                             {DescriptorKind::kColorCvfhNorm, "color-cvfh-norm"}}};
 
-std::string DescriptorTitle(DescriptorKind kind) {
-  switch (kind) {
-    case DescriptorKind::kCvfh:
-      return "CVFH";
-    case DescriptorKind::kColorCvfh:
-      return "Color-CVFH";
-    case DescriptorKind::kColorCvfhNorm:
-      return "Color-CVFH (normalization)";
-  }
-  return "";
-}
+std::string DescriptorName(DescriptorKind kind) { return NameOf(kDescriptorKindNames, kind); }
+
+constexpr EnumNames<DescriptorKind, 3> kDescriptorKindTitles{
+    {{DescriptorKind::kCvfh, "CVFH"},
+     {DescriptorKind::kColorCvfh, "Color-CVFH"},
+     {DescriptorKind::kColorCvfhNorm, "Color-CVFH (normalization)"}}};
+
+std::string DescriptorTitle(DescriptorKind kind) { return NameOf(kDescriptorKindTitles, kind); }
 
 DescriptorKind ParseDescriptorKind(const std::string& name) {
-  for (DescriptorKind kind : {DescriptorKind::kCvfh, DescriptorKind::kColorCvfh, DescriptorKind::kColorCvfhNorm}) {
-    if (DescriptorName(kind) == name) return kind;
-  }
-  throw std::invalid_argument("unknown descriptor '" + name + "' (expected cvfh, color-cvfh or color-cvfh-norm)");
+  return ParseName(kDescriptorKindNames, name, "descriptor");
 }
 
 int DescriptorSize(DescriptorKind kind) { return kind == DescriptorKind::kCvfh ? kCvfhBins : kHsvBins + kCvfhBins; }

@@ -14,6 +14,8 @@
 #include <string>
 #include <type_traits>
 
+#include "common/enum_names.h"
+
 namespace sortcell::perception {
 namespace {
 
@@ -217,22 +219,12 @@ Familiarity ReadFamiliarity(const Reader& r) {
 
 }  // namespace
 
-const char* ToString(LabelKind kind) {
-  switch (kind) {
-    case LabelKind::kCategory:
-      return "category";
-    case LabelKind::kInstance:
-      return "instance";
-  }
-  return "unknown";
-}
+constexpr EnumNames<LabelKind, 2> kLabelKindNames{
+    {{LabelKind::kCategory, "category"}, {LabelKind::kInstance, "instance"}}};
 
-LabelKind ParseLabelKind(const std::string& name) {
-  for (LabelKind kind : {LabelKind::kCategory, LabelKind::kInstance}) {
-    if (name == ToString(kind)) return kind;
-  }
-  throw std::invalid_argument("unknown label kind '" + name + "' (expected category or instance)");
-}
+const char* ToString(LabelKind kind) { return NameOf(kLabelKindNames, kind); }
+
+LabelKind ParseLabelKind(const std::string& name) { return ParseName(kLabelKindNames, name, "label kind"); }
 
 RecognitionModel::Result RecognitionModel::Classify(const DescriptorParts& parts) const {
   const Prediction p = classifier.Predict(AssembleDescriptor(parts, descriptor));

@@ -18,6 +18,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "common/enum_names.h"
 #include "perception/seconds_since.h"
 
 namespace sortcell::perception {
@@ -273,17 +274,12 @@ void ClusterObjects(const Cloud& cloud, const std::vector<int>& above, const std
 
 }  // namespace
 
-const char* ToString(SegmentationStatus status) {
-  switch (status) {
-    case SegmentationStatus::kOk:
-      return "ok";
-    case SegmentationStatus::kNoValidPoints:
-      return "no_valid_points";
-    case SegmentationStatus::kNoPlane:
-      return "no_plane";
-  }
-  return "unknown";
-}
+constexpr EnumNames<SegmentationStatus, 3> kSegmentationStatusNames{
+    {{SegmentationStatus::kOk, "ok"},
+     {SegmentationStatus::kNoValidPoints, "no_valid_points"},
+     {SegmentationStatus::kNoPlane, "no_plane"}}};
+
+const char* ToString(SegmentationStatus status) { return NameOf(kSegmentationStatusNames, status); }
 
 SegmentationResult SegmentObjects(const Cloud& cloud, const std::optional<Eigen::Isometry3d>& X_WC,
                                   const Cloud* background, const SegmentationParams& params) {

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "common/enum_names.h"
 #include "perception/cloud.h"
 #include "perception/convex_segmentation.h"
 
@@ -38,6 +39,9 @@ struct SegmentationParams {
   /// How the voxels are clustered: by Euclidean distance (touching objects merge), or into convex
   /// clusters (perception/convex_segmentation.h: touching objects come apart at concave creases).
   enum class Clustering { kEuclidean, kConvex } clustering = Clustering::kEuclidean;
+  /// Their spellings ("euclidean", "convex": `sortcell segment --clustering`).
+  static constexpr EnumNames<Clustering, 2> kClusteringNames{
+      {{Clustering::kEuclidean, "euclidean"}, {Clustering::kConvex, "convex"}}};
   ConvexClusteringParams convex;
   double cluster_tolerance_m = 0.015;  ///< Euclidean clustering distance (3 voxels).
   int min_cluster_voxels = 25;

@@ -3,25 +3,19 @@
 #include <algorithm>
 #include <cmath>
 
+#include "common/enum_names.h"
 #include "robot/gripper_geometry.h"
 #include "robot/joint_trajectory.h"
 #include "robot/ur5_ik.h"
 
 namespace sortcell::robot {
 
-const char* ToString(GraspStatus status) {
-  switch (status) {
-    case GraspStatus::kOk:
-      return "ok";
-    case GraspStatus::kTooWide:
-      return "too_wide";
-    case GraspStatus::kTooLow:
-      return "too_low";
-    case GraspStatus::kUnreachable:
-      return "unreachable";
-  }
-  return "?";
-}
+constexpr EnumNames<GraspStatus, 4> kGraspStatusNames{{{GraspStatus::kOk, "ok"},
+                                                       {GraspStatus::kTooWide, "too_wide"},
+                                                       {GraspStatus::kTooLow, "too_low"},
+                                                       {GraspStatus::kUnreachable, "unreachable"}}};
+
+const char* ToString(GraspStatus status) { return NameOf(kGraspStatusNames, status); }
 
 Eigen::Isometry3d TopDownTcpPose(const Eigen::Vector3d& p_W, double pinch_yaw) {
   // z_T down, y_T (the closing direction) along the pinch direction, x_T = y_T x z_T.

@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "common/enum_names.h"
+
 namespace sortcell::robot {
 
 HoldState DetectHold(const GripperSensors& s, const HoldDetection& d) {
@@ -11,17 +13,10 @@ HoldState DetectHold(const GripperSensors& s, const HoldDetection& d) {
   return HoldState::kHolding;
 }
 
-const char* ToString(HoldState state) {
-  switch (state) {
-    case HoldState::kMoving:
-      return "moving";
-    case HoldState::kEmpty:
-      return "empty";
-    case HoldState::kHolding:
-      return "holding";
-  }
-  return "?";
-}
+constexpr EnumNames<HoldState, 3> kHoldStateNames{
+    {{HoldState::kMoving, "moving"}, {HoldState::kEmpty, "empty"}, {HoldState::kHolding, "holding"}}};
+
+const char* ToString(HoldState state) { return NameOf(kHoldStateNames, state); }
 
 bool CaughtAfterOpening(const GripperSensors& s, double gap, double tolerance, double min_force) {
   return s.gap() < std::fmin(gap, kMaxGap) - tolerance || s.left_pad_force >= min_force ||

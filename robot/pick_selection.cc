@@ -4,21 +4,16 @@
 #include <stdexcept>
 #include <string>
 
+#include "common/enum_names.h"
 #include "robot/gripper_geometry.h"
 
 namespace sortcell::robot {
 
-const char* ToString(SkipReason reason) {
-  switch (reason) {
-    case SkipReason::kNone:
-      return "none";
-    case SkipReason::kUnreachable:
-      return "unreachable";
-    case SkipReason::kGraspFailed:
-      return "grasp_failed";
-  }
-  return "?";
-}
+constexpr EnumNames<SkipReason, 3> kSkipReasonNames{{{SkipReason::kNone, "none"},
+                                                     {SkipReason::kUnreachable, "unreachable"},
+                                                     {SkipReason::kGraspFailed, "grasp_failed"}}};
+
+const char* ToString(SkipReason reason) { return NameOf(kSkipReasonNames, reason); }
 
 PickMemory::PickMemory(double radius, int max_attempts) : radius_(radius), max_attempts_(max_attempts) {
   if (!(radius > 0) || max_attempts < 1) {

@@ -10,8 +10,9 @@ cd "$(dirname "$0")/.."
 # benchmarks); the unit tests are built and run by sanitize.sh. CTest stands in a unit executable that
 # was not built by a test "<name>_NOT_BUILT", which is left out with the unit tests.
 SORTCELL_BUILD_TARGET=sortcell_release_tests ./scripts/setup.sh
-# The sources in .clang-format's style (scripts/format.sh applies it).
+# The sources in .clang-format's style (scripts/format.sh applies it), and clang-tidy's checks (.clang-tidy).
 ./scripts/check_format.sh
+./scripts/tidy.sh
 ctest --test-dir build --output-on-failure -j "$(nproc)" -LE unit -E '_NOT_BUILT$'
 ctest --test-dir build --output-on-failure -j "$(nproc)" -L bench
 ./scripts/sanitize.sh

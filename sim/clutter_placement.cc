@@ -209,24 +209,9 @@ std::optional<std::vector<TablePose>> SampleSparse(const std::vector<ObjectShape
 
 }  // namespace
 
-const char* ToString(PlacementMode mode) {
-  switch (mode) {
-    case PlacementMode::kSparse:
-      return "sparse";
-    case PlacementMode::kDense:
-      return "dense";
-    case PlacementMode::kClustered:
-      return "clustered";
-  }
-  return "?";
-}
+const char* ToString(PlacementMode mode) { return NameOf(kPlacementModeNames, mode); }
 
-std::optional<PlacementMode> ParsePlacementMode(const std::string& text) {
-  for (const PlacementMode mode : {PlacementMode::kSparse, PlacementMode::kDense, PlacementMode::kClustered}) {
-    if (text == ToString(mode)) return mode;
-  }
-  return std::nullopt;
-}
+std::optional<PlacementMode> ParsePlacementMode(const std::string& text) { return FindName(kPlacementModeNames, text); }
 
 std::vector<int> ClusterSizes(int count, std::mt19937_64& rng) {
   std::vector<int> sizes;

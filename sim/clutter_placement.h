@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "common/enum_names.h"
 #include "sim/object_placement.h"
 #include "sim/object_shape.h"
 
@@ -20,6 +21,10 @@ enum class PlacementMode {
   kDense,      ///< Objects may touch: each one placed against one placed before it (no gap).
   kClustered,  ///< Groups of 2-4 touching objects, the groups the area's gap apart.
 };
+
+/// The modes' spellings (CLI, sweep specs, metrics.json).
+inline constexpr EnumNames<PlacementMode, 3> kPlacementModeNames{
+    {{PlacementMode::kSparse, "sparse"}, {PlacementMode::kDense, "dense"}, {PlacementMode::kClustered, "clustered"}}};
 
 /// "sparse", "dense", "clustered".
 const char* ToString(PlacementMode mode);

@@ -40,7 +40,7 @@ struct BinRef {
   Eigen::Vector2d inner_half = Eigen::Vector2d::Zero();  ///< Half the inside along the bin's x and y (m).
 };
 /// "bin_<name>": the one place that spells a bin's body and site name.
-std::string BinName(const std::string& name);
+std::string BinName(const std::string& category);
 /// The scene's bins, in body order.
 /// @throws std::invalid_argument naming the scene and bin if a bin body has no box floor site.
 std::vector<BinRef> Bins(const Model& model);

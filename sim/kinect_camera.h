@@ -42,7 +42,8 @@ class KinectCamera {
  public:
   /// @throws std::invalid_argument naming the scene if it has no camera `camera_name` or its
   ///         off-screen buffer is smaller than width x height.
-  KinectCamera(const Model& model, const std::string& camera_name = "kinect", int width = 640, int height = 480);
+  explicit KinectCamera(const Model& model, const std::string& camera_name = "kinect", int width = 640,
+                        int height = 480);
 
   /// Renders the current state. With `noise` null the depth is ideal (NaN only where nothing was
   /// drawn) and the colour the clean render; otherwise the Kinect noise model is applied to the depth

@@ -72,7 +72,7 @@ cv::Mat CorrelationWindowDepth(const cv::Mat& depth, int window, double surface_
 /// lateral jitter; range and grazing dropouts; axial Gaussian noise; disparity quantisation. Deterministic for a given
 /// rng state.
 /// @throws std::invalid_argument if the image is not CV_32FC1 of k's size.
-cv::Mat ApplyKinectNoise(const cv::Mat& clean_depth, const CameraIntrinsics& k, const KinectNoiseParams& params,
+cv::Mat ApplyKinectNoise(const cv::Mat& ideal, const CameraIntrinsics& k, const KinectNoiseParams& p,
                          std::mt19937_64& rng);
 
 /// Incidence angle (rad, 0 = facing the camera) per pixel from a planar depth image, NaN where the

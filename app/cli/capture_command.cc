@@ -63,7 +63,7 @@ CaptureSummary RunCapture(const CaptureOptions& options, const std::vector<std::
   summary.render_wall_s = Seconds(render_start);
   summary.width = frame.intrinsics.width;
   summary.height = frame.intrinsics.height;
-  const int valid = cv::countNonZero(frame.depth == frame.depth);  // NaN != NaN
+  const int valid = cv::countNonZero(frame.depth == frame.depth);  // NOLINT(misc-redundant-expression): NaN != NaN
   summary.valid_depth_fraction = static_cast<double>(valid) / frame.depth.total();
 
   cv::Mat bgr;

@@ -92,7 +92,7 @@ void AddPlacementOptions(CLI::App& cmd, EpisodeCli& cli) {
   cmd.add_option("--placement", cli.placement_mode,
                  "How the other objects are drawn: sparse (3 cm of table between them), dense (they may touch), "
                  "clustered (groups of 2-4 touching objects)")
-      ->check(CLI::IsMember({"sparse", "dense", "clustered"}))
+      ->check(CLI::IsMember(AllNames(sim::kPlacementModeNames)))
       ->capture_default_str();
   cmd.add_option("--lying-fraction", cli.options.placement.lying_fraction,
                  "Chance (0-1) that a drawn object which can lie (bottles, boxes) is laid on its side at random yaw")

@@ -22,7 +22,7 @@ nlohmann::json IkJson(const std::vector<double>& pose, const std::vector<double>
 
 /// {"frame", "position", "rotation", "rpy"}.
 /// @throws std::invalid_argument naming --q for a wrong count or non-finite values.
-nlohmann::json FkJson(const std::vector<double>& q, bool tcp);
+nlohmann::json FkJson(const std::vector<double>& values, bool tcp);
 
 void AddKinematicsCommands(CLI::App& app, std::function<int()>& run);
 

@@ -189,7 +189,7 @@ void AddDatasetCommand(CLI::App& app, std::function<int()>& run, const std::vect
                       "Scenes: how objects stand, as in episodes: sparse (apart), dense (touching), clustered (groups "
                       "of 2-4); a comma list takes turns scene by scene, e.g. sparse,dense,clustered")
           ->delimiter(',')
-          ->check(CLI::IsMember({"sparse", "dense", "clustered"}))
+          ->check(CLI::IsMember(AllNames(sim::kPlacementModeNames)))
           ->capture_default_str();
   CLI::Option* lying = cmd->add_option("--lying-fraction", o->lying_fraction,
                                        "Scenes: chance (0-1) that a bottle or box lies on its side")

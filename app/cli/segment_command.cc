@@ -52,9 +52,9 @@ int RunSegment(const SegmentOptions& options, const std::vector<std::string>& co
 
   const auto start = std::chrono::steady_clock::now();
   perception::SegmentationResult result;
+  perception::SegmentationParams params;
+  params.clustering = ParseName(perception::SegmentationParams::kClusteringNames, options.clustering, "--clustering");
   try {
-    perception::SegmentationParams params;
-    if (options.clustering == "convex") params.clustering = perception::SegmentationParams::Clustering::kConvex;
     result = perception::SegmentObjects(*cloud, X_WC, background.get(), params);
   } catch (const std::invalid_argument& e) {
     throw std::invalid_argument("PCD '" + options.pcd.string() + "': " + e.what());
@@ -138,7 +138,7 @@ void AddSegmentCommand(CLI::App& app, std::function<int()>& run, const std::vect
   cmd->add_option("--clustering", options->clustering,
                   "euclidean: voxels within 15 mm join (touching objects merge); convex: supervoxels joined "
                   "across convex connections and cut at concave creases (LCCP), so touching objects come apart")
-      ->check(CLI::IsMember({"euclidean", "convex"}))
+      ->check(CLI::IsMember(AllNames(perception::SegmentationParams::kClusteringNames)))
       ->capture_default_str();
   cmd->add_option("--out", options->out, "Output folder (created if missing)")->required();
   cmd->callback([&run, options, command_line] {

@@ -13,6 +13,7 @@
 
 #include "app/common/output_dir.h"
 #include "assets/image_file.h"
+#include "common/enum_names.h"
 
 namespace sortcell::app {
 namespace {
@@ -188,38 +189,19 @@ std::string MetricsCsvRows(const Evaluation& e) {
 
 }  // namespace
 
-const char* ToString(Grouping grouping) {
-  switch (grouping) {
-    case Grouping::kSequence:
-      return "sequence";
-    case Grouping::kInstance:
-      return "instance";
-  }
-  return "unknown";
-}
+constexpr EnumNames<Grouping, 2> kGroupingNames{{{Grouping::kSequence, "sequence"}, {Grouping::kInstance, "instance"}}};
 
-Grouping ParseGrouping(const std::string& name) {
-  for (Grouping grouping : {Grouping::kSequence, Grouping::kInstance}) {
-    if (name == ToString(grouping)) return grouping;
-  }
-  throw std::invalid_argument("unknown grouping '" + name + "' (expected sequence or instance)");
-}
+const char* ToString(Grouping grouping) { return NameOf(kGroupingNames, grouping); }
 
-const char* ToString(ExperimentSplit split) {
-  switch (split) {
-    case ExperimentSplit::kPaper:
-      return "paper";
-    case ExperimentSplit::kUnseenInstance:
-      return "unseen-instance";
-  }
-  return "unknown";
-}
+Grouping ParseGrouping(const std::string& name) { return ParseName(kGroupingNames, name, "grouping"); }
+
+constexpr EnumNames<ExperimentSplit, 2> kExperimentSplitNames{
+    {{ExperimentSplit::kPaper, "paper"}, {ExperimentSplit::kUnseenInstance, "unseen-instance"}}};
+
+const char* ToString(ExperimentSplit split) { return NameOf(kExperimentSplitNames, split); }
 
 ExperimentSplit ParseExperimentSplit(const std::string& name) {
-  for (ExperimentSplit split : {ExperimentSplit::kPaper, ExperimentSplit::kUnseenInstance}) {
-    if (name == ToString(split)) return split;
-  }
-  throw std::invalid_argument("unknown split '" + name + "' (expected paper or unseen-instance)");
+  return ParseName(kExperimentSplitNames, name, "split");
 }
 
 perception::RecognitionModel TrainModel(const Dataset& dataset, std::vector<int> rows, const TrainRequest& request) {

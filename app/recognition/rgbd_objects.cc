@@ -180,7 +180,7 @@ perception::Cloud::Ptr ReadRgbdObjectsView(const RgbdObjectsView& view, const Rg
       p.x = static_cast<float>((u + corner.x - camera.cx) * z / camera.focal_px);
       p.y = static_cast<float>((v + corner.y - camera.cy) * z / camera.focal_px);
       p.z = static_cast<float>(z);
-      const cv::Vec3b bgr = colour.at<cv::Vec3b>(v, u);
+      const cv::Vec3b& bgr = colour.at<cv::Vec3b>(v, u);
       p.r = bgr[2];
       p.g = bgr[1];
       p.b = bgr[0];

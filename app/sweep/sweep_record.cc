@@ -13,9 +13,6 @@
 namespace sortcell::app {
 namespace {
 
-constexpr std::array<std::pair<RunStatus, const char*>, 3> kRunStatusNames{
-    {{RunStatus::kOk, "ok"}, {RunStatus::kCrashed, "crashed"}, {RunStatus::kTimeout, "timeout"}}};
-
 // `json[key]`, if present, into `out` (which is reset otherwise).
 template <typename T>
 void ReadOptional(const nlohmann::json& json, const char* key, std::optional<T>& out) {
@@ -78,21 +75,9 @@ SweepRecord ParseRecord(std::string_view line) {
 
 }  // namespace
 
-const char* ToString(RunStatus status) {
-  for (const auto& [value, text] : kRunStatusNames) {
-    if (value == status) return text;
-  }
-  return "?";  // Unreachable for a valid enumerator.
-}
+const char* ToString(RunStatus status) { return NameOf(kRunStatusNames, status); }
 
-RunStatus ParseRunStatus(std::string_view text) {
-  std::string expected;
-  for (const auto& [value, spelling] : kRunStatusNames) {
-    if (text == spelling) return value;
-    expected += (expected.empty() ? "" : ", ") + std::string(spelling);
-  }
-  throw std::invalid_argument("unknown run status '" + std::string(text) + "' (expected " + expected + ")");
-}
+RunStatus ParseRunStatus(std::string_view text) { return ParseName(kRunStatusNames, text, "run status"); }
 
 nlohmann::json WithoutMachineFigures(nlohmann::json record) {
   for (const char* key : {"wall_time_s", "peak_memory_mb", "replay"}) record.erase(key);

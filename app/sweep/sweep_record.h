@@ -23,6 +23,7 @@
 #include <nlohmann/json.hpp>
 
 #include "app/episode/episode_metrics.h"
+#include "common/enum_names.h"
 
 namespace sortcell::app {
 
@@ -33,10 +34,14 @@ enum class RunStatus {
   kTimeout,  ///< Killed after the spec's episode_timeout_s.
 };
 
+/// The statuses' spellings in results.jsonl and summary.json.
+inline constexpr EnumNames<RunStatus, 3> kRunStatusNames{
+    {{RunStatus::kOk, "ok"}, {RunStatus::kCrashed, "crashed"}, {RunStatus::kTimeout, "timeout"}}};
+
 /// "ok", "crashed", "timeout".
 const char* ToString(RunStatus status);
 /// The inverse of ToString.
-/// @throws std::invalid_argument "unknown run status '<text>' (expected ok, crashed, timeout)".
+/// @throws std::invalid_argument "unknown run status '<text>' (expected ok, crashed or timeout)".
 RunStatus ParseRunStatus(std::string_view text);
 
 /// One episode of a sweep: one line of results.jsonl.

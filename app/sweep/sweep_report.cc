@@ -441,7 +441,8 @@ std::string MarkdownCalibration(const nlohmann::json& c) {
 
 // How the workers ended (by status, with the episodes that did not end ok), and what they used.
 nlohmann::json RunsSummary(const std::vector<SweepRecord>& records) {
-  std::map<std::string, int> by_status{{"ok", 0}, {"crashed", 0}, {"timeout", 0}};
+  std::map<std::string, int> by_status;
+  for (const auto& [status, name] : kRunStatusNames) by_status[name] = 0;
   nlohmann::json failed = nlohmann::json::array();
   for (const auto& r : records) {
     ++by_status[ToString(r.status)];

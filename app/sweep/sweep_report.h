@@ -24,6 +24,6 @@ std::pair<double, double> WilsonInterval(int successes, int n);
 /// @throws std::invalid_argument "episode <n>: axes.<name>: expected ..." for a record whose value
 ///         of a varied axis has the wrong type.
 nlohmann::json WriteSweepReport(const std::filesystem::path& dir, const SweepSpec& spec,
-                                const std::vector<SweepRecord>& records);
+                                const std::vector<SweepRecord>& in_any_order);
 
 }  // namespace sortcell::app

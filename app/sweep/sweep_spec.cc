@@ -152,7 +152,7 @@ nlohmann::json AxisValue(const SpecReader& r, const std::string& name, const YAM
   }
   if (name == "placement") {
     if (!v.IsScalar() || !sim::ParsePlacementMode(v.Scalar())) {
-      y.Fail("key '" + where + "': expected sparse, dense or clustered, found " +
+      y.Fail("key '" + where + "': expected " + ExpectedNames(sim::kPlacementModeNames) + ", found " +
              (v.IsScalar() ? "'" + v.Scalar() + "'" : NodeKind(v)));
     }
     return v.Scalar();

@@ -253,7 +253,7 @@ TEST(Outcomes, EverySpellingReadsBack) {
     EXPECT_EQ(cell::ParseAttemptResult(cell::ToString(r)), r);
   }
   EXPECT_EQ(ErrorOf([] { cell::ParseEpisodeStatus("done"); }),
-            "unknown episode status 'done' (expected completed, time_limit, attempt_limit, sim_diverged)");
+            "unknown episode status 'done' (expected completed, time_limit, attempt_limit or sim_diverged)");
 }
 
 TEST(SegmentLabels, MajorityPurityAndIntersectionOverUnion) {

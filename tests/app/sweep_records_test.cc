@@ -158,7 +158,7 @@ TEST(SweepRecord, StatusSpellings) {
     EXPECT_EQ(ParseRunStatus(ToString(s)), s);
   }
   EXPECT_EQ(ErrorOf([] { ParseRunStatus("exploded"); }),
-            "unknown run status 'exploded' (expected ok, crashed, timeout)");
+            "unknown run status 'exploded' (expected ok, crashed or timeout)");
 }
 
 TEST(SweepResults, OldResultsReadAndWriteBackTheSameKeys) {

@@ -81,7 +81,7 @@ class TouchingBoxes : public ::testing::Test {
   std::unique_ptr<sim::Model> model_;
   std::unique_ptr<sim::Data> data_;
   std::unique_ptr<sim::KinectCamera> kinect_;
-  const sim::KinectNoiseParams noise_;
+  const sim::KinectNoiseParams noise_{};
   std::mt19937_64 rng_{5};
   perception::Cloud::Ptr background_;
 };

@@ -61,7 +61,10 @@ Stats ErrorStats(const cv::Mat& noisy, const cv::Mat& clean) {
   return s;
 }
 
-int InvalidCount(const cv::Mat& depth) { return static_cast<int>(depth.total()) - cv::countNonZero(depth == depth); }
+// NaN != NaN: depth == depth is false exactly where the depth is invalid.
+int InvalidCount(const cv::Mat& depth) {
+  return static_cast<int>(depth.total()) - cv::countNonZero(depth == depth);  // NOLINT(misc-redundant-expression)
+}
 
 TEST(KinectNoise, AxialSpreadMatchesTheModelAtOneAndTwoMetres) {
   KinectNoiseParams params;
