@@ -3,6 +3,7 @@
 #include <spdlog/fmt/fmt.h>
 
 #include "app/common/json_fields.h"
+#include "app/common/record_fields.h"
 
 namespace sortcell::app {
 
@@ -107,228 +108,244 @@ nlohmann::json OutcomeCountsJson(const OutcomeCounts& counts) {
   return j;
 }
 
-void to_json(nlohmann::json& j, const ItemResult& v) {
-  j = {{"name", v.name},
-       {"true_category", v.true_category},
-       {"predicted_category", OrNull(v.predicted_category)},
-       {"confidence", v.confidence},
-       {"attempts", v.attempts},
-       {"outcome", v.outcome},
-       {"cycle_time_s", OrNull(v.cycle_time_s)},
-       {"cycle_bound_s", OrNull(v.cycle_bound_s)},
-       {"final_xyz", v.final_xyz}};
-  // Records from before the cell files (no rule bin) are written back as they were read.
-  if (!v.rule_bin.empty()) {
-    j["rule_bin"] = v.rule_bin;
-    j["bin"] = v.bin;
-    j["unknown"] = v.unknown;
-    j["rejected"] = v.rejected;
+template <>
+struct RecordFields<ItemResult> {
+  template <typename Self, typename F>
+  static void Visit(Self& v, F&& field) {
+    field("name", v.name);
+    field("true_category", v.true_category);
+    field("predicted_category", v.predicted_category);
+    field("confidence", v.confidence);
+    field("attempts", v.attempts);
+    field("outcome", v.outcome);
+    field("cycle_time_s", v.cycle_time_s);
+    field("cycle_bound_s", v.cycle_bound_s, FieldRule::kAdded);
+    field("final_xyz", v.final_xyz);
   }
+};
+
+// What the cell files added: written only with a rule bin, so that records from before them are written
+// back as they were read.
+struct ItemBinFields {
+  template <typename Self, typename F>
+  static void Visit(Self& v, F&& field) {
+    field("rule_bin", v.rule_bin, FieldRule::kAdded);
+    field("bin", v.bin, FieldRule::kAdded);
+    field("unknown", v.unknown, FieldRule::kAdded);
+    field("rejected", v.rejected, FieldRule::kAdded);
+  }
+};
+
+void to_json(nlohmann::json& j, const ItemResult& v) {
+  WriteFields(j, v);
+  if (!v.rule_bin.empty()) WriteFields(j, v, ItemBinFields{});
 }
 
 void from_json(const nlohmann::json& j, ItemResult& v) {
-  ReadField(j, "", "name", v.name);
-  ReadField(j, "", "true_category", v.true_category);
-  ReadNullable(j, "", "predicted_category", v.predicted_category);
-  ReadField(j, "", "confidence", v.confidence);
-  ReadField(j, "", "attempts", v.attempts);
-  ReadField(j, "", "outcome", v.outcome);
-  ReadNullable(j, "", "cycle_time_s", v.cycle_time_s);
-  ReadAddedNullable(j, "", "cycle_bound_s", v.cycle_bound_s);
-  ReadField(j, "", "final_xyz", v.final_xyz);
-  ReadAddedField(j, "", "rule_bin", v.rule_bin);
-  ReadAddedField(j, "", "bin", v.bin);
-  ReadAddedField(j, "", "unknown", v.unknown);
-  ReadAddedField(j, "", "rejected", v.rejected);
+  ReadFields(j, "", v);
+  ReadFields(j, "", v, ItemBinFields{});
 }
 
+// The summary's own figures; the run's (RunFigures) are written flat beside them.
+struct SummaryFields {
+  template <typename Self, typename F>
+  static void Visit(Self& v, F&& field) {
+    field("items", v.items);
+    field("correct_sort_rate", v.correct_sort_rate);
+    field("recognition_accuracy", v.recognition_accuracy);
+    field("items_classified", v.items_classified);
+    field("grasp_attempts", v.grasp_attempts);
+    field("grasps", v.grasps);
+    field("grasp_success_rate", v.grasp_success_rate);
+    field("mean_cycle_time_s", v.mean_cycle_time_s);
+    field("mean_cycle_bound_s", v.mean_cycle_bound_s, FieldRule::kAdded);
+    field("cycle_to_bound", v.cycle_to_bound, FieldRule::kAdded);
+    field("calibration", v.calibration, FieldRule::kAdded);
+  }
+};
+
+template <>
+struct RecordFields<RunFigures> {
+  template <typename Self, typename F>
+  static void Visit(Self& v, F&& field) {
+    field("status", v.status);
+    field("sim_time_s", v.sim_time_s);
+    field("wall_time_s", v.wall_time_s);
+    field("real_time_factor", v.real_time_factor);
+    field("frames", v.frames);
+    field("perception_ms_per_frame", v.perception_ms_per_frame);
+    field("render_ms_per_frame", v.render_ms_per_frame);
+    field("video_frames", v.video_frames);
+    field("video_render_wall_s", v.video_render_wall_s);
+    field("mujoco_warnings", v.mujoco_warnings);
+    field("cycle_phases_s", v.cycle_phases_s, FieldRule::kAdded);
+    field("cycle_phases_bound_s", v.cycle_phases_bound_s, FieldRule::kAdded);
+    field("profile_wall_s", v.profile_wall_s, FieldRule::kAdded);
+    field("physics_profile", v.physics_profile, FieldRule::kAdded);
+    field("tracking_max_error_rad", v.tracking_max_error_rad, FieldRule::kAdded);
+    field("torque_saturated_samples", v.torque_saturated_samples, FieldRule::kAdded);
+    field("carry_slip_max_mm", v.carry_slip_max_mm, FieldRule::kAdded);
+    field("carry_turn_max_deg", v.carry_turn_max_deg, FieldRule::kAdded);
+    field("carries", v.carries, FieldRule::kAdded);
+  }
+};
+
 void to_json(nlohmann::json& j, const EpisodeSummary& v) {
-  j = {{"items", v.items},
-       {"outcomes", OutcomeCountsJson(v.outcomes)},
-       {"correct_sort_rate", OrNull(v.correct_sort_rate)},
-       {"recognition_accuracy", OrNull(v.recognition_accuracy)},
-       {"items_classified", v.items_classified},
-       {"grasp_attempts", v.grasp_attempts},
-       {"grasps", v.grasps},
-       {"grasp_success_rate", OrNull(v.grasp_success_rate)},
-       {"mean_cycle_time_s", OrNull(v.mean_cycle_time_s)},
-       {"mean_cycle_bound_s", OrNull(v.mean_cycle_bound_s)},
-       {"cycle_to_bound", OrNull(v.cycle_to_bound)},
-       {"picks_per_hour", OrNull(v.picks_per_hour)},
-       // The run's own figures, flat beside the counts.
-       {"status", v.run.status},
-       {"sim_time_s", v.run.sim_time_s},
-       {"wall_time_s", v.run.wall_time_s},
-       {"real_time_factor", v.run.real_time_factor},
-       {"frames", v.run.frames},
-       {"perception_ms_per_frame", v.run.perception_ms_per_frame},
-       {"render_ms_per_frame", v.run.render_ms_per_frame},
-       {"video_frames", v.run.video_frames},
-       {"video_render_wall_s", v.run.video_render_wall_s},
-       {"mujoco_warnings", v.run.mujoco_warnings},
-       {"cycle_phases_s", v.run.cycle_phases_s},
-       {"cycle_phases_bound_s", v.run.cycle_phases_bound_s},
-       {"profile_wall_s", v.run.profile_wall_s},
-       {"physics_profile", v.run.physics_profile},
-       {"tracking_max_error_rad", v.run.tracking_max_error_rad},
-       {"torque_saturated_samples", v.run.torque_saturated_samples},
-       {"carry_slip_max_mm", v.run.carry_slip_max_mm},
-       {"carry_slip_mean_mm", v.run.carries > 0 ? v.run.carry_slip_sum_mm / v.run.carries : 0.0},
-       {"carry_turn_max_deg", v.run.carry_turn_max_deg},
-       {"carries", v.run.carries},
-       {"calibration", OrNull(v.calibration)}};
+  WriteFields(j, v, SummaryFields{});
+  WriteFields(j, v.run);
+  j["outcomes"] = OutcomeCountsJson(v.outcomes);
+  j["picks_per_hour"] = OrNull(v.picks_per_hour);
+  j["carry_slip_mean_mm"] = v.run.carries > 0 ? v.run.carry_slip_sum_mm / v.run.carries : 0.0;
 }
 
 void from_json(const nlohmann::json& j, EpisodeSummary& v) {
   const std::string path = "summary";
-  ReadField(j, path, "items", v.items);
+  v.calibration.reset();
+  ReadFields(j, path, v, SummaryFields{});
+  ReadFields(j, path, v.run);
   nlohmann::json outcomes;
   ReadField(j, path, "outcomes", outcomes);
   v.outcomes.clear();
   for (const auto outcome : cell::kItemOutcomes) {
     // `ungraspable` came later: records written before it have none (0).
     v.outcomes[outcome] = 0;
-    if (outcome == cell::ItemOutcome::kUngraspable) {
-      ReadAddedField(outcomes, path + ".outcomes", cell::ToString(outcome), v.outcomes[outcome]);
-    } else {
-      ReadField(outcomes, path + ".outcomes", cell::ToString(outcome), v.outcomes[outcome]);
-    }
+    ReadByRule(outcomes, path + ".outcomes", cell::ToString(outcome), v.outcomes[outcome],
+               outcome == cell::ItemOutcome::kUngraspable ? FieldRule::kAdded : FieldRule::kRequired);
   }
-  ReadNullable(j, path, "correct_sort_rate", v.correct_sort_rate);
-  ReadNullable(j, path, "recognition_accuracy", v.recognition_accuracy);
-  ReadField(j, path, "items_classified", v.items_classified);
-  ReadField(j, path, "grasp_attempts", v.grasp_attempts);
-  ReadField(j, path, "grasps", v.grasps);
-  ReadNullable(j, path, "grasp_success_rate", v.grasp_success_rate);
-  ReadNullable(j, path, "mean_cycle_time_s", v.mean_cycle_time_s);
-  ReadField(j, path, "status", v.run.status);
-  ReadField(j, path, "sim_time_s", v.run.sim_time_s);
-  ReadField(j, path, "wall_time_s", v.run.wall_time_s);
-  ReadField(j, path, "real_time_factor", v.run.real_time_factor);
-  ReadField(j, path, "frames", v.run.frames);
-  ReadField(j, path, "perception_ms_per_frame", v.run.perception_ms_per_frame);
-  ReadField(j, path, "render_ms_per_frame", v.run.render_ms_per_frame);
-  ReadField(j, path, "video_frames", v.run.video_frames);
-  ReadField(j, path, "video_render_wall_s", v.run.video_render_wall_s);
-  ReadField(j, path, "mujoco_warnings", v.run.mujoco_warnings);
-  // Added later: records written before them still read.
+  // Derived, not read: records from before it still have it.
   v.picks_per_hour = PicksPerHour(v.outcomes.at(cell::ItemOutcome::kSorted), v.run.sim_time_s);
-  ReadAddedField(j, path, "cycle_phases_s", v.run.cycle_phases_s);
-  ReadAddedField(j, path, "cycle_phases_bound_s", v.run.cycle_phases_bound_s);
-  ReadAddedNullable(j, path, "mean_cycle_bound_s", v.mean_cycle_bound_s);
-  ReadAddedNullable(j, path, "cycle_to_bound", v.cycle_to_bound);
-  ReadAddedField(j, path, "profile_wall_s", v.run.profile_wall_s);
-  ReadAddedField(j, path, "physics_profile", v.run.physics_profile);
-  ReadAddedField(j, path, "tracking_max_error_rad", v.run.tracking_max_error_rad);
-  ReadAddedField(j, path, "torque_saturated_samples", v.run.torque_saturated_samples);
-  ReadAddedField(j, path, "carry_slip_max_mm", v.run.carry_slip_max_mm);
-  ReadAddedField(j, path, "carries", v.run.carries);
-  ReadAddedField(j, path, "carry_turn_max_deg", v.run.carry_turn_max_deg);
   double mean_mm = 0;
   ReadAddedField(j, path, "carry_slip_mean_mm", mean_mm);
   v.run.carry_slip_sum_mm = mean_mm * v.run.carries;
-  v.calibration.reset();
-  if (j.contains("calibration")) ReadNullable(j, path, "calibration", v.calibration);
 }
 
-void to_json(nlohmann::json& j, const CalibrationFigures& v) {
-  j = {{"status", v.status},
-       {"sightings", v.sightings},
-       {"inliers", v.inliers},
-       {"rms_residual_m", v.rms_residual_m},
-       {"duration_s", v.duration_s},
-       {"error_m", v.error_m},
-       {"error_rad", v.error_rad},
-       {"prior_error_m", v.prior_error_m},
-       {"prior_error_rad", v.prior_error_rad}};
-}
+template <>
+struct RecordFields<CalibrationFigures> {
+  template <typename Self, typename F>
+  static void Visit(Self& v, F&& field) {
+    field("status", v.status);
+    field("sightings", v.sightings);
+    field("inliers", v.inliers);
+    field("rms_residual_m", v.rms_residual_m);
+    field("duration_s", v.duration_s);
+    field("error_m", v.error_m);
+    field("error_rad", v.error_rad);
+    field("prior_error_m", v.prior_error_m);
+    field("prior_error_rad", v.prior_error_rad);
+  }
+};
 
-void from_json(const nlohmann::json& j, CalibrationFigures& v) {
-  const std::string path;  // ReadField names the record: "summary.calibration: <key>: ...".
-  ReadField(j, path, "status", v.status);
-  ReadField(j, path, "sightings", v.sightings);
-  ReadField(j, path, "inliers", v.inliers);
-  ReadField(j, path, "rms_residual_m", v.rms_residual_m);
-  ReadField(j, path, "duration_s", v.duration_s);
-  ReadField(j, path, "error_m", v.error_m);
-  ReadField(j, path, "error_rad", v.error_rad);
-  ReadField(j, path, "prior_error_m", v.prior_error_m);
-  ReadField(j, path, "prior_error_rad", v.prior_error_rad);
-}
+void to_json(nlohmann::json& j, const CalibrationFigures& v) { WriteFields(j, v); }
 
-void to_json(nlohmann::json& j, const EpisodeVariation& v) {
-  j = {{"light_intensity", v.light_intensity}, {"noise_scale", v.noise_scale},
-       {"friction_scale", v.friction_scale},   {"mass_scale", v.mass_scale},
-       {"camera_shift_m", v.camera_shift_m},   {"camera_turn_rad", v.camera_turn_rad},
-       {"colour_jitter", v.colour_jitter}};
-}
+// ReadField names the record: "summary.calibration: <key>: ...".
+void from_json(const nlohmann::json& j, CalibrationFigures& v) { ReadFields(j, "", v); }
+
+template <>
+struct RecordFields<EpisodeVariation> {
+  template <typename Self, typename F>
+  static void Visit(Self& v, F&& field) {
+    field("light_intensity", v.light_intensity);
+    field("noise_scale", v.noise_scale);
+    field("friction_scale", v.friction_scale);
+    field("mass_scale", v.mass_scale);
+    field("camera_shift_m", v.camera_shift_m);
+    field("camera_turn_rad", v.camera_turn_rad);
+    field("colour_jitter", v.colour_jitter);
+  }
+};
+
+void to_json(nlohmann::json& j, const EpisodeVariation& v) { WriteFields(j, v); }
+
+template <>
+struct RecordFields<PhaseHold> {
+  template <typename Self, typename F>
+  static void Visit(Self& v, F&& field) {
+    field("phase", v.phase);
+    field("end_s", v.end_s);
+    field("hold", v.hold);
+    field("gap_m", v.gap_m);
+  }
+};
+
+void to_json(nlohmann::json& j, const PhaseHold& v) { WriteFields(j, v); }
+
+// Every line of the log: an attempt or a skipped cluster.
+template <>
+struct RecordFields<AttemptLogEntry> {
+  template <typename Self, typename F>
+  static void Visit(Self& v, F&& field) {
+    field("time_s", v.time_s);
+    field("category", v.category);
+    field("bin", v.bin);
+    field("xy", v.xy);
+    field("result", v.result);
+  }
+};
+
+// An attempt's figures (beside its duration_s and phases), which a skipped cluster has none of.
+struct AttemptFields {
+  template <typename Self, typename F>
+  static void Visit(Self& v, F&& field) {
+    field("confidence", v.confidence);
+    field("pinch_yaw", v.pinch_yaw);
+    field("width_m", v.width_m);
+    field("top_z_m", v.top_z_m);
+    field("lying", v.lying);
+    field("release_clearance_m", v.release_clearance_m);
+    field("max_friction_use", v.max_friction_use);
+    field("recentred_m", v.recentred_m);
+    field("squeezed_harder_in", v.squeezed_harder_in);
+    field("truth_object", v.truth_object);
+    field("truth_centre_error_m", v.truth_centre_error_m);
+    field("truth_width_error_m", v.truth_width_error_m);
+    field("detail", v.detail);
+  }
+};
 
 void to_json(nlohmann::json& j, const AttemptLogEntry& v) {
-  j = {{"time_s", v.time_s}, {"category", v.category}, {"bin", v.bin}, {"xy", v.xy}, {"result", v.result}};
-  // A skipped cluster has no attempt figures; an attempt has all of them.
+  WriteFields(j, v);
   if (!v.duration_s) return;
   j["duration_s"] = *v.duration_s;
-  j["confidence"] = OrNull(v.confidence);
-  j["pinch_yaw"] = OrNull(v.pinch_yaw);
-  j["width_m"] = OrNull(v.width_m);
-  j["top_z_m"] = OrNull(v.top_z_m);
-  j["lying"] = OrNull(v.lying);
-  j["release_clearance_m"] = OrNull(v.release_clearance_m);
-  nlohmann::json phases = nlohmann::json::array();
-  for (const auto& p : v.phases)
-    phases.push_back({{"phase", p.phase}, {"end_s", p.end_s}, {"hold", p.hold}, {"gap_m", p.gap_m}});
-  j["phases"] = phases;
-  j["max_friction_use"] = OrNull(v.max_friction_use);
-  j["recentred_m"] = OrNull(v.recentred_m);
-  j["squeezed_harder_in"] = OrNull(v.squeezed_harder_in);
-  j["truth_object"] = OrNull(v.truth_object);
-  j["truth_centre_error_m"] = OrNull(v.truth_centre_error_m);
-  j["truth_width_error_m"] = OrNull(v.truth_width_error_m);
-  j["detail"] = v.detail;
+  j["phases"] = v.phases;
+  WriteFields(j, v, AttemptFields{});
 }
 
 void from_json(const nlohmann::json& j, AttemptLogEntry& v) {
   v = AttemptLogEntry{};
-  ReadField(j, "", "time_s", v.time_s);
-  ReadField(j, "", "category", v.category);
-  ReadField(j, "", "bin", v.bin);
-  ReadField(j, "", "xy", v.xy);
-  ReadField(j, "", "result", v.result);
+  ReadFields(j, "", v);
   if (!j.contains("duration_s")) return;  // A skipped cluster.
   double duration = 0;
   ReadField(j, "", "duration_s", duration);
   v.duration_s = duration;
-  ReadNullable(j, "", "confidence", v.confidence);
-  ReadNullable(j, "", "pinch_yaw", v.pinch_yaw);
-  ReadNullable(j, "", "width_m", v.width_m);
-  ReadNullable(j, "", "top_z_m", v.top_z_m);
-  ReadNullable(j, "", "lying", v.lying);
-  ReadNullable(j, "", "release_clearance_m", v.release_clearance_m);
   nlohmann::json phases;
   ReadField(j, "", "phases", phases);
   if (!phases.is_array()) throw std::invalid_argument("phases: expected a list");
   for (size_t i = 0; i < phases.size(); ++i) {
-    const std::string where = "phases[" + std::to_string(i) + "]";
     PhaseHold p;
-    ReadField(phases[i], where, "phase", p.phase);
-    ReadField(phases[i], where, "end_s", p.end_s);
-    ReadField(phases[i], where, "hold", p.hold);
-    ReadField(phases[i], where, "gap_m", p.gap_m);
+    ReadFields(phases[i], "phases[" + std::to_string(i) + "]", p);
     v.phases.push_back(p);
   }
-  ReadNullable(j, "", "max_friction_use", v.max_friction_use);
-  ReadNullable(j, "", "recentred_m", v.recentred_m);
-  ReadNullable(j, "", "squeezed_harder_in", v.squeezed_harder_in);
-  ReadNullable(j, "", "truth_object", v.truth_object);
-  ReadNullable(j, "", "truth_centre_error_m", v.truth_centre_error_m);
-  ReadNullable(j, "", "truth_width_error_m", v.truth_width_error_m);
-  ReadField(j, "", "detail", v.detail);
+  ReadFields(j, "", v, AttemptFields{});
 }
 
-void to_json(nlohmann::json& j, const EpisodeMetrics& v) {
-  j = {{"seed", v.seed},       {"scene", v.scene},           {"cell", v.cell},           {"object_set", v.object_set},
-       {"model", v.model},     {"descriptor", v.descriptor}, {"variation", v.variation}, {"items", v.items},
-       {"summary", v.summary}, {"attempts", v.attempts},     {"video", OrNull(v.video)}};
-}
+template <>
+struct RecordFields<EpisodeMetrics> {
+  template <typename Self, typename F>
+  static void Visit(Self& v, F&& field) {
+    field("seed", v.seed);
+    field("scene", v.scene);
+    field("cell", v.cell);
+    field("object_set", v.object_set);
+    field("model", v.model);
+    field("descriptor", v.descriptor);
+    field("variation", v.variation);
+    field("items", v.items);
+    field("summary", v.summary);
+    field("attempts", v.attempts);
+    field("video", v.video);
+  }
+};
+
+void to_json(nlohmann::json& j, const EpisodeMetrics& v) { WriteFields(j, v); }
 
 }  // namespace sortcell::app

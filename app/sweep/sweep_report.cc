@@ -15,6 +15,7 @@
 
 #include "app/common/json_fields.h"
 #include "app/common/output_dir.h"
+#include "app/common/record_fields.h"
 #include "app/episode/episode_metrics.h"
 
 namespace sortcell::app {
@@ -124,31 +125,46 @@ nlohmann::json RejectionJson(const GroupFigures& f) {
           {"known_rejected_rate", OrNull(Ratio(f.known_rejected, f.known))}};
 }
 
+}  // namespace
+
+// summary.json's keys of a group (the outcome counts and the rejection figures beside them).
+template <>
+struct RecordFields<GroupFigures> {
+  template <typename Self, typename F>
+  static void Visit(Self& f, F&& field) {
+    field("episodes", f.episodes);
+    field("episodes_failed", f.episodes_failed);
+    field("items", f.items);
+    field("correct_sort_rate", f.correct_sort_rate);
+    field("correct_sort_rate_ci95", f.ci95);
+    field("recognition_accuracy", f.recognition_accuracy);
+    field("grasp_success_rate", f.grasp_success_rate);
+    field("grasp_attempts", f.grasp_attempts);
+    field("mean_cycle_time_s", f.mean_cycle_time_s);
+    field("mean_cycle_bound_s", f.mean_cycle_bound_s);
+    field("cycle_to_bound", f.cycle_to_bound);
+    field("picks_per_hour", f.picks_per_hour);
+    field("cycle_phases_s", f.cycle_phases_s);
+    field("cycle_phases_bound_s", f.cycle_phases_bound_s);
+    field("torque_saturated_samples", f.torque_saturated_samples);
+    field("tracking_max_error_rad", f.tracking_max_error_rad);
+    field("carry_slip_max_mm", f.carry_slip_max_mm);
+    field("carry_slip_mean_mm", f.carry_slip_mean_mm);
+    field("carry_turn_max_deg", f.carry_turn_max_deg);
+    field("sim_time_s", f.sim_time_s);
+    field("episode_wall_time_s", f.episode_wall_time_s);
+    field("real_time_factor", f.real_time_factor);
+  }
+};
+
+namespace {
+
 nlohmann::json FiguresJson(const GroupFigures& f) {
-  return {{"episodes", f.episodes},
-          {"episodes_failed", f.episodes_failed},
-          {"items", f.items},
-          {"correct_sort_rate", OrNull(f.correct_sort_rate)},
-          {"correct_sort_rate_ci95", {f.ci95.first, f.ci95.second}},
-          {"outcomes", OutcomeCountsJson(f.outcomes)},
-          {"recognition_accuracy", OrNull(f.recognition_accuracy)},
-          {"grasp_success_rate", OrNull(f.grasp_success_rate)},
-          {"grasp_attempts", f.grasp_attempts},
-          {"mean_cycle_time_s", OrNull(f.mean_cycle_time_s)},
-          {"mean_cycle_bound_s", OrNull(f.mean_cycle_bound_s)},
-          {"cycle_to_bound", OrNull(f.cycle_to_bound)},
-          {"picks_per_hour", OrNull(f.picks_per_hour)},
-          {"cycle_phases_s", f.cycle_phases_s},
-          {"cycle_phases_bound_s", f.cycle_phases_bound_s},
-          {"torque_saturated_samples", f.torque_saturated_samples},
-          {"tracking_max_error_rad", f.tracking_max_error_rad},
-          {"carry_slip_max_mm", f.carry_slip_max_mm},
-          {"carry_slip_mean_mm", OrNull(f.carry_slip_mean_mm)},
-          {"carry_turn_max_deg", f.carry_turn_max_deg},
-          {"sim_time_s", f.sim_time_s},
-          {"episode_wall_time_s", f.episode_wall_time_s},
-          {"real_time_factor", OrNull(f.real_time_factor)},
-          {"rejection", RejectionJson(f)}};
+  nlohmann::json j;
+  WriteFields(j, f);
+  j["outcomes"] = OutcomeCountsJson(f.outcomes);
+  j["rejection"] = RejectionJson(f);
+  return j;
 }
 
 // The outcomes other than sorted (the failures), in metrics.json's order.
