@@ -6,6 +6,7 @@
 
 #include "perception/descriptor.h"
 #include "perception/occlusion.h"
+#include "perception/recognition_model.h"
 #include "robot/footprint_estimation.h"
 
 namespace sortcell::cell {
@@ -70,11 +71,11 @@ Observation ObserveScene(const perception::Cloud& cloud, const CameraCalibration
       d.p_W_xy.push_back(p_W[k].head<2>());
       d.p_W_z.push_back(p_W[k].z());
     }
-    const perception::DescriptorParts parts = perception::ComputeDescriptorParts(*segment.cloud_C, model.params);
-    if (parts.status == perception::DescriptorStatus::kOk) {
-      const auto result = model.Classify(parts);
-      d.category = result.name;
-      d.confidence = result.confidence;
+    // The reject rule is the sorting rules' (SortingPolicy: the reject bin).
+    const perception::Recognition recognition = perception::Recognise(*segment.cloud_C, model);
+    if (recognition.described()) {
+      d.category = recognition.result.name;
+      d.confidence = recognition.result.confidence;
     }
     d.segment = std::move(segment);
     observation.detections.push_back(std::move(d));

@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "perception/reject_rule.h"
+
 namespace sortcell::cell {
 
 struct SortingRules {
@@ -17,7 +19,9 @@ struct SortingRules {
   double reject_below = 0;                    ///< Recognised less surely than this (0-1): to the reject bin (0: never).
 
   /// Whether an object recognised with `confidence` goes to the reject bin.
-  bool Rejects(double confidence) const { return !reject_bin.empty() && confidence < reject_below; }
+  bool Rejects(double confidence) const {
+    return !reject_bin.empty() && perception::Rejected(confidence, reject_below);
+  }
   /// The bin the rules send `category` to; empty when no rule names one.
   std::optional<std::string> BinOf(const std::string& category) const;
   /// The bin for an object recognised as `category` with `confidence`: the reject bin below

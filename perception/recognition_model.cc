@@ -224,6 +224,17 @@ constexpr EnumNames<LabelKind, 2> kLabelKindNames{
 
 const char* ToString(LabelKind kind) { return NameOf(kLabelKindNames, kind); }
 
+Recognition Recognise(const Cloud& object_C, const RecognitionModel& model, double reject_below) {
+  Recognition r;
+  DescriptorParts parts = ComputeDescriptorParts(object_C, model.params);
+  r.status = parts.status;
+  r.detail = std::move(parts.detail);
+  if (!r.described()) return r;
+  r.result = model.Classify(parts);
+  r.rejected = Rejected(r.result.confidence, reject_below);
+  return r;
+}
+
 LabelKind ParseLabelKind(const std::string& name) { return ParseName(kLabelKindNames, name, "label kind"); }
 
 RecognitionModel::Result RecognitionModel::Classify(const DescriptorParts& parts) const {

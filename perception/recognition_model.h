@@ -10,6 +10,7 @@
 
 #include "perception/descriptor.h"
 #include "perception/familiarity.h"
+#include "perception/reject_rule.h"
 #include "perception/svm_classifier.h"
 
 namespace sortcell::perception {
@@ -59,10 +60,20 @@ struct RecognitionModel {
 /// classes as far as it can tell (an unknown object, for the reject bin).
 inline constexpr const char* kUnknownClass = "unknown";
 
-/// Whether a result is rejected at `reject_below` (a calibrated confidence in [0, 1]; 0 rejects nothing).
-inline bool Rejected(const RecognitionModel::Result& result, double reject_below) {
-  return result.confidence < reject_below;
-}
+/// One object recognised: described, then classified, the reject rule applied.
+struct Recognition {
+  DescriptorStatus status = DescriptorStatus::kOk;  ///< Not ok: too few points to describe (no result).
+  std::string detail;                               ///< Why it could not be described.
+  RecognitionModel::Result result;                  ///< When described.
+  bool rejected = false;                            ///< Its confidence below reject_below.
+  bool described() const { return status == DescriptorStatus::kOk; }
+  /// The class it is called: the result's, or kUnknownClass when rejected.
+  std::string category() const { return rejected ? kUnknownClass : result.name; }
+};
+
+/// Describes one object's cloud (camera frame) with the model's descriptor parameters and classifies it:
+/// what the cell's policy and every command that names objects call.
+Recognition Recognise(const Cloud& object_C, const RecognitionModel& model, double reject_below = 0);
 
 /// @throws std::runtime_error naming the file if it cannot be written (e.g. a full disk).
 void SaveModel(const std::filesystem::path& file, const RecognitionModel& model);

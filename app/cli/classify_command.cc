@@ -20,21 +20,19 @@ struct ClassifyOptions {
 
 nlohmann::json ClassifyObject(const perception::RecognitionModel& model, const perception::Cloud& object_C,
                               double reject_below, int top, const std::string& what) {
-  const perception::DescriptorParts parts = perception::ComputeDescriptorParts(object_C, model.params);
-  if (parts.status != perception::DescriptorStatus::kOk) {
-    throw std::invalid_argument(what + ": cannot be described (" + parts.detail + ")");
-  }
-  const auto result = model.Classify(parts);
-  const bool rejected = perception::Rejected(result, reject_below);
+  const perception::Recognition recognition = perception::Recognise(object_C, model, reject_below);
+  if (!recognition.described())
+    throw std::invalid_argument(what + ": cannot be described (" + recognition.detail + ")");
+  const perception::RecognitionModel::Result& result = recognition.result;
   nlohmann::json ranked = nlohmann::json::array();
   for (size_t k = 0; k < std::min<size_t>(std::max(top, 1), result.ranked.size()); ++k) {
     ranked.push_back({{"name", result.ranked[k].name}, {"probability", result.ranked[k].probability}});
   }
-  return {{"category", rejected ? perception::kUnknownClass : result.name},
+  return {{"category", recognition.category()},
           {"confidence", result.confidence},
           {"probability", result.probability},
           {"familiarity", result.familiarity},
-          {"rejected", rejected},
+          {"rejected", recognition.rejected},
           {"points", object_C.size()},
           {"top", ranked}};
 }
