@@ -9,9 +9,8 @@
 /// planned from it while the carry goes on, and starts from the bin. Nothing in view changes after
 /// that capture unless the object is lost on the way; then (and after a miss) the arm goes home and
 /// captures again. A missed grasp is retried from a fresh capture, at most
-/// max_attempts_per_position times at one table position; a cluster with no grasp plan is skipped
-/// as unreachable; a cluster too small to describe is never picked. It decides from the camera's
-/// clouds, the encoders and the gripper's sensors only.
+/// pick.max_attempts_per_position times at one table position; which cluster and how: cell/pick_choice.h. It decides
+/// from the camera's clouds, the encoders and the gripper's sensors only.
 
 #include <map>
 #include <optional>
@@ -23,6 +22,7 @@
 #include "cell/cell_layout.h"
 #include "cell/motion_sequencer.h"
 #include "cell/outcomes.h"
+#include "cell/pick_choice.h"
 #include "cell/pick_and_place.h"
 #include "cell/scene_observation.h"
 #include "perception/recognition_model.h"
@@ -32,10 +32,9 @@
 namespace sortcell::cell {
 
 struct PolicyOptions {
-  int max_attempts_per_position = 3;  ///< Grasp attempts at one table position before it is given up.
-  int max_attempts = 24;              ///< Grasp attempts in all before the episode ends.
-  double time_limit_s = 330;          ///< Seconds on the cell's clock from the start before it ends.
-  double same_object_radius = 0.04;   ///< Clusters this close in two captures are one object (m).
+  robot::PickMemoryOptions pick;  ///< One object across captures, and the attempts at it.
+  int max_attempts = 24;          ///< Grasp attempts in all before the episode ends.
+  double time_limit_s = 330;      ///< Seconds on the cell's clock from the start before it ends.
 };
 
 /// One attempt, as the policy saw it go.
@@ -95,9 +94,6 @@ class SortingPolicy {
  private:
   // Captures and observes; `held`: what the arm holds if it is carrying something.
   Observation Observe(const std::optional<HeldObject>& held = std::nullopt);
-  // The detection to pick next and its grasp plan, or -1. Detections without a plan are given up in
-  // `memory` (and reported); undescribed ones are never chosen.
-  int Choose(const std::vector<Detection>& detections, robot::PickMemory& memory, robot::GraspPlan& plan);
   AttemptReport Attempt(const Detection& seen, int index, int attempt, const robot::GraspPlan& plan,
                         const std::optional<Eigen::Isometry3d>& X_WT_exit, std::optional<Observation>& next_view);
 
@@ -119,7 +115,7 @@ class SortingPolicy {
 
   BinFill bins_;                               // What is in the bins already.
   std::optional<std::string> unseen_release_;  // The bin of the last release, until a capture saw it.
-  std::vector<Eigen::Vector2d> bin_walls_xy_;  // What open fingers must keep clear of besides objects.
+  FixedObstacles bin_walls_;                   // What open fingers must keep clear of besides objects.
 };
 
 }  // namespace sortcell::cell

@@ -15,9 +15,10 @@ constexpr EnumNames<SkipReason, 3> kSkipReasonNames{{{SkipReason::kNone, "none"}
 
 const char* ToString(SkipReason reason) { return NameOf(kSkipReasonNames, reason); }
 
-PickMemory::PickMemory(double radius, int max_attempts) : radius_(radius), max_attempts_(max_attempts) {
-  if (!(radius > 0) || max_attempts < 1) {
-    throw std::invalid_argument("pick memory: expected radius > 0 and max_attempts >= 1");
+PickMemory::PickMemory(const PickMemoryOptions& options)
+    : radius_(options.same_object_radius), max_attempts_(options.max_attempts_per_position) {
+  if (!(radius_ > 0) || max_attempts_ < 1) {
+    throw std::invalid_argument("pick memory: expected same_object_radius > 0 and max_attempts_per_position >= 1");
   }
 }
 

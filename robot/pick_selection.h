@@ -18,11 +18,16 @@ namespace sortcell::robot {
 enum class SkipReason { kNone, kUnreachable, kGraspFailed };
 const char* ToString(SkipReason reason);
 
+/// What the loop remembers between captures, and for how long it keeps trying one object.
+struct PickMemoryOptions {
+  double same_object_radius = 0.04;   ///< Clusters whose centres are this close are the same object (m).
+  int max_attempts_per_position = 3;  ///< Grasp attempts at one table position before it is given up.
+};
+
 class PickMemory {
  public:
-  /// @param radius        Clusters whose centres are this close are the same object (m).
-  /// @param max_attempts  Grasp attempts at one position before it is given up.
-  explicit PickMemory(double radius = 0.04, int max_attempts = 3);
+  /// @throws std::invalid_argument unless same_object_radius > 0 and max_attempts_per_position >= 1.
+  explicit PickMemory(const PickMemoryOptions& options = {});
 
   /// Counts a grasp attempt at xy; when the count reaches max_attempts, the position is given up
   /// (kGraspFailed). Returns the count.

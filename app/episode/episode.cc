@@ -162,7 +162,7 @@ void EpisodeRun::PlaceObjects() {
 cell::PolicyOptions EpisodeRun::Budget() const {
   const int objects = ObjectCount(set_, options_) + options_.unknown_objects;
   cell::PolicyOptions budget;
-  budget.max_attempts_per_position = options_.max_attempts_per_object;
+  budget.pick.max_attempts_per_position = options_.max_attempts_per_object;
   budget.max_attempts = (options_.max_attempts_per_object + 1) * objects;
   budget.time_limit_s = options_.time_limit_s > 0 ? options_.time_limit_s : 60.0 + 45.0 * objects;
   return budget;

@@ -12,6 +12,8 @@
 #include <vector>
 
 #include "app/episode/episode_metrics.h"
+#include "common/enum_names.h"
+#include "robot/pick_selection.h"
 #include "sim/clutter_placement.h"
 #include "sim/scene_variation.h"
 #include "sim/video_recorder.h"
@@ -31,6 +33,9 @@ enum class SelfCalibration {
   kOn,
   kOff,
 };
+/// Their spellings (`episode --self-calibrate`, the sweeps' self_calibrate axis).
+inline constexpr EnumNames<SelfCalibration, 3> kSelfCalibrationNames{
+    {{SelfCalibration::kAuto, "auto"}, {SelfCalibration::kOn, "on"}, {SelfCalibration::kOff, "off"}}};
 
 struct EpisodeOptions {
   std::filesystem::path scene;       ///< MJCF cell holding every object of the set.
@@ -56,8 +61,9 @@ struct EpisodeOptions {
   sim::SceneVariation variation;
   SelfCalibration self_calibrate = SelfCalibration::kAuto;
   // The policy's budget.
-  int max_attempts_per_object = 3;  ///< Grasp attempts at one position before it is given up.
-  double time_limit_s = 0;          ///< Simulated seconds of sorting (0: 60 + 45 per object placed).
+  /// Grasp attempts at one position before it is given up.
+  int max_attempts_per_object = robot::PickMemoryOptions{}.max_attempts_per_position;
+  double time_limit_s = 0;  ///< Simulated seconds of sorting (0: 60 + 45 per object placed).
   /// Objects recognised less surely go to the cell's reject bin; unset: the cell file's reject_below.
   std::optional<double> reject_below;
 };

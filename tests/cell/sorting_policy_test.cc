@@ -235,7 +235,7 @@ TEST(SortingPolicy, AFaultOfTheCellEndsTheEpisode) {
 
 TEST(SortingPolicy, RetriesAMissedGraspFromAFreshCaptureUpToTheLimit) {
   PolicyOptions options;
-  options.max_attempts_per_position = 3;
+  options.pick.max_attempts_per_position = 3;
   const SortRun run = Sort({kBottle}, {false, false, false, false}, options);
   ASSERT_EQ(run.seen.results.size(), 3u);
   for (const auto r : run.seen.results) EXPECT_EQ(r, AttemptResult::kMissed);
@@ -347,7 +347,7 @@ TEST(SortingPolicy, NeverPicksAFragmentTooSmallToDescribe) {
   model.params.cvfh.min_points = 400;  // The small object below has fewer points after downsampling.
   const Cylinder fragment{{0.45, -0.12}, 0.02, 0.03, 40, 160, 60};
   PolicyOptions options;
-  options.max_attempts_per_position = 1;
+  options.pick.max_attempts_per_position = 1;
   const SortRun run = Sort({fragment, kBottle}, {false}, options, Layout(), model);
   // Both seen; the fragment not described; only the bottle attempted (once), then nothing left.
   ASSERT_EQ(run.seen.categories.size(), 2u);
@@ -383,7 +383,7 @@ TEST(SortingPolicy, RejectsBudgetsOutOfRange) {
   };
   EXPECT_EQ(error(), "policy options: attempt limits must be at least 1");
   options = {};
-  options.max_attempts_per_position = 0;
+  options.pick.max_attempts_per_position = 0;
   EXPECT_EQ(error(), "policy options: attempt limits must be at least 1");
   options = {};
   options.time_limit_s = 0;

@@ -34,7 +34,7 @@ TEST(PickSelection, SkippedPositionsAreNotChosenAgainEvenWhenNudged) {
 }
 
 TEST(PickSelection, GivesUpAPositionAfterMaxAttempts) {
-  PickMemory memory(0.04, 3);
+  PickMemory memory({0.04, 3});
   const Eigen::Vector2d p(0.5, 0.0);
   EXPECT_EQ(memory.RecordAttempt(p), 1);
   EXPECT_EQ(memory.RecordAttempt(p + Eigen::Vector2d(0.01, 0)), 2);  // Nudged by the missed grasp.
@@ -100,8 +100,11 @@ TEST(PickSelection, ABlockedPrismIsPinchedTheOtherWay) {
 }
 
 TEST(PickSelection, RejectsBadMemoryParameters) {
-  EXPECT_NE(sortcell_test::ErrorOf([] { PickMemory(0.0, 3); }).find("radius > 0"), std::string::npos);
-  EXPECT_NE(sortcell_test::ErrorOf([] { PickMemory(0.04, 0); }).find("max_attempts >= 1"), std::string::npos);
+  EXPECT_NE(sortcell_test::ErrorOf([] { PickMemory({0.0, 3}); }).find("same_object_radius > 0"), std::string::npos);
+  EXPECT_NE(sortcell_test::ErrorOf([] {
+              PickMemory({0.04, 0});
+            }).find("max_attempts_per_position >= 1"),
+            std::string::npos);
 }
 
 // A tall box (0.21 m, 6 x 16 cm, its top seen) beside a can (0.10 m): 9 cm away, under the palm
