@@ -100,6 +100,30 @@ robot::JointTrajectory Slice(const robot::JointTrajectory& t, int first, int las
   return part;
 }
 
+// Samples [a, b] of a phase followed, in strides with `watch` after each when there is one.
+MotionResult FollowWatched(CellIo& io, const std::string& phase, const robot::JointTrajectory& t, int a, int b,
+                           const std::function<void(const std::string&)>& watch) {
+  if (!watch) return io.Follow(phase, Slice(t, a, b));
+  int k = a;
+  do {
+    const int next = std::min(k + kWatchStride, b);
+    const MotionResult result = io.Follow(phase, Slice(t, k, next));
+    if (!result.ok()) return result;
+    watch(phase);
+    k = next;
+  } while (k < b);
+  return MotionResult{};
+}
+
+// The first sample in [from, last) where `when` holds (asked every kWatchStride samples), else last.
+int FirstWhen(const robot::JointTrajectory& t, int from, int last,
+              const std::function<bool(const robot::Joints&)>& when) {
+  for (int k = from; k < last; k += kWatchStride) {
+    if (when(t.q[k])) return k;
+  }
+  return last;
+}
+
 }  // namespace
 
 bool MotionSequencer::Run(const MotionChain& chain, const ChainHooks& hooks) {
@@ -124,26 +148,8 @@ bool MotionSequencer::Run(const MotionChain& chain, const ChainHooks& hooks) {
     const auto& phase = phase_end.first;
     const int last = phase_end.second;
     // The first sample of this phase where `when` holds splits it in two, with `then` in between.
-    int split = last;
-    for (int k = from; !watched && k < last; k += kWatchStride) {
-      if (hooks.when(t.q[k])) {
-        split = k;
-        break;
-      }
-    }
-    // Samples [a, b] of the phase, in strides with `watch` after each when there is one.
-    const auto follow = [&](int a, int b) {
-      if (!hooks.watch) return io_.Follow(phase, Slice(t, a, b));
-      int k = a;
-      do {
-        const int next = std::min(k + kWatchStride, b);
-        const MotionResult result = io_.Follow(phase, Slice(t, k, next));
-        if (!result.ok()) return result;
-        hooks.watch(phase);
-        k = next;
-      } while (k < b);
-      return MotionResult{};
-    };
+    const int split = watched ? last : FirstWhen(t, from, last, hooks.when);
+    const auto follow = [&](int a, int b) { return FollowWatched(io_, phase, t, a, b, hooks.watch); };
     if (!Phase(
             phase, [&] { return follow(from, split); }, bound(from, split)))
       return false;

@@ -134,53 +134,33 @@ bool LetGo(MotionSequencer& run, const PickRequest& request, const Eigen::Isomet
   return true;
 }
 
-}  // namespace
-
-bool GoHome(MotionSequencer& run, const std::optional<Eigen::Isometry3d>& X_WT_exit, const robot::Joints& q_home,
-            const ArmSpeeds& lines) {
-  MotionChain home(run.io().CommandedJoints(), MotionChain::Load::kEmptyHanded, lines.empty_joints);
-  if (X_WT_exit && !home.Line("retreat", *X_WT_exit, lines.transit, lines.transit_acceleration)) return run.Run(home);
-  home.JointMove("home", q_home);
-  return run.Run(home);
-}
-
-PickReport PickAndPlace(MotionSequencer& run, const PickRequest& request, const PickHooks& hooks) {
-  const ArmSpeeds& lines = request.speeds;
-  PickReport report;
-  if (!ApproachAndGrasp(run, request)) return Fail(run, request, report);
-  if (run.Hold() != robot::HoldState::kHolding) return Missed(run, request, report);
-  report.grasped = true;
-  PickRequest release = request;  // From here on: the grasp as recentred, the release as chosen.
-  if (!Recentre(run, request.speeds, release.grasp, report)) return Fail(run, request, report);
-  if (run.Hold() != robot::HoldState::kHolding) return Missed(run, release, report);
+// Lift, carry and lower as one chain (`transfer`, starting where the arm is); the placement into the bin
+// planned from where the lift ends (not ok: the bin cannot be reached from there, the chain ends with the
+// lift). False when the lift itself cannot be planned.
+bool PlanTransfer(const PickRequest& release, MotionChain& transfer, robot::PlacePlan& place) {
+  const ArmSpeeds& lines = release.speeds;
   const robot::GraspPlan& plan = release.grasp;
-  // Released by opening a little beyond the gap it was held at: in a bin slot near the walls, opening
-  // to the approach's wider gap may press a finger against a wall and keep the object.
-  const double release_gap = std::fmin(plan.open_gap, run.io().ReadGripper().gap() + kReleaseOpening);
-  Notify(hooks.grasped);
-  if (hooks.choose_release) hooks.choose_release(release);
-
-  // Lift, carry and lower as one motion; the placement is planned from where the lift ends.
-  MotionChain transfer(run.io().CommandedJoints(), MotionChain::Load::kHolding);
-  if (!transfer.Line("lift", plan.X_WT_lift, lines.transit, lines.transit_acceleration)) {
-    return Fail(run, request, report);
-  }
+  if (!transfer.Line("lift", plan.X_WT_lift, lines.transit, lines.transit_acceleration)) return false;
   robot::GraspOptions place_options;
   place_options.place_yaw_step = release.place_yaw_step;
   place_options.place_yaw_offset = release.place_yaw_offset;
   place_options.release_clearance = release.release_clearance;
-  const robot::PlacePlan place =
-      robot::PlanPlacement(release.p_W_release, plan.grasp_height, transfer.end(), place_options);
+  place = robot::PlanPlacement(release.p_W_release, plan.grasp_height, transfer.end(), place_options);
   if (place.ok) {
     transfer.JointMove("carry", place.q_above);
-    // Fast down to just above the release point; the last centimetres (below) are slow.
+    // Fast down to just above the release point; the last centimetres (LetGo) are slow.
     Eigen::Isometry3d X_WT_above_release = place.X_WT_release;
     X_WT_above_release.translation().z() += kSlowPlacing;
     transfer.Line("lower", X_WT_above_release, lines.transit, lines.transit_acceleration);
   }
-  bool held_above_bin = false;
+  return true;
+}
+
+// What the transfer watches as it runs: the hold after the lift (lost: stop) and above the bin, the
+// grip's friction every 20 ms, and when the arm has left the camera's view.
+ChainHooks TransferWatch(MotionSequencer& run, const PickHooks& hooks, PickReport& report, bool& held_above_bin) {
   ChainHooks watch;
-  watch.after_phase = [&](const std::string& phase) {
+  watch.after_phase = [&run, &hooks, &report, &held_above_bin](const std::string& phase) {
     if (phase == "lift") {
       Notify(hooks.lifted);
       report.lifted = run.Hold() != robot::HoldState::kEmpty;
@@ -195,8 +175,40 @@ PickReport PickAndPlace(MotionSequencer& run, const PickRequest& request, const 
   };
   watch.when = hooks.out_of_view;
   watch.then = hooks.left_view;
-  watch.watch = [&](const std::string& phase) { WatchTheGrip(run, phase, report); };
-  if (!run.Run(transfer, watch)) {
+  watch.watch = [&run, &report](const std::string& phase) { WatchTheGrip(run, phase, report); };
+  return watch;
+}
+
+}  // namespace
+
+bool GoHome(MotionSequencer& run, const std::optional<Eigen::Isometry3d>& X_WT_exit, const robot::Joints& q_home,
+            const ArmSpeeds& lines) {
+  MotionChain home(run.io().CommandedJoints(), MotionChain::Load::kEmptyHanded, lines.empty_joints);
+  if (X_WT_exit && !home.Line("retreat", *X_WT_exit, lines.transit, lines.transit_acceleration)) return run.Run(home);
+  home.JointMove("home", q_home);
+  return run.Run(home);
+}
+
+PickReport PickAndPlace(MotionSequencer& run, const PickRequest& request, const PickHooks& hooks) {
+  PickReport report;
+  if (!ApproachAndGrasp(run, request)) return Fail(run, request, report);
+  if (run.Hold() != robot::HoldState::kHolding) return Missed(run, request, report);
+  report.grasped = true;
+  PickRequest release = request;  // From here on: the grasp as recentred, the release as chosen.
+  if (!Recentre(run, request.speeds, release.grasp, report)) return Fail(run, request, report);
+  if (run.Hold() != robot::HoldState::kHolding) return Missed(run, release, report);
+  const robot::GraspPlan& plan = release.grasp;
+  // Released by opening a little beyond the gap it was held at: in a bin slot near the walls, opening
+  // to the approach's wider gap may press a finger against a wall and keep the object.
+  const double release_gap = std::fmin(plan.open_gap, run.io().ReadGripper().gap() + kReleaseOpening);
+  Notify(hooks.grasped);
+  if (hooks.choose_release) hooks.choose_release(release);
+
+  MotionChain transfer(run.io().CommandedJoints(), MotionChain::Load::kHolding);
+  robot::PlacePlan place;
+  if (!PlanTransfer(release, transfer, place)) return Fail(run, request, report);
+  bool held_above_bin = false;
+  if (!run.Run(transfer, TransferWatch(run, hooks, report, held_above_bin))) {
     if (run.faulted() || !run.stopped()) return Fail(run, request, report);
     // Lost during the lift: let go of nothing and go home.
     report.result = run.Gripper("open", robot::kMaxGap) && run.MoveJ("home", request.q_home)

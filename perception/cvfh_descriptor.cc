@@ -27,6 +27,56 @@ const CvfhResult& Unusable(CvfhResult& result, DescriptorStatus status, std::str
   return result;
 }
 
+// The object's finite points on a voxel grid of `leaf` (m).
+Cloud::Ptr DownsampledFinite(const Cloud& object_C, double leaf_m) {
+  auto valid = std::make_shared<Cloud>();
+  valid->reserve(object_C.size());
+  for (const PointT& p : object_C) {
+    if (std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z)) valid->push_back(p);
+  }
+  auto points = std::make_shared<Cloud>();
+  if (!valid->empty()) {
+    pcl::VoxelGrid<PointT> grid;
+    const float leaf = static_cast<float>(leaf_m);
+    grid.setLeafSize(leaf, leaf, leaf);
+    grid.setInputCloud(valid);
+    grid.filter(*points);
+  }
+  return points;
+}
+
+// The points that have a normal, with their normals: CVFH puts NaN normals into bin 0, so points
+// without one (too few neighbours) are dropped.
+void KeepPointsWithNormals(const Cloud& points, const pcl::PointCloud<pcl::Normal>& normals, Cloud& with_normal,
+                           pcl::PointCloud<pcl::Normal>& clean_normals) {
+  for (size_t i = 0; i < points.size(); ++i) {
+    const pcl::Normal& n = normals[i];
+    if (std::isfinite(n.normal_x) && std::isfinite(n.normal_y) && std::isfinite(n.normal_z) &&
+        std::isfinite(n.curvature)) {
+      with_normal.push_back(points[i]);
+      clean_normals.push_back(n);
+    }
+  }
+}
+
+// PCL's CVFH of the points with their normals: one 308-bin histogram per smooth region, raw counts.
+pcl::PointCloud<pcl::VFHSignature308> CvfhRegions(const Cloud::Ptr& points,
+                                                  const pcl::PointCloud<pcl::Normal>::Ptr& normals,
+                                                  const CvfhParams& params) {
+  pcl::CVFHEstimation<PointT, pcl::Normal, pcl::VFHSignature308> cvfh;  // Fresh per object.
+  cvfh.setInputCloud(points);
+  cvfh.setInputNormals(normals);
+  cvfh.setSearchMethod(std::make_shared<pcl::search::KdTree<PointT>>());
+  cvfh.setEPSAngleThreshold(static_cast<float>(params.eps_angle_rad));
+  cvfh.setCurvatureThreshold(static_cast<float>(params.curvature_threshold));
+  cvfh.setClusterTolerance(static_cast<float>(params.cluster_tolerance_m));
+  cvfh.setMinPoints(params.min_region_points);
+  cvfh.setNormalizeBins(false);  // Raw counts; normalisation is the descriptor's choice.
+  pcl::PointCloud<pcl::VFHSignature308> regions;
+  cvfh.compute(regions);
+  return regions;
+}
+
 }  // namespace
 
 constexpr EnumNames<DescriptorStatus, 3> kDescriptorStatusNames{{{DescriptorStatus::kOk, "ok"},
@@ -36,19 +86,7 @@ constexpr EnumNames<DescriptorStatus, 3> kDescriptorStatusNames{{{DescriptorStat
 const char* ToString(DescriptorStatus status) { return NameOf(kDescriptorStatusNames, status); }
 
 CvfhResult ComputeCvfh(const Cloud& object_C, const CvfhParams& params) {
-  auto valid = std::make_shared<Cloud>();
-  valid->reserve(object_C.size());
-  for (const PointT& p : object_C) {
-    if (std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z)) valid->push_back(p);
-  }
-  auto points = std::make_shared<Cloud>();
-  if (!valid->empty()) {
-    pcl::VoxelGrid<PointT> grid;
-    const float leaf = static_cast<float>(params.voxel_leaf_m);
-    grid.setLeafSize(leaf, leaf, leaf);
-    grid.setInputCloud(valid);
-    grid.filter(*points);
-  }
+  const Cloud::Ptr points = DownsampledFinite(object_C, params.voxel_leaf_m);
   CvfhResult result;
   result.points = static_cast<int>(points->size());
   if (result.points < params.min_points) {
@@ -59,18 +97,9 @@ CvfhResult ComputeCvfh(const Cloud& object_C, const CvfhParams& params) {
   }
 
   auto t = Clock::now();
-  const pcl::PointCloud<pcl::Normal> normals = EstimateNormals(*points, params.normal_radius_m);
-  // CVFH puts NaN normals into bin 0: drop points without a normal (too few neighbours).
   auto with_normal = std::make_shared<Cloud>();
   auto clean_normals = std::make_shared<pcl::PointCloud<pcl::Normal>>();
-  for (size_t i = 0; i < points->size(); ++i) {
-    const pcl::Normal& n = normals[i];
-    if (std::isfinite(n.normal_x) && std::isfinite(n.normal_y) && std::isfinite(n.normal_z) &&
-        std::isfinite(n.curvature)) {
-      with_normal->push_back((*points)[i]);
-      clean_normals->push_back(n);
-    }
-  }
+  KeepPointsWithNormals(*points, EstimateNormals(*points, params.normal_radius_m), *with_normal, *clean_normals);
   result.normals_s = SecondsSince(t);
   if (static_cast<int>(with_normal->size()) < params.min_points) {
     return Unusable(result, DescriptorStatus::kTooFewPoints,
@@ -79,17 +108,7 @@ CvfhResult ComputeCvfh(const Cloud& object_C, const CvfhParams& params) {
   }
 
   t = Clock::now();
-  pcl::CVFHEstimation<PointT, pcl::Normal, pcl::VFHSignature308> cvfh;  // Fresh per object.
-  cvfh.setInputCloud(with_normal);
-  cvfh.setInputNormals(clean_normals);
-  cvfh.setSearchMethod(std::make_shared<pcl::search::KdTree<PointT>>());
-  cvfh.setEPSAngleThreshold(static_cast<float>(params.eps_angle_rad));
-  cvfh.setCurvatureThreshold(static_cast<float>(params.curvature_threshold));
-  cvfh.setClusterTolerance(static_cast<float>(params.cluster_tolerance_m));
-  cvfh.setMinPoints(params.min_region_points);
-  cvfh.setNormalizeBins(false);  // Raw counts; normalisation is the descriptor's choice.
-  pcl::PointCloud<pcl::VFHSignature308> regions;
-  cvfh.compute(regions);
+  const pcl::PointCloud<pcl::VFHSignature308> regions = CvfhRegions(with_normal, clean_normals, params);
   result.cvfh_s = SecondsSince(t);
   result.regions = static_cast<int>(regions.size());
   if (regions.empty()) {

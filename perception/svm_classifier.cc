@@ -144,6 +144,46 @@ CvScore CrossValidate(const SvmNodeRows& x, const std::vector<double>& y, const 
   return {C, gamma, static_cast<double>(correct) / y.size(), margin_sum / y.size()};
 }
 
+// Refuses training input that cannot make a model.
+void CheckTrainingInput(const Eigen::MatrixXf& samples, const std::vector<int>& labels, const std::vector<int>& groups,
+                        int classes, const SvmGrid& grid) {
+  const size_t n = static_cast<size_t>(samples.rows());
+  if (labels.size() != n || groups.size() != n) {
+    throw std::invalid_argument("SVM training: " + std::to_string(n) + " samples, " + std::to_string(labels.size()) +
+                                " labels, " + std::to_string(groups.size()) + " groups");
+  }
+  std::set<int> present;
+  for (int label : labels) {
+    if (label < 0 || label >= classes) {
+      throw std::invalid_argument("SVM training: label " + std::to_string(label) + " outside [0, " +
+                                  std::to_string(classes) + ")");
+    }
+    present.insert(label);
+  }
+  if (present.size() < 2) throw std::invalid_argument("SVM training: the samples hold fewer than two classes");
+  if (grid.C.empty() || grid.gamma.empty() || grid.folds < 2) {
+    throw std::invalid_argument("SVM training: empty (C, gamma) grid or fewer than 2 folds");
+  }
+}
+
+// Grouped cross-validation of every (C, gamma) of the grid, on grid.threads threads; in the grid's order.
+std::vector<CvScore> GridSearch(const SvmNodeRows& x, const std::vector<double>& y, const std::vector<int>& fold,
+                                const SvmGrid& grid) {
+  std::vector<CvScore> scores(grid.C.size() * grid.gamma.size());
+  std::atomic<size_t> next{0};
+  auto worker = [&] {
+    for (size_t k = next++; k < scores.size(); k = next++) {
+      const double C = grid.C[k / grid.gamma.size()], gamma = grid.gamma[k % grid.gamma.size()];
+      scores[k] = CrossValidate(x, y, fold, grid.folds, C, gamma);
+    }
+  };
+  std::vector<std::thread> threads;
+  for (int t = 1; t < std::max(1, grid.threads); ++t) threads.emplace_back(worker);
+  worker();
+  for (auto& thread : threads) thread.join();
+  return scores;
+}
+
 }  // namespace
 
 // The libsvm model with every array owned by vectors here (svm_model only points into them).
@@ -179,23 +219,8 @@ int LinkedLibsvmVersion() { return libsvm_version; }
 
 SvmClassifier SvmClassifier::Train(const Eigen::MatrixXf& samples, const std::vector<int>& labels,
                                    const std::vector<int>& groups, int classes, const SvmGrid& grid) {
+  CheckTrainingInput(samples, labels, groups, classes, grid);
   const size_t n = static_cast<size_t>(samples.rows());
-  if (labels.size() != n || groups.size() != n) {
-    throw std::invalid_argument("SVM training: " + std::to_string(n) + " samples, " + std::to_string(labels.size()) +
-                                " labels, " + std::to_string(groups.size()) + " groups");
-  }
-  std::set<int> present;
-  for (int label : labels) {
-    if (label < 0 || label >= classes) {
-      throw std::invalid_argument("SVM training: label " + std::to_string(label) + " outside [0, " +
-                                  std::to_string(classes) + ")");
-    }
-    present.insert(label);
-  }
-  if (present.size() < 2) throw std::invalid_argument("SVM training: the samples hold fewer than two classes");
-  if (grid.C.empty() || grid.gamma.empty() || grid.folds < 2) {
-    throw std::invalid_argument("SVM training: empty (C, gamma) grid or fewer than 2 folds");
-  }
   svm_set_print_string_function(&Quiet);
 
   SvmClassifier result;
@@ -209,18 +234,7 @@ SvmClassifier SvmClassifier::Train(const Eigen::MatrixXf& samples, const std::ve
   std::vector<double> y(labels.begin(), labels.end());
   const std::vector<int> fold = GroupFolds(groups, grid.folds);
 
-  result.cv_scores_.resize(grid.C.size() * grid.gamma.size());
-  std::atomic<size_t> next{0};
-  auto worker = [&] {
-    for (size_t k = next++; k < result.cv_scores_.size(); k = next++) {
-      const double C = grid.C[k / grid.gamma.size()], gamma = grid.gamma[k % grid.gamma.size()];
-      result.cv_scores_[k] = CrossValidate(x, y, fold, grid.folds, C, gamma);
-    }
-  };
-  std::vector<std::thread> threads;
-  for (int t = 1; t < std::max(1, grid.threads); ++t) threads.emplace_back(worker);
-  worker();
-  for (auto& thread : threads) thread.join();
+  result.cv_scores_ = GridSearch(x, y, fold, grid);
   // The best held-out accuracy; among equals, the largest held-out margin.
   const CvScore best =
       *std::max_element(result.cv_scores_.begin(), result.cv_scores_.end(), [](const CvScore& a, const CvScore& b) {

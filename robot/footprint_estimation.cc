@@ -109,6 +109,40 @@ std::optional<ObjectFootprint> LyingFootprint(const std::vector<Eigen::Vector3d>
   return f;
 }
 
+// Pinched across the line of sight (`u`), its depth along it (`v`) from its nearest point; a prism's top
+// face also shows its depth, the way to pinch it turned.
+void PinchAcrossView(const std::vector<Eigen::Vector3d>& p_W, const Eigen::Vector2d& u, const Eigen::Vector2d& v,
+                     const Extent& across, bool prism, const FootprintOptions& options, std::vector<double>& scratch,
+                     FootprintEstimate& estimate) {
+  ObjectFootprint& f = estimate.footprint;
+  const Extent along = ExtentAlong(p_W, v, options, scratch);
+  const double depth = std::max(along.width(), across.width());
+  f.centre_xy = across.mid() * u + (along.low + 0.5 * depth) * v;
+  f.pinch_yaw = YawOf(u);
+  f.width = across.width();
+  if (prism && along.width() <= options.max_width) {
+    estimate.turned = f;
+    estimate.turned->pinch_yaw = YawOf(v);
+    estimate.turned->width = along.width();
+  }
+}
+
+// Pinched across its narrowest visible direction (`yaw`), centred on what shows; a prism also turned.
+void PinchNarrowest(const std::vector<Eigen::Vector3d>& p_W, double yaw, bool prism, const FootprintOptions& options,
+                    std::vector<double>& scratch, FootprintEstimate& estimate) {
+  ObjectFootprint& f = estimate.footprint;
+  const Eigen::Vector2d d(std::cos(yaw), std::sin(yaw)), e(-d.y(), d.x());
+  const Extent pinch = ExtentAlong(p_W, d, options, scratch), length = ExtentAlong(p_W, e, options, scratch);
+  f.centre_xy = pinch.mid() * d + length.mid() * e;
+  f.pinch_yaw = yaw;
+  f.width = pinch.width();
+  if (prism && length.width() <= options.max_width) {
+    estimate.turned = f;
+    estimate.turned->pinch_yaw = YawOf(e);
+    estimate.turned->width = length.width();
+  }
+}
+
 }  // namespace
 
 double FullWidthTop(const std::vector<Eigen::Vector3d>& p_W, const ObjectFootprint& object, double fraction) {
@@ -172,29 +206,11 @@ FootprintEstimate EstimateFootprint(const std::vector<Eigen::Vector3d>& p_W, con
   const bool use_across =
       across.width() <= options.max_width && (!prism || across.width() <= options.across_preference * narrowest);
   if (use_across) {
-    const Extent along = ExtentAlong(p_W, v, options, scratch);
-    const double depth = std::max(along.width(), across.width());
-    f.centre_xy = across.mid() * u + (along.low + 0.5 * depth) * v;
-    f.pinch_yaw = YawOf(u);
-    f.width = across.width();
-    if (prism && along.width() <= options.max_width) {  // Its top face shows its depth.
-      estimate.turned = f;
-      estimate.turned->pinch_yaw = YawOf(v);
-      estimate.turned->width = along.width();
-    }
+    PinchAcrossView(p_W, u, v, across, prism, options, scratch, estimate);
   } else {
     // Tapered and too wide across: the narrowest visible direction is all there is.
     if (!prism) Narrowest(p_W, options, scratch, narrowest, narrowest_yaw);
-    const Eigen::Vector2d d(std::cos(narrowest_yaw), std::sin(narrowest_yaw)), e(-d.y(), d.x());
-    const Extent pinch = ExtentAlong(p_W, d, options, scratch), length = ExtentAlong(p_W, e, options, scratch);
-    f.centre_xy = pinch.mid() * d + length.mid() * e;
-    f.pinch_yaw = narrowest_yaw;
-    f.width = pinch.width();
-    if (prism && length.width() <= options.max_width) {
-      estimate.turned = f;
-      estimate.turned->pinch_yaw = YawOf(e);
-      estimate.turned->width = length.width();
-    }
+    PinchNarrowest(p_W, narrowest_yaw, prism, options, scratch, estimate);
   }
   estimate.across_view = use_across;
   estimate.prism = prism;

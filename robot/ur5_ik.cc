@@ -59,6 +59,69 @@ void AddChecked(const Eigen::Isometry3d& X_BF, const Joints& q_raw, bool singula
   result.solutions[result.count++] = {q, position_error, rotation_error, singular};
 }
 
+// Joints 5 and 6 of one wrist branch.
+struct Wrist {
+  double q5 = 0, q6 = 0, c5 = 1, s5 = 0, c6 = 1, s6 = 0;
+  bool singular = false;
+};
+
+// From cos q5, the branch's sign of sin q5 and z1 seen in frame 6 (x6_z1, y6_z1); at the wrist
+// singularity q6 stays where it is (q6_current). Sines and cosines from the geometry directly: cheaper and
+// more exact than sin(acos(.)).
+Wrist SolveWrist(double c5, double sign, double x6_z1, double y6_z1, double q6_current, const IkOptions& options) {
+  Wrist w;
+  w.c5 = c5;
+  w.s5 = sign * std::sqrt(1.0 - c5 * c5);
+  w.singular = std::abs(w.s5) < options.wrist_singular_sin;
+  if (w.singular) {
+    w.q5 = c5 > 0 ? 0.0 : M_PI;
+    w.c5 = c5 > 0 ? 1.0 : -1.0;
+    w.s5 = 0;
+    w.q6 = q6_current;
+    w.c6 = std::cos(w.q6);
+    w.s6 = std::sin(w.q6);
+    return w;
+  }
+  w.q5 = std::atan2(w.s5, w.c5);
+  w.c6 = x6_z1 / w.s5;
+  w.s6 = -y6_z1 / w.s5;
+  const double norm = std::hypot(w.c6, w.s6);
+  w.c6 /= norm;
+  w.s6 /= norm;
+  w.q6 = std::atan2(w.s6, w.c6);
+  return w;
+}
+
+// Joints 2-4 for joint 1 and the wrist, both elbows, added to `result` where they check out: the planar
+// chain of joints 2-4 in frame 1, X_14 = X_10 X_BF X_46^-1, written out because only its first column and
+// its x, y are needed. R10 = Rx(-pi/2) Rz(-q1), p10 = (0, -d1, 0).
+void AddElbowSolutions(const Eigen::Isometry3d& X_BF, double q1, const Wrist& w, const IkOptions& options,
+                       IkResult& result) {
+  using namespace ur5_lengths;  // NOLINT(google-build-using-namespace): the formulas' own names.
+  const Eigen::Matrix3d& R = X_BF.linear();
+  const Eigen::Vector3d& p = X_BF.translation();
+  const double c1 = std::cos(q1), s1 = std::sin(q1);
+  Eigen::Matrix3d R46;
+  Eigen::Vector3d p46;
+  WristTransform(w.c5, w.s5, w.c6, w.s6, R46, p46);
+  const Eigen::Vector3d m0 = R * R46.row(0).transpose();  // first column of R_B4
+  const Eigen::Vector3d p_B4 = p - R * (R46.transpose() * p46);
+  const double q234 = std::atan2(m0.z(), c1 * m0.x() + s1 * m0.y());
+  const double px = c1 * p_B4.x() + s1 * p_B4.y(), py = p_B4.z() - d1;
+  double c3 = (px * px + py * py - a2 * a2 - a3 * a3) / (2.0 * a2 * a3);
+  if (!ClampCosine(c3)) return;
+  for (const double elbow : {1.0, -1.0}) {
+    const double s3 = elbow * std::sqrt(1.0 - c3 * c3);
+    const double q3 = std::atan2(s3, c3);
+    // q2 = atan2(py, px) - atan2(a3 s3, a2 + a3 c3), as one atan2.
+    const double k1 = a2 + a3 * c3, k2 = a3 * s3;
+    const double q2 = std::atan2(py * k1 - px * k2, px * k1 + py * k2);
+    Joints q;
+    q << q1, q2, q3, q234 - q2 - q3, w.q5, w.q6;
+    AddChecked(X_BF, q, w.singular, options, result);
+  }
+}
+
 }  // namespace
 
 IkResult SolveIk(const Eigen::Isometry3d& X_BF, double q6_current, const IkOptions& options) {
@@ -81,47 +144,7 @@ IkResult SolveIk(const Eigen::Isometry3d& X_BF, double q6_current, const IkOptio
     const double x6_z1 = R(0, 0) * s1 - R(1, 0) * c1;  // z1 in frame 6 is (s5 c6, -s5 s6, c5)
     const double y6_z1 = R(0, 1) * s1 - R(1, 1) * c1;
     for (const double wrist : {1.0, -1.0}) {
-      // Sines and cosines from the geometry directly: cheaper and more exact than sin(acos(.)).
-      double s5 = wrist * std::sqrt(1.0 - c5 * c5);
-      double q5, q6, c6, s6;
-      const bool singular = std::abs(s5) < options.wrist_singular_sin;
-      if (singular) {
-        q5 = c5 > 0 ? 0.0 : M_PI;
-        c5 = c5 > 0 ? 1.0 : -1.0;
-        s5 = 0;
-        q6 = q6_current;
-        c6 = std::cos(q6);
-        s6 = std::sin(q6);
-      } else {
-        q5 = std::atan2(s5, c5);
-        c6 = x6_z1 / s5;
-        s6 = -y6_z1 / s5;
-        const double norm = std::hypot(c6, s6);
-        c6 /= norm;
-        s6 /= norm;
-        q6 = std::atan2(s6, c6);
-      }
-      // The planar chain of joints 2-4 in frame 1: X_14 = X_10 X_BF X_46^-1, written out because
-      // only its first column and its x, y are needed. R10 = Rx(-pi/2) Rz(-q1), p10 = (0, -d1, 0).
-      Eigen::Matrix3d R46;
-      Eigen::Vector3d p46;
-      WristTransform(c5, s5, c6, s6, R46, p46);
-      const Eigen::Vector3d m0 = R * R46.row(0).transpose();  // first column of R_B4
-      const Eigen::Vector3d p_B4 = p - R * (R46.transpose() * p46);
-      const double q234 = std::atan2(m0.z(), c1 * m0.x() + s1 * m0.y());
-      const double px = c1 * p_B4.x() + s1 * p_B4.y(), py = p_B4.z() - d1;
-      double c3 = (px * px + py * py - a2 * a2 - a3 * a3) / (2.0 * a2 * a3);
-      if (!ClampCosine(c3)) continue;
-      for (const double elbow : {1.0, -1.0}) {
-        const double s3 = elbow * std::sqrt(1.0 - c3 * c3);
-        const double q3 = std::atan2(s3, c3);
-        // q2 = atan2(py, px) - atan2(a3 s3, a2 + a3 c3), as one atan2.
-        const double k1 = a2 + a3 * c3, k2 = a3 * s3;
-        const double q2 = std::atan2(py * k1 - px * k2, px * k1 + py * k2);
-        Joints q;
-        q << q1, q2, q3, q234 - q2 - q3, q5, q6;
-        AddChecked(X_BF, q, singular, options, result);
-      }
+      AddElbowSolutions(X_BF, q1, SolveWrist(c5, wrist, x6_z1, y6_z1, q6_current, options), options, result);
     }
   }
   result.status = result.count > 0 ? IkStatus::kOk : IkStatus::kUnreachable;

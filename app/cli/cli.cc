@@ -36,18 +36,8 @@ std::string OneLine(std::string text) {
   return text;
 }
 
-}  // namespace
-
-int RunCli(int argc, char** argv) {
-  spdlog::set_default_logger(spdlog::stderr_color_mt("sortcell"));
-  spdlog::set_pattern("[%l] %v");
-  const std::vector<std::string> command_line(argv, argv + argc);
-
-  CLI::App app{
-      "SortCell: a simulated robotic sorting cell (UR5, parallel gripper, Kinect v1, Color-CVFH + SVM).\n"
-      "World frame = UR Base frame (D-H frame 0), z up, table top at z = 0."};
-  app.require_subcommand(1);
-  std::function<int()> run;
+// Every subcommand, each filling `run` when it is the one parsed.
+void AddCommands(CLI::App& app, std::function<int()>& run, const std::vector<std::string>& command_line) {
   AddCaptureCommand(app, run, command_line);
   AddPickCommand(app, run, command_line);
   AddSegmentCommand(app, run, command_line);
@@ -65,6 +55,32 @@ int RunCli(int argc, char** argv) {
   AddKinematicsCommands(app, run);
   AddObjectsCommand(app, run, command_line);
   AddCellCommand(app, run, command_line);
+}
+
+// CLI11's refusal in one line; an unknown first word is named with the commands there are.
+std::string ParseErrorMessage(CLI::App& app, const CLI::ParseError& e, int argc, char** argv) {
+  std::string message = OneLine(e.what());
+  if (argc > 1 && argv[1][0] != '-' && app.get_subcommands().empty()) {
+    std::string names;
+    for (const CLI::App* sub : app.get_subcommands({})) names += (names.empty() ? "" : ", ") + sub->get_name();
+    message = "unknown command '" + std::string(argv[1]) + "' (commands: " + names + ")";
+  }
+  return message;
+}
+
+}  // namespace
+
+int RunCli(int argc, char** argv) {
+  spdlog::set_default_logger(spdlog::stderr_color_mt("sortcell"));
+  spdlog::set_pattern("[%l] %v");
+  const std::vector<std::string> command_line(argv, argv + argc);
+
+  CLI::App app{
+      "SortCell: a simulated robotic sorting cell (UR5, parallel gripper, Kinect v1, Color-CVFH + SVM).\n"
+      "World frame = UR Base frame (D-H frame 0), z up, table top at z = 0."};
+  app.require_subcommand(1);
+  std::function<int()> run;
+  AddCommands(app, run, command_line);
 
   // `sortcell episode|calibrate --set KEY=VALUE` becomes `--KEY=VALUE` before CLI11 parses
   // (episode_command.h).
@@ -85,13 +101,7 @@ int RunCli(int argc, char** argv) {
   } catch (const CLI::Success& e) {
     return app.exit(e);  // --help
   } catch (const CLI::ParseError& e) {
-    std::string message = OneLine(e.what());
-    if (argc > 1 && argv[1][0] != '-' && app.get_subcommands().empty()) {
-      std::string names;
-      for (const CLI::App* sub : app.get_subcommands({})) names += (names.empty() ? "" : ", ") + sub->get_name();
-      message = "unknown command '" + std::string(argv[1]) + "' (commands: " + names + ")";
-    }
-    std::cerr << "sortcell: error: " << message << " (see sortcell --help)\n";
+    std::cerr << "sortcell: error: " << ParseErrorMessage(app, e, argc, argv) << " (see sortcell --help)\n";
     return 2;
   }
   try {

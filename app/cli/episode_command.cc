@@ -147,6 +147,94 @@ std::vector<std::string> ExpandEpisodeSets(const CLI::App& episode, const std::v
   return kept;
 }
 
+namespace {
+
+// --video, --stills and how the video is drawn.
+void AddReviewOptions(CLI::App& cmd, EpisodeCli& cli) {
+  EpisodeOptions& o = cli.options;
+  cmd.add_option("--video", o.video, "Also write an H.264 MP4 from the review camera (30 fps, with overlay)");
+  cmd.add_option(
+      "--stills", o.stills,
+      "Also write the Kinect still of every decision into this folder (still_<simulated ms>.png: the capture "
+      "with each cluster outlined and named with its category and confidence)");
+  cmd.add_option("--video-size", cli.video_size, "The video's WIDTHxHEIGHT (at most 1280x960)")
+      ->check(kVideoSize)
+      ->capture_default_str();
+  cmd.add_flag("--video-shadows", o.video_options.shadows,
+               "Draw the video with shadows and the floor's reflection (about 2.5x the rendering time)");
+}
+
+// The objects' friction, mass and colours varied.
+void AddObjectVariationOptions(CLI::App& cmd, EpisodeOptions& o) {
+  cmd.add_option("--friction-scale", o.variation.friction_scale, "Scale of the objects' friction")
+      ->capture_default_str();
+  cmd.add_option("--mass-scale", o.variation.mass_scale, "Scale of the objects' masses")->capture_default_str();
+  cmd.add_option("--colour-jitter", o.variation.colour_jitter,
+                 "Vary each object's colours at random (0-1): hue up to +-25 deg, saturation and brightness up to "
+                 "+-30 %, times this")
+      ->check(CLI::Range(0.0, 1.0))
+      ->capture_default_str();
+}
+
+// How the cell runs: calibration, budgets, bins and rules, objects it does not know.
+void AddCellOptions(CLI::App& cmd, EpisodeCli& cli) {
+  EpisodeOptions& o = cli.options;
+  cmd.add_option("--self-calibrate", cli.self_calibrate,
+                 "Calibrate the camera's pose from the marker on the gripper before sorting: on, off, or auto (when "
+                 "--camera-shift or --camera-turn displaces the camera)")
+      ->check(CLI::IsMember(AllNames(kSelfCalibrationNames)))
+      ->capture_default_str();
+  cmd.add_option("--max-attempts", o.max_attempts_per_object, "Grasp attempts per object before giving it up")
+      ->capture_default_str();
+  cmd.add_option("--time-limit", o.time_limit_s, "Simulated seconds (0: 60 + 45 per object)")->capture_default_str();
+  cmd.add_option("--cell", o.cell, "Cell layout: bins and rules (default: scenes/cells/default.yaml)");
+  EpisodeCli* given = &cli;
+  cmd.add_option("--reject-below", cli.reject_below,
+                 "Objects recognised with a lower confidence (0-1) are unknown and go to the cell's reject bin "
+                 "(default: the cell's reject_below)")
+      ->check(CLI::Range(0.0, 1.0))
+      ->each([given](const std::string&) { given->reject_below_given = true; });
+  cmd.add_option("--unknown-set", o.unknown_set, "Object set the model was not trained on, for --unknown-objects");
+  cmd.add_option("--unknown-objects", o.unknown_objects,
+                 "Also place this many objects of --unknown-set: the rules send them to the reject bin")
+      ->check(CLI::Range(0, 100))
+      ->capture_default_str();
+}
+
+// Without --model: the set's cached default model, trained first with --train-if-missing.
+void ResolveDefaultModel(EpisodeOptions& options, bool train_if_missing) {
+  const ObjectSet set = LoadObjectSet(options.object_set);
+  options.model = DefaultModelPath(set);
+  if (train_if_missing) {
+    EnsureDefaultModel(set);
+  } else if (!std::filesystem::exists(options.model)) {
+    throw std::invalid_argument("no trained model at " + options.model.string() + ": " + DefaultModelHint(set));
+  } else if (!DefaultModelIsCurrent(set)) {
+    throw std::invalid_argument(
+        "the cached model " + options.model.string() +
+        " was trained on other object models or another Kinect colour model: " + DefaultModelHint(set));
+  }
+}
+
+int RunEpisodeCommand(const EpisodeCli& cli, const std::vector<std::string>& command_line) {
+  if (!cli.sets.empty()) throw std::logic_error("episode: --set reached the parser (ExpandEpisodeSets not applied)");
+  EpisodeOptions options = cli.options;
+  if (cli.reject_below_given) options.reject_below = cli.reject_below;
+  for (const auto& p : cli.placements) options.placements.push_back(ParsePlacement(p));
+  // Both checked by the parser.
+  options.placement.mode = *sim::ParsePlacementMode(cli.placement_mode);
+  options.self_calibrate = ParseName(kSelfCalibrationNames, cli.self_calibrate, "--self-calibrate");
+  std::tie(options.video_options.width, options.video_options.height) = ParseVideoSize(cli.video_size);
+  if (options.model.empty()) ResolveDefaultModel(options, cli.train_if_missing);
+  const EpisodeMetrics metrics = RunEpisode(options, command_line);
+  std::cout << EpisodeParagraph(metrics) << "\nMetrics: " << (options.out / "metrics.json").string();
+  if (!options.video.empty()) std::cout << "\nVideo: " << options.video.string();
+  std::cout << "\n";
+  return 0;
+}
+
+}  // namespace
+
 void AddEpisodeCommand(CLI::App& app, std::function<int()>& run, const std::vector<std::string>& command_line) {
   auto cli = std::make_shared<EpisodeCli>();
   EpisodeOptions& o = cli->options;
@@ -171,81 +259,17 @@ void AddEpisodeCommand(CLI::App& app, std::function<int()>& run, const std::vect
   cmd->add_flag("--train-if-missing", cli->train_if_missing,
                 "Without --model: train and cache the default model first if it is not there (sortcell train "
                 "--objects; about 30 s for 150 scenes)");
-  cmd->add_option("--video", o.video, "Also write an H.264 MP4 from the review camera (30 fps, with overlay)");
-  cmd->add_option(
-      "--stills", o.stills,
-      "Also write the Kinect still of every decision into this folder (still_<simulated ms>.png: the capture "
-      "with each cluster outlined and named with its category and confidence)");
-  cmd->add_option("--video-size", cli->video_size, "The video's WIDTHxHEIGHT (at most 1280x960)")
-      ->check(kVideoSize)
-      ->capture_default_str();
-  cmd->add_flag("--video-shadows", o.video_options.shadows,
-                "Draw the video with shadows and the floor's reflection (about 2.5x the rendering time)");
+  AddReviewOptions(*cmd, *cli);
   cmd->add_option("--out", o.out, "Output folder (created if missing)")->required();
   cmd->add_option("--place", cli->placements,
                   "Put an object at NAME=x,y[,yaw[,lying]] (world, m, rad; 'lying': on its side) instead of at random");
   AddPlacementOptions(*cmd, *cli);
   AddSensorVariationOptions(*cmd, o);
-  cmd->add_option("--friction-scale", o.variation.friction_scale, "Scale of the objects' friction")
-      ->capture_default_str();
-  cmd->add_option("--mass-scale", o.variation.mass_scale, "Scale of the objects' masses")->capture_default_str();
-  cmd->add_option("--colour-jitter", o.variation.colour_jitter,
-                  "Vary each object's colours at random (0-1): hue up to +-25 deg, saturation and brightness up to "
-                  "+-30 %, times this")
-      ->check(CLI::Range(0.0, 1.0))
-      ->capture_default_str();
-  cmd->add_option("--self-calibrate", cli->self_calibrate,
-                  "Calibrate the camera's pose from the marker on the gripper before sorting: on, off, or auto (when "
-                  "--camera-shift or --camera-turn displaces the camera)")
-      ->check(CLI::IsMember({"auto", "on", "off"}))
-      ->capture_default_str();
-  cmd->add_option("--max-attempts", o.max_attempts_per_object, "Grasp attempts per object before giving it up")
-      ->capture_default_str();
-  cmd->add_option("--time-limit", o.time_limit_s, "Simulated seconds (0: 60 + 45 per object)")->capture_default_str();
-  cmd->add_option("--cell", o.cell, "Cell layout: bins and rules (default: scenes/cells/default.yaml)");
-  cmd->add_option("--reject-below", cli->reject_below,
-                  "Objects recognised with a lower confidence (0-1) are unknown and go to the cell's reject bin "
-                  "(default: the cell's reject_below)")
-      ->check(CLI::Range(0.0, 1.0))
-      ->each([cli](const std::string&) { cli->reject_below_given = true; });
-  cmd->add_option("--unknown-set", o.unknown_set, "Object set the model was not trained on, for --unknown-objects");
-  cmd->add_option("--unknown-objects", o.unknown_objects,
-                  "Also place this many objects of --unknown-set: the rules send them to the reject bin")
-      ->check(CLI::Range(0, 100))
-      ->capture_default_str();
+  AddObjectVariationOptions(*cmd, o);
+  AddCellOptions(*cmd, *cli);
   AddSetOption(*cmd, cli->sets);
-  cmd->callback([&run, cli, command_line] {
-    run = [cli, command_line] {
-      if (!cli->sets.empty())
-        throw std::logic_error("episode: --set reached the parser (ExpandEpisodeSets not applied)");
-      EpisodeOptions options = cli->options;
-      if (cli->reject_below_given) options.reject_below = cli->reject_below;
-      for (const auto& p : cli->placements) options.placements.push_back(ParsePlacement(p));
-      options.placement.mode = *sim::ParsePlacementMode(cli->placement_mode);  // Checked by the parser.
-      options.self_calibrate = cli->self_calibrate == "on"    ? SelfCalibration::kOn
-                               : cli->self_calibrate == "off" ? SelfCalibration::kOff
-                                                              : SelfCalibration::kAuto;
-      std::tie(options.video_options.width, options.video_options.height) = ParseVideoSize(cli->video_size);
-      if (options.model.empty()) {
-        const ObjectSet set = LoadObjectSet(options.object_set);
-        options.model = DefaultModelPath(set);
-        if (cli->train_if_missing) {
-          EnsureDefaultModel(set);
-        } else if (!std::filesystem::exists(options.model)) {
-          throw std::invalid_argument("no trained model at " + options.model.string() + ": " + DefaultModelHint(set));
-        } else if (!DefaultModelIsCurrent(set)) {
-          throw std::invalid_argument(
-              "the cached model " + options.model.string() +
-              " was trained on other object models or another Kinect colour model: " + DefaultModelHint(set));
-        }
-      }
-      const EpisodeMetrics metrics = RunEpisode(options, command_line);
-      std::cout << EpisodeParagraph(metrics) << "\nMetrics: " << (options.out / "metrics.json").string();
-      if (!options.video.empty()) std::cout << "\nVideo: " << options.video.string();
-      std::cout << "\n";
-      return 0;
-    };
-  });
+  cmd->callback(
+      [&run, cli, command_line] { run = [cli, command_line] { return RunEpisodeCommand(*cli, command_line); }; });
 }
 
 }  // namespace sortcell::app

@@ -149,6 +149,49 @@ int TrainFromDatasetCommand(const TrainOptions& o) {
   return 0;
 }
 
+// The simulated capture the options ask for: random cell scenes, or turntable views.
+Dataset CaptureSimulated(const DatasetOptions& o, const ObjectSet& set) {
+  if (o.scenes > 0) {
+    SceneOptions options;
+    options.scenes = o.scenes;
+    options.seed = o.seed;
+    options.max_objects = std::min<int>(options.max_objects, static_cast<int>(set.objects.size()));
+    options.min_objects = std::min(options.min_objects, options.max_objects);
+    options.modes.clear();
+    for (const auto& mode : o.placement) options.modes.push_back(*sim::ParsePlacementMode(mode));  // Checked.
+    options.placement.lying_fraction = o.lying_fraction;
+    options.colour_jitter = o.colour_jitter;
+    return CaptureScenes(set, options, o.out);
+  }
+  TurntableOptions options;
+  options.views = o.views;
+  options.seed = o.seed;
+  options.occluded_copies = o.occluded;
+  return CaptureTurntable(set, options, o.out);
+}
+
+int RunDatasetCommand(const DatasetOptions& o, const std::vector<std::string>& command_line) {
+  if (!o.rgbd_objects.empty()) return ImportRgbdObjectsCommand(o, command_line);
+  if (o.objects.empty()) {
+    throw std::invalid_argument("dataset: give --objects SET.yaml (a simulated capture) or --from-rgbd-objects DIR");
+  }
+  const ObjectSet set = LoadObjectSet(o.objects);
+  const auto start = WallClock::now();
+  const Dataset d = CaptureSimulated(o, set);
+  SaveDataset(o.out, d);
+  const double wall = SecondsSince(start);
+  WriteJson(
+      o.out / "run.json",
+      RunRecord(
+          command_line, o.seed,
+          {{"command", "dataset"}, {"objects", o.objects.string()}, {"capture", d.capture}, {"dataset_wall_s", wall}}));
+  std::cout << "Dataset of " << set.name << ": " << d.samples.size() << " samples ("
+            << d.Labels(perception::LabelKind::kCategory).size() << " categories, "
+            << d.Labels(perception::LabelKind::kInstance).size() << " instances) in " << o.out.string() << "/, "
+            << std::lround(wall) << " s\n";
+  return 0;
+}
+
 }  // namespace
 
 void AddDatasetCommand(CLI::App& app, std::function<int()>& run, const std::vector<std::string>& command_line) {
@@ -202,48 +245,7 @@ void AddDatasetCommand(CLI::App& app, std::function<int()>& run, const std::vect
                             ->capture_default_str();
   for (CLI::Option* scene_only : {placement, lying, jitter}) scene_only->needs(scenes);
   for (CLI::Option* simulated : {views, scenes, seed, occluded, placement, lying, jitter}) rgbd->excludes(simulated);
-  cmd->callback([&run, o, command_line] {
-    run = [o, command_line] {
-      if (!o->rgbd_objects.empty()) return ImportRgbdObjectsCommand(*o, command_line);
-      if (o->objects.empty()) {
-        throw std::invalid_argument(
-            "dataset: give --objects SET.yaml (a simulated capture) or --from-rgbd-objects DIR");
-      }
-      const ObjectSet set = LoadObjectSet(o->objects);
-      const auto start = WallClock::now();
-      Dataset d;
-      if (o->scenes > 0) {
-        SceneOptions options;
-        options.scenes = o->scenes;
-        options.seed = o->seed;
-        options.max_objects = std::min<int>(options.max_objects, static_cast<int>(set.objects.size()));
-        options.min_objects = std::min(options.min_objects, options.max_objects);
-        options.modes.clear();
-        for (const auto& mode : o->placement) options.modes.push_back(*sim::ParsePlacementMode(mode));  // Checked.
-        options.placement.lying_fraction = o->lying_fraction;
-        options.colour_jitter = o->colour_jitter;
-        d = CaptureScenes(set, options, o->out);
-      } else {
-        TurntableOptions options;
-        options.views = o->views;
-        options.seed = o->seed;
-        options.occluded_copies = o->occluded;
-        d = CaptureTurntable(set, options, o->out);
-      }
-      SaveDataset(o->out, d);
-      const double wall = SecondsSince(start);
-      WriteJson(o->out / "run.json", RunRecord(command_line, o->seed,
-                                               {{"command", "dataset"},
-                                                {"objects", o->objects.string()},
-                                                {"capture", d.capture},
-                                                {"dataset_wall_s", wall}}));
-      std::cout << "Dataset of " << set.name << ": " << d.samples.size() << " samples ("
-                << d.Labels(perception::LabelKind::kCategory).size() << " categories, "
-                << d.Labels(perception::LabelKind::kInstance).size() << " instances) in " << o->out.string() << "/, "
-                << std::lround(wall) << " s\n";
-      return 0;
-    };
-  });
+  cmd->callback([&run, o, command_line] { run = [o, command_line] { return RunDatasetCommand(*o, command_line); }; });
 }
 
 void AddTrainCommand(CLI::App& app, std::function<int()>& run, const std::vector<std::string>& command_line) {

@@ -20,8 +20,8 @@ nlohmann::json Vec(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
 
 // Classifies one segment into its segments.json entry; returns what the overlay shows. A segment too
 // small to describe (a fragment) gets a null category and the reason.
-std::string Recognise(const perception::RecognitionModel& model, const perception::Segment& segment,
-                      double reject_below, nlohmann::json& entry) {
+std::string ClassifyEntry(const perception::RecognitionModel& model, const perception::Segment& segment,
+                          double reject_below, nlohmann::json& entry) {
   try {
     const nlohmann::json r = ClassifyObject(model, *segment.cloud_C, reject_below, 3, "segment");
     for (const char* key : {"category", "confidence", "rejected", "top"}) entry[key] = r[key];
@@ -31,6 +31,71 @@ std::string Recognise(const perception::RecognitionModel& model, const perceptio
     entry["detail"] = e.what();
     return "?";
   }
+}
+
+// The cloud segmented as the options ask; a cloud without a table or without depth has nothing to
+// segment: for this command, bad input.
+perception::SegmentationResult SegmentPcd(const SegmentOptions& options, const perception::Cloud& cloud,
+                                          const std::optional<Eigen::Isometry3d>& X_WC,
+                                          const perception::Cloud* background) {
+  perception::SegmentationParams params;
+  params.clustering = ParseName(perception::SegmentationParams::kClusteringNames, options.clustering, "--clustering");
+  perception::SegmentationResult result;
+  try {
+    result = perception::SegmentObjects(cloud, X_WC, background, params);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument("PCD '" + options.pcd.string() + "': " + e.what());
+  }
+  if (result.status != perception::SegmentationStatus::kOk) {
+    throw std::invalid_argument("PCD '" + options.pcd.string() + "': " + result.detail);
+  }
+  return result;
+}
+
+// Every segment's cloud and segments.json (classified with a model); returns what the overlay labels.
+std::vector<std::string> WriteSegments(const SegmentOptions& options, const perception::SegmentationResult& result,
+                                       const std::optional<perception::RecognitionModel>& model) {
+  nlohmann::json segments = nlohmann::json::array();
+  std::vector<std::string> labels;
+  for (size_t i = 0; i < result.segments.size(); ++i) {
+    const perception::Segment& s = result.segments[i];
+    const std::string name = fmt::format("segment_{:02}.pcd", i);
+    perception::SaveCloud(options.out / name, *s.cloud_C);
+    segments.push_back({{"id", i},
+                        {"points", s.cloud_C->size()},
+                        {"voxels", s.voxels},
+                        {"file", name},
+                        {"centroid", Vec(s.centroid)},
+                        {"bbox_min", Vec(s.bbox_min)},
+                        {"bbox_max", Vec(s.bbox_max)},
+                        {"principal_axis", Vec(s.principal_axes.col(0))}});
+    if (model) {
+      labels.push_back(fmt::format("{} {}", i, ClassifyEntry(*model, s, options.reject_below, segments.back())));
+    }
+  }
+  const Eigen::Vector4d& plane = result.plane_C;
+  WriteJson(options.out / "segments.json", {{"frame", result.world_frame ? "world" : "camera"},
+                                            {"plane_camera_frame", {plane[0], plane[1], plane[2], plane[3]}},
+                                            {"segments", segments}});
+  return labels;
+}
+
+nlohmann::json SegmentRunJson(const SegmentOptions& options, bool organized,
+                              const perception::SegmentationResult& result, double wall_s) {
+  const auto& t = result.timings;
+  return {
+      {"command", "segment"},
+      {"pcd", options.pcd.string()},
+      {"camera", options.camera.string()},
+      {"background", options.background.string()},
+      {"model", options.model.string()},
+      {"reject_below", options.reject_below},
+      {"clustering", options.clustering},
+      {"organized", organized},
+      {"skipped",
+       organized ? nlohmann::json::array() : nlohmann::json{"overlay.png (an unorganized cloud has no image)"}},
+      {"segment_wall_s", wall_s},
+      {"stages_wall_s", {{"crop", t.crop_s}, {"plane", t.plane_s}, {"voxel", t.voxel_s}, {"cluster", t.cluster_s}}}};
 }
 
 }  // namespace
@@ -51,40 +116,9 @@ int RunSegment(const SegmentOptions& options, const std::vector<std::string>& co
   PrepareOutputDir(options.out);
 
   const auto start = std::chrono::steady_clock::now();
-  perception::SegmentationResult result;
-  perception::SegmentationParams params;
-  params.clustering = ParseName(perception::SegmentationParams::kClusteringNames, options.clustering, "--clustering");
-  try {
-    result = perception::SegmentObjects(*cloud, X_WC, background.get(), params);
-  } catch (const std::invalid_argument& e) {
-    throw std::invalid_argument("PCD '" + options.pcd.string() + "': " + e.what());
-  }
-  // A cloud without a table or without depth has nothing to segment: for this command, bad input.
-  if (result.status != perception::SegmentationStatus::kOk) {
-    throw std::invalid_argument("PCD '" + options.pcd.string() + "': " + result.detail);
-  }
+  const perception::SegmentationResult result = SegmentPcd(options, *cloud, X_WC, background.get());
   const double wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-
-  nlohmann::json segments = nlohmann::json::array();
-  std::vector<std::string> labels;
-  for (size_t i = 0; i < result.segments.size(); ++i) {
-    const perception::Segment& s = result.segments[i];
-    const std::string name = fmt::format("segment_{:02}.pcd", i);
-    perception::SaveCloud(options.out / name, *s.cloud_C);
-    segments.push_back({{"id", i},
-                        {"points", s.cloud_C->size()},
-                        {"voxels", s.voxels},
-                        {"file", name},
-                        {"centroid", Vec(s.centroid)},
-                        {"bbox_min", Vec(s.bbox_min)},
-                        {"bbox_max", Vec(s.bbox_max)},
-                        {"principal_axis", Vec(s.principal_axes.col(0))}});
-    if (model) labels.push_back(fmt::format("{} {}", i, Recognise(*model, s, options.reject_below, segments.back())));
-  }
-  const Eigen::Vector4d& plane = result.plane_C;
-  WriteJson(options.out / "segments.json", {{"frame", result.world_frame ? "world" : "camera"},
-                                            {"plane_camera_frame", {plane[0], plane[1], plane[2], plane[3]}},
-                                            {"segments", segments}});
+  const std::vector<std::string> labels = WriteSegments(options, result, model);
   // An unorganized cloud has no image to draw on: no overlay (the summary and run.json say so).
   if (!cloud->isOrganized()) std::filesystem::remove(options.out / "overlay.png");
   if (cloud->isOrganized()) {
@@ -93,23 +127,8 @@ int RunSegment(const SegmentOptions& options, const std::vector<std::string>& co
       throw std::runtime_error("cannot write '" + (options.out / "overlay.png").string() + "'");
     }
   }
-  const auto& t = result.timings;
-  WriteJson(
-      options.out / "run.json",
-      RunRecord(command_line, 0,
-                {{"command", "segment"},
-                 {"pcd", options.pcd.string()},
-                 {"camera", options.camera.string()},
-                 {"background", options.background.string()},
-                 {"model", options.model.string()},
-                 {"reject_below", options.reject_below},
-                 {"clustering", options.clustering},
-                 {"organized", cloud->isOrganized()},
-                 {"skipped", cloud->isOrganized() ? nlohmann::json::array()
-                                                  : nlohmann::json{"overlay.png (an unorganized cloud has no image)"}},
-                 {"segment_wall_s", wall_s},
-                 {"stages_wall_s",
-                  {{"crop", t.crop_s}, {"plane", t.plane_s}, {"voxel", t.voxel_s}, {"cluster", t.cluster_s}}}}));
+  WriteJson(options.out / "run.json",
+            RunRecord(command_line, 0, SegmentRunJson(options, cloud->isOrganized(), result, wall_s)));
   return static_cast<int>(result.segments.size());
 }
 

@@ -23,12 +23,60 @@ void ParseShard(const std::string& text, SweepOptions& o) {
   }
 }
 
+// What the options ask beyond the sweep: failures reviewed, the report page.
+struct SweepExtras {
+  std::string shard = "1/1";
+  bool review = false, report = false;
+};
+
+// Prints what the sweep did; returns the command's exit status.
+int PrintSweep(const SweepOptions& o, const SweepRun& r) {
+  const auto& s = r.summary;
+  if (r.stopped_by != 0) {
+    std::printf(
+        "Sweep %s stopped by %s: %d episodes finished and recorded in this run, %d in flight ended and "
+        "not recorded; `--resume` runs the rest. Summary of what is done: %s\n",
+        o.spec.filename().string().c_str(), r.stopped_by == SIGINT ? "SIGINT" : "SIGTERM", r.ran, r.ended_in_flight,
+        (o.out / "summary.md").string().c_str());
+    return 128 + r.stopped_by;
+  }
+  std::printf(
+      "Sweep %s: %d of %d episodes in this shard run now (%d were already done, %d failed to run) in %.0f s. "
+      "All %d episodes in %s: %d items, correct-sort rate %.1f %% (95 %% CI %.1f-%.1f %%).\nSummary: %s\n",
+      o.spec.filename().string().c_str(), r.ran, r.in_shard, r.already, r.crashed, r.wall_time_s,
+      s["episodes"].get<int>(), (o.out / "results.jsonl").string().c_str(), s["items"].get<int>(),
+      s["correct_sort_rate"].is_null() ? 0.0 : 100 * s["correct_sort_rate"].get<double>(),
+      100 * s["correct_sort_rate_ci95"][0].get<double>(), 100 * s["correct_sort_rate_ci95"][1].get<double>(),
+      (o.out / "summary.md").string().c_str());
+  return 0;
+}
+
+void ReviewAndPrint(const std::filesystem::path& out) {
+  const SweepReview v = ReviewSweep(out);
+  std::string mismatches =
+      v.mismatches.empty() ? "" : "; " + std::to_string(v.mismatches.size()) + " replays did NOT match their records";
+  if (!v.not_replayed.empty())
+    mismatches += "; " + std::to_string(v.not_replayed.size()) + " episodes could not be replayed";
+  std::printf(
+      "Review: %d episodes with a failed item replayed with video, %zu failed items each told in words with "
+      "a clip (%s)%s.\n",
+      v.episodes_replayed, v.failures.size(), (out / "review.json").string().c_str(), mismatches.c_str());
+}
+
+int RunSweepCommand(SweepOptions o, const SweepExtras& extras, const std::vector<std::string>& command_line) {
+  ParseShard(extras.shard, o);
+  const int status = PrintSweep(o, RunSweep(o, command_line));
+  if (status != 0) return status;
+  if (extras.review) ReviewAndPrint(o.out);
+  if (extras.review || extras.report) std::printf("Report: %s\n", WriteHtmlReport(o.out).string().c_str());
+  return 0;
+}
+
 }  // namespace
 
 void AddSweepCommand(CLI::App& app, std::function<int()>& run, const std::vector<std::string>& command_line) {
   auto o = std::make_shared<SweepOptions>();
-  auto shard = std::make_shared<std::string>("1/1");
-  auto review = std::make_shared<bool>(false), report = std::make_shared<bool>(false);
+  auto extras = std::make_shared<SweepExtras>();
   CLI::App* cmd = app.add_subcommand(
       "sweep",
       "Many sorting episodes from a spec (scenes/sweeps/*.yaml), in worker processes. Appends each finished "
@@ -41,13 +89,14 @@ void AddSweepCommand(CLI::App& app, std::function<int()>& run, const std::vector
                 "For large sweeps: keep only results.jsonl and the summaries; an episode's folder is removed once its "
                 "record is written, except when its worker crashed or timed out (its log.txt stays)");
   cmd->add_flag(
-      "--review", *review,
+      "--review", extras->review,
       "After the sweep, replay every episode with a failed item with its review video (sortcell replay), find "
       "when each item failed, tell its attempts in words and cut a 6 s clip around it: DIR/review.json, "
       "DIR/replays/<episode>/");
-  cmd->add_flag("--report", *report,
+  cmd->add_flag("--report", extras->report,
                 "Also write the report page, DIR/report/index.html (sortcell report; --review writes it too)");
-  cmd->add_option("--shard", *shard, "Run share i of N (episodes whose index is i-1 modulo N)")->capture_default_str();
+  cmd->add_option("--shard", extras->shard, "Run share i of N (episodes whose index is i-1 modulo N)")
+      ->capture_default_str();
   cmd->add_option("--set", o->sets,
                   "Override a key of the spec (repeatable): scene, object_set, model, seed, episodes, seeds, mode, "
                   "episode_timeout_s, or axes.NAME (one value fixes the axis; a YAML list or {min: a, max: b} also "
@@ -55,42 +104,8 @@ void AddSweepCommand(CLI::App& app, std::function<int()>& run, const std::vector
                   "spec.yaml in the output folder lists the overrides; a --resume must repeat them")
       ->type_name("KEY=VALUE")
       ->allow_extra_args(false);
-  cmd->callback([&run, o, shard, review, report, command_line] {
-    run = [o, shard, review, report, command_line] {
-      ParseShard(*shard, *o);
-      const SweepRun r = RunSweep(*o, command_line);
-      const auto& s = r.summary;
-      if (r.stopped_by != 0) {
-        std::printf(
-            "Sweep %s stopped by %s: %d episodes finished and recorded in this run, %d in flight ended and "
-            "not recorded; `--resume` runs the rest. Summary of what is done: %s\n",
-            o->spec.filename().string().c_str(), r.stopped_by == SIGINT ? "SIGINT" : "SIGTERM", r.ran,
-            r.ended_in_flight, (o->out / "summary.md").string().c_str());
-        return 128 + r.stopped_by;
-      }
-      std::printf(
-          "Sweep %s: %d of %d episodes in this shard run now (%d were already done, %d failed to run) in %.0f s. "
-          "All %d episodes in %s: %d items, correct-sort rate %.1f %% (95 %% CI %.1f-%.1f %%).\nSummary: %s\n",
-          o->spec.filename().string().c_str(), r.ran, r.in_shard, r.already, r.crashed, r.wall_time_s,
-          s["episodes"].get<int>(), (o->out / "results.jsonl").string().c_str(), s["items"].get<int>(),
-          s["correct_sort_rate"].is_null() ? 0.0 : 100 * s["correct_sort_rate"].get<double>(),
-          100 * s["correct_sort_rate_ci95"][0].get<double>(), 100 * s["correct_sort_rate_ci95"][1].get<double>(),
-          (o->out / "summary.md").string().c_str());
-      if (*review) {
-        const SweepReview v = ReviewSweep(o->out);
-        std::string mismatches =
-            v.mismatches.empty() ? ""
-                                 : "; " + std::to_string(v.mismatches.size()) + " replays did NOT match their records";
-        if (!v.not_replayed.empty())
-          mismatches += "; " + std::to_string(v.not_replayed.size()) + " episodes could not be replayed";
-        std::printf(
-            "Review: %d episodes with a failed item replayed with video, %zu failed items each told in words with "
-            "a clip (%s)%s.\n",
-            v.episodes_replayed, v.failures.size(), (o->out / "review.json").string().c_str(), mismatches.c_str());
-      }
-      if (*review || *report) std::printf("Report: %s\n", WriteHtmlReport(o->out).string().c_str());
-      return 0;
-    };
+  cmd->callback([&run, o, extras, command_line] {
+    run = [o, extras, command_line] { return RunSweepCommand(*o, *extras, command_line); };
   });
 }
 

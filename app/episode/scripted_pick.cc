@@ -133,6 +133,61 @@ nlohmann::json ResultJson(const PickOptions& options, const PickResult& result, 
           {"video_render_wall_s", result.video_render_wall_s}};
 }
 
+// How far the held object moved in the hand between the sequence's milestones (ground truth): the pick's
+// hooks write the slip into `result` and the finger gap the grasp closed to into `held_gap`.
+struct SlipWatch {
+  SlipWatch(const sim::Data& data, int tcp, int object, SimCell& cell, cell::MotionSequencer& motions,
+            PickResult& result)
+      : data(data), tcp(tcp), object(object), cell(cell), motions(motions), result(result) {}
+
+  const sim::Data& data;
+  int tcp, object;
+  SimCell& cell;
+  cell::MotionSequencer& motions;
+  PickResult& result;
+  Eigen::Isometry3d X_TO_grasped = Eigen::Isometry3d::Identity(), X_TO_lifted = Eigen::Isometry3d::Identity();
+  std::optional<double> held_gap;
+
+  Eigen::Isometry3d ObjectInTcp() const { return sim::SitePose(data, tcp).inverse() * sim::BodyPose(data, object); }
+
+  cell::PickHooks Hooks() {
+    cell::PickHooks hooks;
+    hooks.grasped = [this] {
+      X_TO_grasped = ObjectInTcp();
+      held_gap = cell.ReadGripper().gap();
+    };
+    hooks.lifted = [this] { X_TO_lifted = ObjectInTcp(); };
+    hooks.carried = [this] {
+      result.slip_mm = 1000 * (ObjectInTcp().translation() - X_TO_lifted.translation()).norm();
+      result.slip_rotation_deg = robot::RotationError(ObjectInTcp(), X_TO_lifted) * 180 / M_PI;
+    };
+    hooks.lowered = [this] {
+      result.held = motions.Hold() == robot::HoldState::kHolding;
+      result.slip_total_mm = 1000 * (ObjectInTcp().translation() - X_TO_grasped.translation()).norm();
+    };
+    return hooks;
+  }
+};
+
+// The cell's pick-and-place sequence into the middle of `bin`, then home: how it ended, and why (`detail`).
+cell::AttemptResult PickIntoBin(cell::MotionSequencer& motions, const robot::GraspPlan& grasp,
+                                const cell::CellLayout& layout, const std::string& bin, const cell::PickHooks& hooks,
+                                std::string& detail) {
+  cell::PickRequest request;
+  request.grasp = grasp;
+  request.p_W_release = cell::BinNamed(layout, bin).p_W_floor;    // The bin's middle.
+  request.place_yaw_step = robot::GraspOptions().place_yaw_step;  // Any yaw: the bin's middle.
+  request.q_home = layout.q_observe;
+  request.speeds = layout.speeds;
+  const cell::PickReport report = cell::PickAndPlace(motions, request, hooks);
+  detail = report.detail;
+  if (report.X_WT_exit && !cell::GoHome(motions, report.X_WT_exit, layout.q_observe, layout.speeds)) {
+    detail = motions.failure();
+    return motions.faulted() ? cell::AttemptResult::kSimDiverged : cell::AttemptResult::kMotionFailed;
+  }
+  return report.result;
+}
+
 }  // namespace
 
 PickResult RunPick(const PickOptions& options, const std::vector<std::string>& command_line) {
@@ -161,40 +216,11 @@ PickResult RunPick(const PickOptions& options, const std::vector<std::string>& c
 
   PickResult result;
   const double t0 = cell.Now();
-  // The object's pose in the hand at the sequence's milestones (ground truth, to measure slip).
-  const auto object_in_tcp = [&] { return sim::SitePose(data, tcp).inverse() * sim::BodyPose(data, target.object); };
-  Eigen::Isometry3d X_TO_grasped = Eigen::Isometry3d::Identity(), X_TO_lifted = X_TO_grasped;
-  std::optional<double> held_gap;  // The finger gap when the grasp closed on the object.
-  cell::PickHooks hooks;
-  hooks.grasped = [&] {
-    X_TO_grasped = object_in_tcp();
-    held_gap = cell.ReadGripper().gap();
-  };
-  hooks.lifted = [&] { X_TO_lifted = object_in_tcp(); };
-  hooks.carried = [&] {
-    result.slip_mm = 1000 * (object_in_tcp().translation() - X_TO_lifted.translation()).norm();
-    result.slip_rotation_deg = robot::RotationError(object_in_tcp(), X_TO_lifted) * 180 / M_PI;
-  };
-  hooks.lowered = [&] {
-    result.held = motions.Hold() == robot::HoldState::kHolding;
-    result.slip_total_mm = 1000 * (object_in_tcp().translation() - X_TO_grasped.translation()).norm();
-  };
+  SlipWatch slip(data, tcp, target.object, cell, motions, result);
   std::string detail;
   std::optional<cell::AttemptResult> outcome;
   if (grasp.status == robot::GraspStatus::kOk) {
-    cell::PickRequest request;
-    request.grasp = grasp;
-    request.p_W_release = cell::BinNamed(layout, target.bin.name).p_W_floor;  // The bin's middle.
-    request.place_yaw_step = robot::GraspOptions().place_yaw_step;            // Any yaw: the bin's middle.
-    request.q_home = layout.q_observe;
-    request.speeds = layout.speeds;
-    const cell::PickReport report = cell::PickAndPlace(motions, request, hooks);
-    outcome = report.result;
-    detail = report.detail;
-    if (report.X_WT_exit && !cell::GoHome(motions, report.X_WT_exit, layout.q_observe, layout.speeds)) {
-      outcome = motions.faulted() ? cell::AttemptResult::kSimDiverged : cell::AttemptResult::kMotionFailed;
-      detail = motions.failure();
-    }
+    outcome = PickIntoBin(motions, grasp, layout, target.bin.name, slip.Hooks(), detail);
   }
   result.cycle_time_s = cell.Now() - t0;
   motions.Wait("settle_result", kPickSettleTime);
@@ -208,7 +234,7 @@ PickResult RunPick(const PickOptions& options, const std::vector<std::string>& c
   result.wall_time_s = SecondsSince(wall_start);
   result.real_time_factor = cell.Now() / result.wall_time_s;
   WriteJson(options.out / "result.json",
-            ResultJson(options, result, detail, extent, grasp, held_gap, cell, layout, motions.phases()));
+            ResultJson(options, result, detail, extent, grasp, slip.held_gap, cell, layout, motions.phases()));
   WriteJson(options.out / "run.json",
             RunRecord(command_line, 0,
                       {{"command", "pick"}, {"scene", options.scene.string()}, {"wall_time_s", result.wall_time_s}}));

@@ -194,11 +194,14 @@ void PrepareDatasetDir(const std::filesystem::path& dir) {
   std::filesystem::create_directories(dir / "clouds");
 }
 
-}  // namespace
+// The rig's label of object `name` (1-based: 0 is everything else).
+int LabelOf(const CaptureRig& rig, const std::string& name) {
+  const auto& names = rig.object_names();
+  return static_cast<int>(std::find(names.begin(), names.end(), name) - names.begin()) + 1;
+}
 
-Dataset CaptureTurntable(const ObjectSet& set, const TurntableOptions& options, const std::filesystem::path& dir) {
-  if (options.views < 3) throw std::invalid_argument("--views: expected at least 3 views per revolution");
-  PrepareDatasetDir(dir);
+// One camera per elevation, all aimed at the turntable's middle.
+std::vector<sim::CameraSpec> TurntableCameras(const TurntableOptions& options) {
   std::vector<sim::CameraSpec> cameras;
   const Eigen::Vector3d aim = options.centre_W + Eigen::Vector3d(0, 0, options.aim_height_m);
   for (double e : options.elevations_deg) {
@@ -207,6 +210,67 @@ Dataset CaptureTurntable(const ObjectSet& set, const TurntableOptions& options, 
                                     std::cos(e * kDeg) * std::sin(kTurntableAzimuth), std::sin(e * kDeg));
     cameras.push_back({"turntable_" + std::to_string(static_cast<int>(e)), aim + options.distance_m * direction, aim});
   }
+  return cameras;
+}
+
+// Where a turntable view comes from: the object, the camera and its elevation, the view's place in the
+// revolution and in the whole capture (its random stream).
+struct TurntableView {
+  const ObjectSpec& spec;
+  const std::string& camera;
+  double elevation_deg = 0;
+  int view = 0;
+  uint64_t index = 0;
+};
+
+// One view: the object alone on the turntable, jittered, captured and described into a sample (with its
+// occluded copies) or into `skipped` with the reason.
+void CaptureTurntableView(CaptureRig& rig, const TurntableOptions& options, const TurntableView& v,
+                          const std::filesystem::path& dir, Dataset& dataset, nlohmann::json& skipped) {
+  std::mt19937_64 rng = EpisodeRng(options.seed, v.index);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  rig.ParkAll();
+  const double yaw = 2 * M_PI * v.view / options.views + options.yaw_jitter_rad * unit(rng);
+  sim::PlaceObject(rig.model(), rig.data(), rig.Body(v.spec.name), options.centre_W.x() + options.jitter_m * unit(rng),
+                   options.centre_W.y() + options.jitter_m * unit(rng), yaw);
+  std::string segmentation_failure;
+  const auto segments = rig.CaptureSegments(v.camera, rng, &segmentation_failure);
+  const int label = LabelOf(rig, v.spec.name);
+  const LabelledSegment* best = nullptr;
+  for (const auto& l : segments) {
+    if (l.label == label && (best == nullptr || l.iou > best->iou)) best = &l;
+  }
+  Sample sample;
+  sample.id = static_cast<int>(dataset.samples.size());
+  sample.category = v.spec.category;
+  sample.instance = v.spec.instance;
+  sample.source = "turntable";
+  sample.elevation_deg = v.elevation_deg;
+  sample.frame = v.view;
+  std::string reason = segmentation_failure.empty() ? "no segment of the object" : segmentation_failure;
+  if (best == nullptr || !Describe(*best, dir, dataset.params, sample, reason)) {
+    skipped.push_back(
+        {{"instance", v.spec.instance}, {"elevation_deg", v.elevation_deg}, {"frame", v.view}, {"reason", reason}});
+    return;
+  }
+  dataset.samples.push_back(sample);
+  for (int k = 0; k < options.occluded_copies; ++k) {
+    Sample occluded = sample;
+    occluded.id = static_cast<int>(dataset.samples.size());
+    occluded.source = "turntable_occluded";
+    std::string why;  // An occluded copy too small to describe is left out; the view is not.
+    if (Describe(OccludedCopy(*best, rng), dir, dataset.params, occluded, why)) {
+      dataset.samples.push_back(std::move(occluded));
+    }
+  }
+}
+
+}  // namespace
+
+Dataset CaptureTurntable(const ObjectSet& set, const TurntableOptions& options, const std::filesystem::path& dir) {
+  if (options.views < 3) throw std::invalid_argument("--views: expected at least 3 views per revolution");
+  PrepareDatasetDir(dir);
+  const std::vector<sim::CameraSpec> cameras = TurntableCameras(options);
   CaptureRig rig(set, cameras);
   Dataset dataset;
   dataset.object_set = set.source.string();
@@ -220,49 +284,10 @@ Dataset CaptureTurntable(const ObjectSet& set, const TurntableOptions& options, 
   Progress progress("dataset " + set.name, total);
   uint64_t index = 0;
   for (const auto& spec : set.objects) {
-    const int body = rig.Body(spec.name);
     for (size_t c = 0; c < cameras.size(); ++c) {
       for (int view = 0; view < options.views; ++view, ++index) {
-        std::mt19937_64 rng = EpisodeRng(options.seed, index);
-        std::uniform_real_distribution<double> unit(-1.0, 1.0);
-        rig.ParkAll();
-        const double yaw = 2 * M_PI * view / options.views + options.yaw_jitter_rad * unit(rng);
-        sim::PlaceObject(rig.model(), rig.data(), body, options.centre_W.x() + options.jitter_m * unit(rng),
-                         options.centre_W.y() + options.jitter_m * unit(rng), yaw);
-        std::string segmentation_failure;
-        const auto segments = rig.CaptureSegments(cameras[c].name, rng, &segmentation_failure);
-        const int label = static_cast<int>(std::find(rig.object_names().begin(), rig.object_names().end(), spec.name) -
-                                           rig.object_names().begin()) +
-                          1;
-        const LabelledSegment* best = nullptr;
-        for (const auto& l : segments) {
-          if (l.label == label && (best == nullptr || l.iou > best->iou)) best = &l;
-        }
-        Sample sample;
-        sample.id = static_cast<int>(dataset.samples.size());
-        sample.category = spec.category;
-        sample.instance = spec.instance;
-        sample.source = "turntable";
-        sample.elevation_deg = options.elevations_deg[c];
-        sample.frame = view;
-        std::string reason = segmentation_failure.empty() ? "no segment of the object" : segmentation_failure;
-        if (best != nullptr && Describe(*best, dir, dataset.params, sample, reason)) {
-          dataset.samples.push_back(sample);
-          for (int k = 0; k < options.occluded_copies; ++k) {
-            Sample occluded = sample;
-            occluded.id = static_cast<int>(dataset.samples.size());
-            occluded.source = "turntable_occluded";
-            std::string why;  // An occluded copy too small to describe is left out; the view is not.
-            if (Describe(OccludedCopy(*best, rng), dir, dataset.params, occluded, why)) {
-              dataset.samples.push_back(std::move(occluded));
-            }
-          }
-        } else {
-          skipped.push_back({{"instance", spec.instance},
-                             {"elevation_deg", options.elevations_deg[c]},
-                             {"frame", view},
-                             {"reason", reason}});
-        }
+        CaptureTurntableView(rig, options, {spec, cameras[c].name, options.elevations_deg[c], view, index}, dir,
+                             dataset, skipped);
         progress.Advance();
       }
     }
@@ -285,6 +310,74 @@ std::string PlacementModesText(const std::vector<sim::PlacementMode>& modes) {
   return text;
 }
 
+namespace {
+
+// What a scene capture counted: objects placed, objects no segment was of, segments of no object,
+// segments too small to describe.
+struct SceneTally {
+  int placed = 0, missed = 0, spurious = 0, undescribed = 0;
+};
+
+// Scene `scene`'s objects drawn and placed at random; returns their indices in the set. Large objects (a
+// user's cereal boxes and bleach bottles) may not all fit: the scene then holds as many of those drawn as
+// do, the last drawn left out first.
+std::vector<int> PlaceRandomScene(CaptureRig& rig, const ObjectSet& set, const std::vector<sim::ObjectShape>& shapes,
+                                  const SceneOptions& options, int scene, std::mt19937_64& rng) {
+  std::vector<int> order(set.objects.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::shuffle(order.begin(), order.end(), rng);
+  int count = std::uniform_int_distribution<int>(options.min_objects, options.max_objects)(rng);
+  sim::PlacementOptions placement = options.placement;
+  placement.mode = options.modes[scene % options.modes.size()];
+  std::vector<sim::ObjectShape> chosen_shapes;
+  std::optional<std::vector<sim::TablePose>> poses;
+  for (; count >= 1; --count) {
+    order.resize(count);
+    chosen_shapes.clear();
+    for (int o : order) chosen_shapes.push_back(shapes[o]);
+    poses = sim::SampleClutter(chosen_shapes, {}, options.area, placement, rng);
+    if (poses) break;
+  }
+  if (!poses) throw std::invalid_argument("scene " + std::to_string(scene) + ": not even one object fits the area");
+  rig.ParkAll();
+  for (int k = 0; k < count; ++k) {
+    sim::PlaceObject(rig.model(), rig.data(), rig.Body(set.objects[order[k]].name), (*poses)[k], chosen_shapes[k]);
+  }
+  return order;
+}
+
+// The scene's segments described into samples; the objects of `placed` no segment was of counted missed.
+void AddSceneSamples(const CaptureRig& rig, const ObjectSet& set, const std::vector<LabelledSegment>& segments,
+                     const std::vector<int>& placed, int scene, const std::filesystem::path& dir, Dataset& dataset,
+                     SceneTally& tally) {
+  std::vector<bool> found(rig.object_names().size() + 1, false);
+  for (const auto& l : segments) {
+    if (l.label == 0) {
+      ++tally.spurious;
+      continue;
+    }
+    const ObjectSpec& spec = set.Find(rig.object_names()[l.label - 1]);
+    found[l.label] = true;
+    Sample sample;
+    sample.id = static_cast<int>(dataset.samples.size());
+    sample.category = spec.category;
+    sample.instance = spec.instance;
+    sample.source = "scene";
+    sample.elevation_deg = 45;
+    sample.frame = static_cast<int>(&l - segments.data());
+    sample.scene = scene;
+    std::string reason;
+    if (Describe(l, dir, dataset.params, sample, reason)) {
+      dataset.samples.push_back(std::move(sample));
+    } else {
+      ++tally.undescribed;
+    }
+  }
+  for (int o : placed) tally.missed += !found[LabelOf(rig, set.objects[o].name)];
+}
+
+}  // namespace
+
 Dataset CaptureScenes(const ObjectSet& set, const SceneOptions& options, const std::filesystem::path& dir) {
   if (options.modes.empty()) throw std::invalid_argument("scene capture: no placement mode given");
   if (options.min_objects < 1 || options.max_objects < options.min_objects ||
@@ -303,33 +396,12 @@ Dataset CaptureScenes(const ObjectSet& set, const SceneOptions& options, const s
   std::vector<sim::ObjectShape> shapes;
   for (const auto& spec : set.objects) shapes.push_back(sim::ObjectShapeOf(rig.model(), rig.Body(spec.name)));
 
-  int placed = 0, missed = 0, spurious = 0, undescribed = 0;
+  SceneTally tally;
   Progress progress("scenes " + set.name, options.scenes);
   for (int scene = 0; scene < options.scenes; ++scene) {
     std::mt19937_64 rng = EpisodeRng(options.seed, static_cast<uint64_t>(scene));
-    std::vector<int> order(set.objects.size());
-    std::iota(order.begin(), order.end(), 0);
-    std::shuffle(order.begin(), order.end(), rng);
-    int count = std::uniform_int_distribution<int>(options.min_objects, options.max_objects)(rng);
-    sim::PlacementOptions placement = options.placement;
-    placement.mode = options.modes[scene % options.modes.size()];
-    // Large objects (a user's cereal boxes and bleach bottles) may not all fit: the scene then holds
-    // as many of those drawn as do, the last drawn left out first.
-    std::vector<sim::ObjectShape> chosen_shapes;
-    std::optional<std::vector<sim::TablePose>> poses;
-    for (; count >= 1; --count) {
-      order.resize(count);
-      chosen_shapes.clear();
-      for (int o : order) chosen_shapes.push_back(shapes[o]);
-      poses = sim::SampleClutter(chosen_shapes, {}, options.area, placement, rng);
-      if (poses) break;
-    }
-    if (!poses) throw std::invalid_argument("scene " + std::to_string(scene) + ": not even one object fits the area");
-    rig.ParkAll();
-    for (int k = 0; k < count; ++k) {
-      sim::PlaceObject(rig.model(), rig.data(), rig.Body(set.objects[order[k]].name), (*poses)[k], chosen_shapes[k]);
-    }
-    placed += count;
+    const std::vector<int> placed = PlaceRandomScene(rig, set, shapes, options, scene, rng);
+    tally.placed += static_cast<int>(placed.size());
     if (options.colour_jitter > 0) {
       // A stream of its own: the scene's objects, poses and camera are what they are without jitter.
       std::mt19937_64 colours = EpisodeRng(options.seed, 0xC0100000ull + static_cast<uint64_t>(scene));
@@ -337,46 +409,17 @@ Dataset CaptureScenes(const ObjectSet& set, const SceneOptions& options, const s
     }
     perception::SegmentationParams segmentation;
     segmentation.clustering = options.clustering;
-    const auto segments = rig.CaptureSegments("kinect", rng, nullptr, segmentation);
-    std::vector<bool> found(rig.object_names().size() + 1, false);
-    for (const auto& l : segments) {
-      if (l.label == 0) {
-        ++spurious;
-        continue;
-      }
-      const ObjectSpec& spec = set.Find(rig.object_names()[l.label - 1]);
-      found[l.label] = true;
-      Sample sample;
-      sample.id = static_cast<int>(dataset.samples.size());
-      sample.category = spec.category;
-      sample.instance = spec.instance;
-      sample.source = "scene";
-      sample.elevation_deg = 45;
-      sample.frame = static_cast<int>(&l - segments.data());
-      sample.scene = scene;
-      std::string reason;
-      if (Describe(l, dir, dataset.params, sample, reason)) {
-        dataset.samples.push_back(std::move(sample));
-      } else {
-        ++undescribed;
-      }
-    }
-    for (int o : order) {
-      const int label =
-          static_cast<int>(std::find(rig.object_names().begin(), rig.object_names().end(), set.objects[o].name) -
-                           rig.object_names().begin()) +
-          1;
-      if (!found[label]) ++missed;
-    }
+    AddSceneSamples(rig, set, rig.CaptureSegments("kinect", rng, nullptr, segmentation), placed, scene, dir, dataset,
+                    tally);
     progress.Advance();
   }
   progress.Finish();
   dataset.capture = {{"kind", "scenes"},
                      {"scenes", options.scenes},
-                     {"objects_placed", placed},
-                     {"objects_not_segmented", missed},
-                     {"segments_without_object", spurious},
-                     {"segments_not_described", undescribed},
+                     {"objects_placed", tally.placed},
+                     {"objects_not_segmented", tally.missed},
+                     {"segments_without_object", tally.spurious},
+                     {"segments_not_described", tally.undescribed},
                      {"samples", dataset.samples.size()},
                      {"objects_per_scene", {options.min_objects, options.max_objects}},
                      {"placement", PlacementModesText(options.modes)},

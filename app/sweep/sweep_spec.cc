@@ -7,6 +7,7 @@
 
 #include "app/common/seeding.h"
 #include "app/common/yaml_reader.h"
+#include "app/episode/episode.h"
 #include "sim/clutter_placement.h"
 
 namespace sortcell::app {
@@ -158,8 +159,8 @@ nlohmann::json AxisValue(const SpecReader& r, const std::string& name, const YAM
     return v.Scalar();
   }
   if (name == "self_calibrate") {
-    if (!v.IsScalar() || (v.Scalar() != "auto" && v.Scalar() != "on" && v.Scalar() != "off")) {
-      y.Fail("key '" + where + "': expected auto, on or off, found " +
+    if (!v.IsScalar() || !FindName(kSelfCalibrationNames, v.Scalar())) {
+      y.Fail("key '" + where + "': expected " + ExpectedNames(kSelfCalibrationNames) + ", found " +
              (v.IsScalar() ? "'" + v.Scalar() + "'" : NodeKind(v)));
     }
     return v.Scalar();
