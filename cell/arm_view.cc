@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "robot/gripper_geometry.h"
+#include "robot/ur5_dh.h"
 
 namespace sortcell::cell {
 namespace {
@@ -43,7 +44,7 @@ std::vector<Capsule> ArmCapsules(const robot::Joints& q, const std::optional<Hel
   };
   std::vector<Capsule> capsules{
       {at(0, 0, 0, 0), at(0, 0, 0, 0.12), 0.075},                                             // base and shoulder
-      {at(2, 0.425, 0, 0.136), at(2, 0, 0, 0.136), 0.06},                                     // upper arm
+      {at(2, -robot::ur5_lengths::a2, 0, 0.136), at(2, 0, 0, 0.136), 0.06},                   // upper arm
       {at(2, 0, 0, 0.02), at(2, 0, 0, 0.18), 0.06},                                           // elbow
       {at(3, 0.392, 0, 0.016), at(3, 0, 0, 0.016), 0.045},                                    // forearm
       {at(3, 0, 0, -0.03), at(4, 0, 0, 0), 0.045},                                            // wrist 1

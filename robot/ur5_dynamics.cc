@@ -20,12 +20,14 @@ MassProperties Body(double mass, const Eigen::Vector3d& p_com, const Eigen::Vect
   return body;
 }
 
-// ur_description's UR5 links in their joint frames (models/ur5/ur5.urdf).
+// ur_description's UR5 links in their joint frames (models/ur5/ur5.urdf): the shoulder's and wrist 1's
+// centres of mass at d1 and d4 up their joints, the upper arm's and forearm's halfway along a2 and a3.
 std::array<MassProperties, 6> Ur5Links() {
-  return {Body(3.7, {0, 0, 0.089159}, {0.01027, 0.01027, 0.00666}),
-          Body(8.393, {-0.2125, 0, 0.13585}, {0.0151, 0.1339, 0.1339}),
-          Body(2.275, {-0.196125, 0, 0.01615}, {0.00284, 0.03059, 0.03059}),
-          Body(1.219, {0, 0, 0.10915}, {0.00208, 0.00208, 0.00123}),
+  using namespace ur5_lengths;  // NOLINT(google-build-using-namespace): the D-H table's own names.
+  return {Body(3.7, {0, 0, d1}, {0.01027, 0.01027, 0.00666}),
+          Body(8.393, {a2 / 2, 0, 0.13585}, {0.0151, 0.1339, 0.1339}),
+          Body(2.275, {a3 / 2, 0, 0.01615}, {0.00284, 0.03059, 0.03059}),
+          Body(1.219, {0, 0, d4}, {0.00208, 0.00208, 0.00123}),
           Body(1.219, {0, 0, 0.05}, {0.00208, 0.00208, 0.00123}),
           Body(0.1879, {0, 0, 0.07}, {0.00008, 0.00008, 0.000132})};
 }
