@@ -67,9 +67,8 @@ struct RecordFields;
 template <typename Record, typename Fields = RecordFields<Record>>
 void WriteFields(nlohmann::json& j, const Record& v, Fields = {}) {
   if (!j.is_object()) j = nlohmann::json::object();
-  Fields::Visit(v, [&](const char* key, const auto& member, FieldRule = FieldRule::kRequired) {
-    j[key] = FieldJson(member);
-  });
+  Fields::Visit(
+      v, [&](const char* key, const auto& member, FieldRule = FieldRule::kRequired) { j[key] = FieldJson(member); });
 }
 
 /// Reads every field of `v` from `j`; `path` is `j`'s place in the whole record for messages ("" at the top).

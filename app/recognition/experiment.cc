@@ -211,17 +211,16 @@ ExperimentData PrepareData(const ExperimentOptions& options, const std::filesyst
   }
   const ObjectSet paper = Set("paper");
   d.train = Turntable(options, data, paper);
-  d.scenes =
-      ReuseOrCapture(data / "paper_scenes", paper, 0, options.seed, {{"kind", "scenes"}, {"scenes", options.scenes}},
-                     [&](const std::filesystem::path& dir) {
-                       SceneOptions s;
-                       s.scenes = options.scenes;
-                       s.seed = options.seed;
-                       // The paper's pipeline: its segmentation is Euclidean clustering (the
-                       // cell now segments with convex clusters; the experiments reproduce the paper).
-                       s.clustering = perception::SegmentationParams::Clustering::kEuclidean;
-                       return CaptureScenes(paper, s, dir);
-                     });
+  d.scenes = ReuseOrCapture(data / "paper_scenes", paper, 0, options.seed,
+                            {{"kind", "scenes"}, {"scenes", options.scenes}}, [&](const std::filesystem::path& dir) {
+                              SceneOptions s;
+                              s.scenes = options.scenes;
+                              s.seed = options.seed;
+                              // The paper's pipeline: its segmentation is Euclidean clustering (the
+                              // cell now segments with convex clusters; the experiments reproduce the paper).
+                              s.clustering = perception::SegmentationParams::Clustering::kEuclidean;
+                              return CaptureScenes(paper, s, dir);
+                            });
   d.trials = {SceneTrial(d.train, d.scenes, options.scenes)};
   return d;
 }
@@ -260,8 +259,7 @@ nlohmann::json RunExperiment(const ExperimentOptions& options, const std::vector
   }
   const auto start = WallClock::now();
   PrepareOutputDir(options.out);
-  const ExperimentData data =
-      PrepareData(options, options.data.empty() ? options.out / "data" : options.data, given);
+  const ExperimentData data = PrepareData(options, options.data.empty() ? options.out / "data" : options.data, given);
   const std::vector<Trial>& trials = data.trials;
 
   std::filesystem::create_directories(options.out / "models");

@@ -25,8 +25,8 @@ const robot::Joints kObserve = CellLayout().q_observe;
 
 TEST(PickChoice, TheObjectWithTheMostRoomFirstWithAPlan) {
   robot::PickMemory memory;
-  const PickChoice choice = ChoosePick({Standing(0.45, 0.0), Standing(0.55, 0.0), Standing(0.6, 0.25)}, memory,
-                                       FixedObstacles{}, kObserve);
+  const PickChoice choice =
+      ChoosePick({Standing(0.45, 0.0), Standing(0.55, 0.0), Standing(0.6, 0.25)}, memory, FixedObstacles{}, kObserve);
   EXPECT_EQ(choice.detection, 2);
   EXPECT_EQ(choice.plan.status, robot::GraspStatus::kOk);
   EXPECT_TRUE(choice.unplannable.empty());
