@@ -3,4 +3,5 @@
 # scripts/test.sh (CI) runs it first. scripts/format.sh applies the style.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-git ls-files -z '*.cc' '*.h' | xargs -0 clang-format --dry-run --Werror
+# New files git does not ignore count too (as scripts/format.sh formats them).
+git ls-files -z --cached --others --exclude-standard '*.cc' '*.h' | xargs -0 clang-format --dry-run --Werror
