@@ -4,7 +4,6 @@
 #include <stdexcept>
 #include <string>
 
-#include "perception/descriptor.h"
 #include "perception/occlusion.h"
 #include "perception/recognition_model.h"
 #include "robot/footprint_estimation.h"

@@ -143,6 +143,17 @@ void ReadRunSettings(const YamlReader& y, const YAML::Node& root, SweepSpec& spe
   }
 }
 
+// A value of an axis whose values are an enum's spellings (`names`).
+template <typename E, size_t N>
+std::string NamedAxisValue(const YamlReader& y, const EnumNames<E, N>& names, const YAML::Node& v,
+                           const std::string& where) {
+  if (!v.IsScalar() || !FindName(names, v.Scalar())) {
+    y.Fail("key '" + where + "': expected " + ExpectedNames(names) + ", found " +
+           (v.IsScalar() ? "'" + v.Scalar() + "'" : NodeKind(v)));
+  }
+  return v.Scalar();
+}
+
 // One value of axis `name` (key `where` for messages): a model file, an object count, or a number
 // (a scale > 0; a camera shift or turn >= 0).
 nlohmann::json AxisValue(const SpecReader& r, const std::string& name, const YAML::Node& v, const std::string& where) {
@@ -151,20 +162,8 @@ nlohmann::json AxisValue(const SpecReader& r, const std::string& name, const YAM
     if (!v.IsScalar() || v.Scalar().empty()) y.Fail("key '" + where + "': expected a model file, found " + NodeKind(v));
     return r.File(where, v.Scalar()).string();
   }
-  if (name == "placement") {
-    if (!v.IsScalar() || !sim::ParsePlacementMode(v.Scalar())) {
-      y.Fail("key '" + where + "': expected " + ExpectedNames(sim::kPlacementModeNames) + ", found " +
-             (v.IsScalar() ? "'" + v.Scalar() + "'" : NodeKind(v)));
-    }
-    return v.Scalar();
-  }
-  if (name == "self_calibrate") {
-    if (!v.IsScalar() || !FindName(kSelfCalibrationNames, v.Scalar())) {
-      y.Fail("key '" + where + "': expected " + ExpectedNames(kSelfCalibrationNames) + ", found " +
-             (v.IsScalar() ? "'" + v.Scalar() + "'" : NodeKind(v)));
-    }
-    return v.Scalar();
-  }
+  if (name == "placement") return NamedAxisValue(y, sim::kPlacementModeNames, v, where);
+  if (name == "self_calibrate") return NamedAxisValue(y, kSelfCalibrationNames, v, where);
   if (name == "objects" || name == "unknown_objects") {
     const long long k = y.Integer(v, where);
     if (name == "objects" && k < 1) y.Fail("key '" + where + "': expected at least 1 object");
@@ -193,7 +192,10 @@ SweepAxis ReadAxis(const SpecReader& r, const std::string& name, const YAML::Nod
     y.RejectUnknownKeys(node, key, {"min", "max"});
     if (name == "model") y.Fail("key '" + key + "': models are a list of files, not a range");
     if (name == "placement") y.Fail("key '" + key + "': placements are a list of modes, not a range");
-    if (name == "self_calibrate") y.Fail("key '" + key + "': self_calibrate is a list of auto, on, off, not a range");
+    if (name == "self_calibrate") {
+      y.Fail("key '" + key + "': self_calibrate is a list of " + ExpectedNames(kSelfCalibrationNames) +
+             ", not a range");
+    }
     if (!node["min"] || !node["max"]) y.Fail("key '" + key + "': a range needs min and max");
     axis.min = AxisValue(r, name, node["min"], key + ".min").get<double>();
     axis.max = AxisValue(r, name, node["max"], key + ".max").get<double>();
