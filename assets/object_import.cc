@@ -184,7 +184,7 @@ ImportReport ReportFromJson(const nlohmann::json& j) {
 }
 
 // `text` into `file`, checked after closing (a full disk is an error, not a short fragment). Written
-// here: app/common's WriteTextFile lies above this library.
+// here: files/ (WriteTextFile) lies above this library.
 void WriteChecked(const std::filesystem::path& file, const std::string& text) {
   std::ofstream out(file, std::ios::binary);
   out << text;

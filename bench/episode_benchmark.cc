@@ -11,11 +11,11 @@
 #include <string>
 #include <vector>
 
-#include "app/recognition/default_model.h"
+#include "training/default_model.h"
 #include "bench_args.h"
 #include "bench_temp_dir.h"
-#include "app/episode/episode.h"
-#include "app/common/object_set.h"
+#include "simcell/episode.h"
+#include "files/object_set.h"
 #include "sim/model.h"
 #include "sim/object_placement.h"
 
@@ -75,21 +75,21 @@ int Run(int argc, char** argv) {
   cli.add_option("model", model_path, "a trained model (default: the cached default model, trained if missing)");
   cli.add_option("episodes", episodes, "episodes of the sweep")->check(WholeNumberAtLeast(1));
   if (const auto exit_code = ParseBenchmarkArgs(cli, argc, argv)) return *exit_code;
-  const app::ObjectSet set = app::LoadObjectSet(std::string(SORTCELL_SOURCE_DIR) + "/scenes/objects/paper.yaml");
+  const files::ObjectSet set = files::LoadObjectSet(std::string(SORTCELL_SOURCE_DIR) + "/scenes/objects/paper.yaml");
   const std::string model =
-      std::filesystem::absolute(model_path.empty() ? app::EnsureDefaultModel(set) : model_path).string();
+      std::filesystem::absolute(model_path.empty() ? training::EnsureDefaultModel(set) : model_path).string();
   const std::filesystem::path out = BenchTempDir("sortcell_bench_episode");
 
-  app::EpisodeOptions options;
+  simcell::EpisodeOptions options;
   options.scene = std::string(SORTCELL_SOURCE_DIR) + "/scenes/cell.xml";
   options.object_set = set.source;
   options.model = model;
   options.seed = 3;
   options.out = out / "headless";
-  const auto headless = nlohmann::json(app::RunEpisode(options, {"episode_benchmark"}))["summary"];
+  const auto headless = nlohmann::json(simcell::RunEpisode(options, {"episode_benchmark"}))["summary"];
   options.out = out / "video";
   options.video = out / "video" / "episode.mp4";
-  const auto video = nlohmann::json(app::RunEpisode(options, {"episode_benchmark"}))["summary"];
+  const auto video = nlohmann::json(simcell::RunEpisode(options, {"episode_benchmark"}))["summary"];
 
   std::printf("episode (seed 3, 6 paper objects), one process:\n");
   std::printf("  %-9s %8s %8s %8s %14s %14s\n", "", "sim s", "wall s", "RTF", "perception ms", "video ms/frame");

@@ -22,8 +22,8 @@
 #include <vector>
 
 #include "bench_args.h"
-#include "app/common/data_dir.h"
-#include "app/recognition/rgbd_objects.h"
+#include "files/data_dir.h"
+#include "training/rgbd_objects.h"
 #include "assets/image_file.h"
 #include "sim/kinect_camera.h"
 #include "sim/model.h"
@@ -143,11 +143,11 @@ void AddObject(const cv::Mat& rgb, const cv::Mat& mask, Measured& m) {
 
 Measured MeasureReal(const fs::path& dir) {
   Measured m;
-  for (const auto& view : sortcell::app::FindRgbdObjectsViews(dir)) {
+  for (const auto& view : sortcell::training::FindRgbdObjectsViews(dir)) {
     cv::Mat bgr = sortcell::assets::ReadImage(view.crop, sortcell::assets::PixelFormat::kBgr8);
-    cv::Mat mask = sortcell::assets::ReadImage(sortcell::app::Partner(view, "maskcrop.png"),
+    cv::Mat mask = sortcell::assets::ReadImage(sortcell::training::Partner(view, "maskcrop.png"),
                                                sortcell::assets::PixelFormat::kGrey8);
-    cv::Mat depth = sortcell::assets::ReadImage(sortcell::app::Partner(view, "depthcrop.png"),
+    cv::Mat depth = sortcell::assets::ReadImage(sortcell::training::Partner(view, "depthcrop.png"),
                                                 sortcell::assets::PixelFormat::kGrey16);
     if (bgr.empty() || mask.empty() || depth.empty() || mask.size() != bgr.size()) continue;
     cv::Mat rgb;
@@ -165,7 +165,7 @@ Measured MeasureReal(const fs::path& dir) {
 // object, the plates (white) as the white surface.
 Measured MeasureRender() {
   using namespace sortcell;
-  const sim::Model model = app::LoadScene(fs::path(app::DataDir()) / "scenes" / "produce.xml");
+  const sim::Model model = files::LoadScene(fs::path(files::DataDir()) / "scenes" / "produce.xml");
   sim::Data data(model);
   sim::ResetToObserve(model, data);
   sim::Step(model, data, 1);

@@ -13,8 +13,8 @@
 #include <string>
 #include <vector>
 
-#include "app/common/cell_file.h"
-#include "app/episode/sim_layout.h"
+#include "files/cell_file.h"
+#include "simcell/sim_layout.h"
 #include "bench_args.h"
 #include "cell/bin_fill.h"
 #include "cell/scene_observation.h"
@@ -218,7 +218,7 @@ int Run(int argc, char** argv) {
   perception::RecognitionModel recogniser;
   bool have_model = !model_path.empty();  // TimeOnce trains one from the first frame otherwise.
   if (have_model) recogniser = perception::LoadModel(model_path, perception::DescriptorKind::kColorCvfhNorm);
-  const cell::CellLayout layout = app::ReadCellLayout(model, app::ReadCellFile(app::DefaultCellFile()));
+  const cell::CellLayout layout = simcell::ReadCellLayout(model, files::ReadCellFile(files::DefaultCellFile()));
   const perception::SegmentationParams params = cell::CellSegmentation(layout);
   for (const Frame& frame : frames) {
     StageTimes t;

@@ -5,7 +5,7 @@
 #include <filesystem>
 #include <string>
 
-#include "app/episode/scripted_pick.h"
+#include "simcell/scripted_pick.h"
 #include "bench_temp_dir.h"
 
 int main() {
@@ -23,13 +23,13 @@ int main() {
   std::printf("| object | bin | video | status | slip (mm) | cycle (sim s) | wall (s) | real-time factor |\n");
   std::printf("|---|---|---|---|---|---|---|---|\n");
   for (const Case& c : cases) {
-    sortcell::app::PickOptions options;
+    sortcell::simcell::PickOptions options;
     options.scene = root / "scenes/cell.xml";
     options.object = c.object;
     options.bin = c.bin;
     options.out = out / c.object;
     if (c.video) options.video = out / "pick.mp4";
-    const sortcell::app::PickResult r = sortcell::app::RunPick(options, {"pick_benchmark"});
+    const sortcell::simcell::PickResult r = sortcell::simcell::RunPick(options, {"pick_benchmark"});
     std::printf("| %s | %s | %s | %s | %.2f | %.2f | %.2f | %.1f |\n", c.object, c.bin, c.video ? "yes" : "no",
                 r.status.c_str(), r.slip_mm, r.cycle_time_s, r.wall_time_s, r.real_time_factor);
   }

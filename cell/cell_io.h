@@ -2,7 +2,7 @@
 /// @file
 /// The sorting cell as its brain sees it: a camera that gives organized clouds, the arm's encoders and
 /// controller, the gripper's sensors and finger servos, and a clock. Nothing else: no object poses, no
-/// identities, no labels. The simulated cell (app/episode/sim_cell.h) implements it over MuJoCo; the
+/// identities, no labels. The simulated cell (simcell/sim_cell.h) implements it over MuJoCo; the
 /// policy's unit tests implement it with scripted clouds and sensor readings.
 
 #include <functional>

@@ -3,8 +3,8 @@
 /// What the sorting cell knows of itself, in one place: the arm's observe pose, where the bins are and
 /// how they are filled, the workspace the camera watches, the table, the speeds of the careful
 /// motions and the control period. The bins and the rules that fill them are the user's (a cell file,
-/// scenes/cells/*.yaml, read by app/common/cell_file.h); the table comes from the scene
-/// (app/episode/sim_layout.h); everything else is fixed here.
+/// scenes/cells/*.yaml, read by files/cell_file.h); the table comes from the scene
+/// (simcell/sim_layout.h); everything else is fixed here.
 
 #include <map>
 #include <string>

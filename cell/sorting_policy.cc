@@ -6,7 +6,7 @@
 #include <stdexcept>
 
 #include "cell/layout_check.h"
-#include "perception/seconds_since.h"
+#include "common/wall_clock.h"
 #include "robot/gripper_geometry.h"
 
 namespace sortcell::cell {
@@ -54,7 +54,7 @@ Observation SortingPolicy::Observe(const std::optional<HeldObject>& held) {
   for (Detection& d : observation.detections) {
     if (d.category) d.bin = *layout_.rules.BinFor(*d.category, d.confidence);  // Every class has one (CheckRules).
   }
-  observer_.Observed(*cloud, observation, perception::SecondsSince(start));
+  observer_.Observed(*cloud, observation, SecondsSince(start));
   return observation;
 }
 

@@ -1,6 +1,6 @@
 // Fuzz target: a dataset folder (app::LoadDataset): manifest.json, then a line "--descriptors.csv--",
 // then descriptors.csv.
-#include "app/recognition/dataset.h"
+#include "training/dataset.h"
 #include "fuzz/fuzz_input.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
@@ -9,6 +9,6 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   sortcell_fuzz::WriteInput(dir / "manifest.json", reinterpret_cast<const uint8_t*>(manifest.data()), manifest.size());
   sortcell_fuzz::WriteInput(dir / "descriptors.csv", reinterpret_cast<const uint8_t*>(descriptors.data()),
                             descriptors.size());
-  sortcell_fuzz::ExpectReadOrRefusal(dir, [&] { sortcell::app::LoadDataset(dir); });
+  sortcell_fuzz::ExpectReadOrRefusal(dir, [&] { sortcell::training::LoadDataset(dir); });
   return 0;
 }

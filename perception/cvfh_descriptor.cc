@@ -13,7 +13,7 @@
 
 #include "common/enum_names.h"
 #include "perception/normal_estimation.h"
-#include "perception/seconds_since.h"
+#include "common/wall_clock.h"
 
 namespace sortcell::perception {
 namespace {

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "common/enum_names.h"
-#include "perception/seconds_since.h"
+#include "common/wall_clock.h"
 
 namespace sortcell::perception {
 namespace {

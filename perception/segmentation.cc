@@ -19,7 +19,7 @@
 #include <string>
 
 #include "common/enum_names.h"
-#include "perception/seconds_since.h"
+#include "common/wall_clock.h"
 
 namespace sortcell::perception {
 namespace {

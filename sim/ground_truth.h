@@ -32,7 +32,7 @@ Eigen::Isometry3d BodyPose(const Data& data, int body);
 Eigen::Isometry3d SitePose(const Data& data, int site);
 
 /// A bin: a body named "bin_<name>" with a box site of the same name at its floor centre, whose
-/// half sizes are the bin's inside (scenes/cells/*.yaml, written by app/common/cell_file.h).
+/// half sizes are the bin's inside (scenes/cells/*.yaml, written by files/cell_file.h).
 struct BinRef {
   std::string name;
   int body = -1;

@@ -8,18 +8,18 @@
 
 #include "app/cli/cli_validators.h"
 #include "app/cli/episode_command.h"
-#include "app/episode/calibration_run.h"
+#include "simcell/calibration_run.h"
 
 namespace sortcell::app {
 namespace {
 
 struct CalibrateCli {
-  EpisodeOptions options;
+  simcell::EpisodeOptions options;
   std::string video_size = "1280x720";
   std::vector<std::string> sets;  ///< Empty: ExpandEpisodeSets turned them into options before parsing.
 };
 
-std::string Summary(const CalibrationFigures& f, const std::filesystem::path& out) {
+std::string Summary(const simcell::CalibrationFigures& f, const std::filesystem::path& out) {
   return fmt::format(
       "Calibration {}: {} of {} sightings agree, residual {:.2f} mm RMS, {:.1f} s simulated. Camera error {:.2f} mm / "
       "{:.4f} rad (the nominal pose's: {:.2f} mm / {:.4f} rad).\nResult: {}",
@@ -31,7 +31,7 @@ std::string Summary(const CalibrationFigures& f, const std::filesystem::path& ou
 
 void AddCalibrateCommand(CLI::App& app, std::function<int()>& run, const std::vector<std::string>& command_line) {
   auto cli = std::make_shared<CalibrateCli>();
-  EpisodeOptions& o = cli->options;
+  simcell::EpisodeOptions& o = cli->options;
   CLI::App* cmd = app.add_subcommand(
       "calibrate",
       "Hand-eye self-calibration of the Kinect: the arm shows the marker on its gripper at 18 places in the "
@@ -53,9 +53,9 @@ void AddCalibrateCommand(CLI::App& app, std::function<int()>& run, const std::ve
     run = [cli, command_line] {
       if (!cli->sets.empty())
         throw std::logic_error("calibrate: --set reached the parser (ExpandEpisodeSets not applied)");
-      EpisodeOptions options = cli->options;
+      simcell::EpisodeOptions options = cli->options;
       std::tie(options.video_options.width, options.video_options.height) = ParseVideoSize(cli->video_size);
-      const CalibrationFigures figures = RunCalibration(options, command_line);
+      const simcell::CalibrationFigures figures = simcell::RunCalibration(options, command_line);
       std::cout << Summary(figures, options.out) << "\n";
       return figures.status == "ok" ? 0 : 1;
     };

@@ -1,7 +1,7 @@
 #pragma once
 /// @file
 /// `sortcell calibrate`: the hand-eye self-calibration of the Kinect's pose, alone, in the simulated
-/// cell (app/episode/calibration_run.h).
+/// cell (simcell/calibration_run.h).
 
 #include <functional>
 #include <string>

@@ -7,12 +7,12 @@
 #include <iostream>
 #include <stdexcept>
 
-#include "app/common/camera_file.h"
-#include "app/common/data_dir.h"
-#include "app/episode/sim_layout.h"
+#include "files/camera_file.h"
+#include "files/data_dir.h"
+#include "simcell/sim_layout.h"
 #include "app/cli/cli_validators.h"
-#include "app/common/output_dir.h"
-#include "app/common/seeding.h"
+#include "files/output_dir.h"
+#include "common/seeding.h"
 #include "assets/image_file.h"
 #include "perception/pcd_io.h"
 #include "sim/kinect_camera.h"
@@ -45,9 +45,10 @@ cv::Mat DepthMillimetres(const cv::Mat& depth) {
 
 CaptureSummary RunCapture(const CaptureOptions& options, const std::vector<std::string>& command_line) {
   const auto start = Clock::now();
-  PrepareOutputDir(options.out);
-  const sim::Model model =
-      options.cell.empty() ? LoadScene(options.scene) : LoadCellScene(options.scene, ReadCellFile(options.cell));
+  files::PrepareOutputDir(options.out);
+  const sim::Model model = options.cell.empty()
+                               ? files::LoadScene(options.scene)
+                               : simcell::LoadCellScene(options.scene, files::ReadCellFile(options.cell));
   sim::Data data(model);
   sim::ResetToObserve(model, data);
   mj_forward(model.get(), data.get());
@@ -83,15 +84,15 @@ CaptureSummary RunCapture(const CaptureOptions& options, const std::vector<std::
     pixels[name] = count;
     if (count > 0) summary.visible_objects.emplace_back(name, count);
   }
-  WriteJson(options.out / "labels.json", {{"labels", labels}, {"pixels", pixels}});
-  WriteJson(options.out / "camera.json", CameraJson(options.camera, frame, truth.X_WC));
+  files::WriteJson(options.out / "labels.json", {{"labels", labels}, {"pixels", pixels}});
+  files::WriteJson(options.out / "camera.json", files::CameraJson(options.camera, frame, truth.X_WC));
   summary.capture_wall_s = Seconds(start);
-  WriteJson(options.out / "run.json", RunRecord(command_line, options.seed,
-                                                {{"command", "capture"},
-                                                 {"scene", options.scene.string()},
-                                                 {"noise", !options.no_noise},
-                                                 {"render_wall_s", summary.render_wall_s},
-                                                 {"capture_wall_s", summary.capture_wall_s}}));
+  files::WriteJson(options.out / "run.json", files::RunRecord(command_line, options.seed,
+                                                              {{"command", "capture"},
+                                                               {"scene", options.scene.string()},
+                                                               {"noise", !options.no_noise},
+                                                               {"render_wall_s", summary.render_wall_s},
+                                                               {"capture_wall_s", summary.capture_wall_s}}));
   return summary;
 }
 

@@ -6,11 +6,11 @@
 #include <iostream>
 #include <memory>
 
-#include "app/common/cell_file.h"
-#include "app/common/data_dir.h"
-#include "app/common/object_set.h"
-#include "app/common/output_dir.h"
-#include "app/episode/sim_layout.h"
+#include "files/cell_file.h"
+#include "files/data_dir.h"
+#include "files/object_set.h"
+#include "files/output_dir.h"
+#include "simcell/sim_layout.h"
 #include "sim/scene_composer.h"
 
 namespace sortcell::app {
@@ -20,7 +20,7 @@ struct CellCli {
   std::filesystem::path layout, objects, out;
 };
 
-std::string Describe(const CellFile& cell) {
+std::string Describe(const files::CellFile& cell) {
   std::string text = fmt::format("Cell layout '{}' ({}): {} bins\n", cell.name, cell.source.string(), cell.bins.size());
   for (const auto& b : cell.bins) {
     text += fmt::format("  {:<12} at ({:.3f}, {:.3f}) m, {:.3f} x {:.3f} m inside\n", b.name, b.bin.p_W_floor.x(),
@@ -39,7 +39,8 @@ std::string Describe(const CellFile& cell) {
 
 // Where each category of the set goes, and the warnings of bins too small for what they receive.
 // Returns false if a category goes nowhere.
-bool CheckSet(const CellFile& cell, const ObjectSet& set, std::string& text, std::vector<std::string>& warnings) {
+bool CheckSet(const files::CellFile& cell, const files::ObjectSet& set, std::string& text,
+              std::vector<std::string>& warnings) {
   const cell::CellLayout layout = cell.Layout();
   std::vector<std::filesystem::path> fragments;
   std::vector<std::pair<std::string, std::string>> objects_and_bins;
@@ -53,17 +54,17 @@ bool CheckSet(const CellFile& cell, const ObjectSet& set, std::string& text, std
     fragments.push_back(o.model);
     if (const auto bin = layout.rules.BinOf(o.category)) objects_and_bins.emplace_back(o.name, *bin);
   }
-  const sim::Model model = sim::LoadComposedCell(std::filesystem::path(DataDir()) / "models", fragments,
-                                                 set.source.string(), {}, BinsXml(cell));
-  warnings = BinCapacityWarnings(model, layout, objects_and_bins);
+  const sim::Model model = sim::LoadComposedCell(std::filesystem::path(files::DataDir()) / "models", fragments,
+                                                 set.source.string(), {}, files::BinsXml(cell));
+  warnings = simcell::BinCapacityWarnings(model, layout, objects_and_bins);
   return all_sorted;
 }
 
 // bins.inc.xml and scene.xml (the cell with the layout's bins, no objects) into `out`.
-void WriteScene(const CellFile& cell, const std::filesystem::path& out) {
-  PrepareOutputDir(out);
-  const std::filesystem::path models = std::filesystem::path(DataDir()) / "models";
-  for (const auto& file : sim::ComposeCell(models, {}, {}, BinsXml(cell))) {
+void WriteScene(const files::CellFile& cell, const std::filesystem::path& out) {
+  files::PrepareOutputDir(out);
+  const std::filesystem::path models = std::filesystem::path(files::DataDir()) / "models";
+  for (const auto& file : sim::ComposeCell(models, {}, {}, files::BinsXml(cell))) {
     const std::string name = file.name == "sortcell_composed.xml" ? "scene.xml" : file.name;
     std::ofstream(out / name) << file.text;
   }
@@ -86,11 +87,11 @@ void AddCellCommand(CLI::App& app, std::function<int()>& run, const std::vector<
   check->add_option("--out", cli->out, "Write bins.inc.xml and scene.xml here");
   check->callback([&run, cli, command_line] {
     run = [cli, command_line] {
-      const CellFile file = ReadCellFile(cli->layout);
+      const files::CellFile file = files::ReadCellFile(cli->layout);
       std::cout << Describe(file);
       bool ok = true;
       if (!cli->objects.empty()) {
-        const ObjectSet set = LoadObjectSet(cli->objects);
+        const files::ObjectSet set = files::LoadObjectSet(cli->objects);
         std::string text = fmt::format("Object set '{}':\n", set.source.string());
         std::vector<std::string> warnings;
         ok = CheckSet(file, set, text, warnings);
@@ -100,8 +101,9 @@ void AddCellCommand(CLI::App& app, std::function<int()>& run, const std::vector<
       }
       if (!cli->out.empty()) {
         WriteScene(file, cli->out);
-        WriteJson(cli->out / "run.json",
-                  RunRecord(command_line, 0, {{"command", "cell check"}, {"layout", cli->layout.string()}}));
+        files::WriteJson(
+            cli->out / "run.json",
+            files::RunRecord(command_line, 0, {{"command", "cell check"}, {"layout", cli->layout.string()}}));
         std::cout << "Scene: mujoco-simulate " << (cli->out / "scene.xml").string() << "\n";
       }
       return ok ? 0 : 1;

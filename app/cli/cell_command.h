@@ -1,7 +1,7 @@
 #pragma once
 /// @file
 /// `sortcell cell check LAYOUT.yaml [--objects SET.yaml] [--out DIR]`: reads and checks a cell layout
-/// (bins and rules, app/common/cell_file.h), says where each category goes and which bins cannot hold
+/// (bins and rules, files/cell_file.h), says where each category goes and which bins cannot hold
 /// what they receive, and writes the bins' MJCF fragment and a scene to open in mujoco-simulate.
 
 #include <functional>

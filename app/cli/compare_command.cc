@@ -4,7 +4,7 @@
 #include <filesystem>
 #include <memory>
 
-#include "app/common/output_dir.h"
+#include "files/output_dir.h"
 #include "app/sweep/sweep_compare.h"
 
 namespace sortcell::app {
@@ -31,10 +31,10 @@ void AddCompareCommand(CLI::App& app, std::function<int()>& run, const std::vect
   cmd->callback([&run, cli, command_line] {
     run = [cli, command_line] {
       const SweepComparison c = CompareSweepFolders(cli->a, cli->b);
-      PrepareOutputDir(cli->out);
-      WriteTextFile(cli->out / "compare.html", ComparisonHtml(c, cli->a, cli->b, cli->out));
-      WriteJson(cli->out / "compare.json", ComparisonJson(c, cli->a, cli->b));
-      WriteJson(cli->out / "run.json", RunRecord(command_line, 0, {{"command", "compare"}}));
+      files::PrepareOutputDir(cli->out);
+      files::WriteTextFile(cli->out / "compare.html", ComparisonHtml(c, cli->a, cli->b, cli->out));
+      files::WriteJson(cli->out / "compare.json", ComparisonJson(c, cli->a, cli->b));
+      files::WriteJson(cli->out / "run.json", files::RunRecord(command_line, 0, {{"command", "compare"}}));
       std::fputs(ComparisonText(c, cli->a, cli->b).c_str(), stdout);
       std::printf("Page: %s\n", (cli->out / "compare.html").string().c_str());
       return 0;

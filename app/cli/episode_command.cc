@@ -7,22 +7,22 @@
 #include <tuple>
 
 #include "app/cli/cli_validators.h"
-#include "app/common/data_dir.h"
-#include "app/recognition/default_model.h"
-#include "app/episode/episode.h"
-#include "app/common/object_set.h"
+#include "files/data_dir.h"
+#include "training/default_model.h"
+#include "simcell/episode.h"
+#include "files/object_set.h"
 
 namespace sortcell::app {
 namespace {
 
 // "NAME=x,y", "NAME=x,y,yaw" or "NAME=x,y,yaw,lying".
-ObjectPlacement ParsePlacement(const std::string& text) {
+simcell::ObjectPlacement ParsePlacement(const std::string& text) {
   const auto fail = [&] {
     return std::invalid_argument("--place: expected NAME=x,y[,yaw[,lying]] (metres, radians), got '" + text + "'");
   };
   const size_t eq = text.find('=');
   if (eq == std::string::npos || eq == 0) throw fail();
-  ObjectPlacement p;
+  simcell::ObjectPlacement p;
   p.name = text.substr(0, eq);
   std::vector<std::string> items;
   std::stringstream in(text.substr(eq + 1));
@@ -50,7 +50,7 @@ ObjectPlacement ParsePlacement(const std::string& text) {
 }
 
 struct EpisodeCli {
-  EpisodeOptions options;
+  simcell::EpisodeOptions options;
   std::vector<std::string> placements;
   std::string placement_mode = "sparse";
   std::string video_size = "1280x720";
@@ -102,7 +102,7 @@ void AddPlacementOptions(CLI::App& cmd, EpisodeCli& cli) {
 
 }  // namespace
 
-void AddSensorVariationOptions(CLI::App& cmd, EpisodeOptions& o) {
+void AddSensorVariationOptions(CLI::App& cmd, simcell::EpisodeOptions& o) {
   cmd.add_option("--light-intensity", o.light_intensity, "Scale of the scene's lights")->capture_default_str();
   cmd.add_option("--noise-scale", o.noise_scale, "Scale of the Kinect's depth noise")->capture_default_str();
   cmd.add_option("--camera-shift", o.variation.camera_shift_m,
@@ -151,7 +151,7 @@ namespace {
 
 // --video, --stills and how the video is drawn.
 void AddReviewOptions(CLI::App& cmd, EpisodeCli& cli) {
-  EpisodeOptions& o = cli.options;
+  simcell::EpisodeOptions& o = cli.options;
   cmd.add_option("--video", o.video, "Also write an H.264 MP4 from the review camera (30 fps, with overlay)");
   cmd.add_option(
       "--stills", o.stills,
@@ -165,7 +165,7 @@ void AddReviewOptions(CLI::App& cmd, EpisodeCli& cli) {
 }
 
 // The objects' friction, mass and colours varied.
-void AddObjectVariationOptions(CLI::App& cmd, EpisodeOptions& o) {
+void AddObjectVariationOptions(CLI::App& cmd, simcell::EpisodeOptions& o) {
   cmd.add_option("--friction-scale", o.variation.friction_scale, "Scale of the objects' friction")
       ->capture_default_str();
   cmd.add_option("--mass-scale", o.variation.mass_scale, "Scale of the objects' masses")->capture_default_str();
@@ -178,11 +178,11 @@ void AddObjectVariationOptions(CLI::App& cmd, EpisodeOptions& o) {
 
 // How the cell runs: calibration, budgets, bins and rules, objects it does not know.
 void AddCellOptions(CLI::App& cmd, EpisodeCli& cli) {
-  EpisodeOptions& o = cli.options;
+  simcell::EpisodeOptions& o = cli.options;
   cmd.add_option("--self-calibrate", cli.self_calibrate,
                  "Calibrate the camera's pose from the marker on the gripper before sorting: on, off, or auto (when "
                  "--camera-shift or --camera-turn displaces the camera)")
-      ->check(CLI::IsMember(AllNames(kSelfCalibrationNames)))
+      ->check(CLI::IsMember(AllNames(simcell::kSelfCalibrationNames)))
       ->capture_default_str();
   cmd.add_option("--max-attempts", o.max_attempts_per_object, "Grasp attempts per object before giving it up")
       ->capture_default_str();
@@ -202,32 +202,33 @@ void AddCellOptions(CLI::App& cmd, EpisodeCli& cli) {
 }
 
 // Without --model: the set's cached default model, trained first with --train-if-missing.
-void ResolveDefaultModel(EpisodeOptions& options, bool train_if_missing) {
-  const ObjectSet set = LoadObjectSet(options.object_set);
-  options.model = DefaultModelPath(set);
+void ResolveDefaultModel(simcell::EpisodeOptions& options, bool train_if_missing) {
+  const files::ObjectSet set = files::LoadObjectSet(options.object_set);
+  options.model = training::DefaultModelPath(set);
   if (train_if_missing) {
-    EnsureDefaultModel(set);
+    training::EnsureDefaultModel(set);
   } else if (!std::filesystem::exists(options.model)) {
-    throw std::invalid_argument("no trained model at " + options.model.string() + ": " + DefaultModelHint(set));
-  } else if (!DefaultModelIsCurrent(set)) {
+    throw std::invalid_argument("no trained model at " + options.model.string() + ": " +
+                                training::DefaultModelHint(set));
+  } else if (!training::DefaultModelIsCurrent(set)) {
     throw std::invalid_argument(
         "the cached model " + options.model.string() +
-        " was trained on other object models or another Kinect colour model: " + DefaultModelHint(set));
+        " was trained on other object models or another Kinect colour model: " + training::DefaultModelHint(set));
   }
 }
 
 int RunEpisodeCommand(const EpisodeCli& cli, const std::vector<std::string>& command_line) {
   if (!cli.sets.empty()) throw std::logic_error("episode: --set reached the parser (ExpandEpisodeSets not applied)");
-  EpisodeOptions options = cli.options;
+  simcell::EpisodeOptions options = cli.options;
   if (cli.reject_below_given) options.reject_below = cli.reject_below;
   for (const auto& p : cli.placements) options.placements.push_back(ParsePlacement(p));
   // Both checked by the parser.
   options.placement.mode = *sim::ParsePlacementMode(cli.placement_mode);
-  options.self_calibrate = ParseName(kSelfCalibrationNames, cli.self_calibrate, "--self-calibrate");
+  options.self_calibrate = ParseName(simcell::kSelfCalibrationNames, cli.self_calibrate, "--self-calibrate");
   std::tie(options.video_options.width, options.video_options.height) = ParseVideoSize(cli.video_size);
   if (options.model.empty()) ResolveDefaultModel(options, cli.train_if_missing);
-  const EpisodeMetrics metrics = RunEpisode(options, command_line);
-  std::cout << EpisodeParagraph(metrics) << "\nMetrics: " << (options.out / "metrics.json").string();
+  const simcell::EpisodeMetrics metrics = simcell::RunEpisode(options, command_line);
+  std::cout << simcell::EpisodeParagraph(metrics) << "\nMetrics: " << (options.out / "metrics.json").string();
   if (!options.video.empty()) std::cout << "\nVideo: " << options.video.string();
   std::cout << "\n";
   return 0;
@@ -237,7 +238,7 @@ int RunEpisodeCommand(const EpisodeCli& cli, const std::vector<std::string>& com
 
 void AddEpisodeCommand(CLI::App& app, std::function<int()>& run, const std::vector<std::string>& command_line) {
   auto cli = std::make_shared<EpisodeCli>();
-  EpisodeOptions& o = cli->options;
+  simcell::EpisodeOptions& o = cli->options;
   CLI::App* cmd = app.add_subcommand(
       "episode",
       "One sorting episode: K objects of the set placed at random on the table, then the cell looks, "
@@ -245,7 +246,7 @@ void AddEpisodeCommand(CLI::App& app, std::function<int()>& run, const std::vect
       "the Kinect cloud and the joint encoders only; the simulator's ground truth scores the result. Writes "
       "metrics.json (per item and per episode) and run.json; prints a one-paragraph summary.");
   cmd->add_option("--scene", o.scene, "MJCF cell holding every object of the set, e.g. scenes/cell.xml")->required();
-  o.object_set = std::filesystem::path(DataDir()) / "scenes" / "objects" / "paper.yaml";
+  o.object_set = std::filesystem::path(files::DataDir()) / "scenes" / "objects" / "paper.yaml";
   cmd->add_option("--object-set", o.object_set, "Object set YAML (names and categories)")->capture_default_str();
   cmd->add_option("--objects", o.objects, "How many objects to place (0: all of the set, at most 6)")
       ->check(CLI::Range(0, 100))

@@ -8,14 +8,14 @@
 
 #include <CLI/CLI.hpp>
 
-#include "app/episode/episode.h"
+#include "simcell/episode.h"
 
 namespace sortcell::app {
 
 void AddEpisodeCommand(CLI::App& app, std::function<int()>& run, const std::vector<std::string>& command_line);
 
 /// --light-intensity, --noise-scale, --camera-shift and --camera-turn into `options` (episode, calibrate).
-void AddSensorVariationOptions(CLI::App& cmd, EpisodeOptions& options);
+void AddSensorVariationOptions(CLI::App& cmd, simcell::EpisodeOptions& options);
 /// --set KEY=VALUE (see ExpandEpisodeSets), after every other option of `cmd`: each of those takes the
 /// last value given.
 void AddSetOption(CLI::App& cmd, std::vector<std::string>& sets);

@@ -8,7 +8,7 @@
 namespace sortcell::app {
 
 void AddExperimentCommand(CLI::App& app, std::function<int()>& run, const std::vector<std::string>& command_line) {
-  auto o = std::make_shared<ExperimentOptions>();
+  auto o = std::make_shared<training::ExperimentOptions>();
   auto split = std::make_shared<std::string>(ToString(o->split));
   CLI::App* cmd = app.add_subcommand(
       "experiment",
@@ -37,8 +37,8 @@ void AddExperimentCommand(CLI::App& app, std::function<int()>& run, const std::v
                   "from `dataset --from-rgbd-objects`): experiments 1 and 2 run on it instead");
   cmd->callback([&run, o, split, command_line] {
     run = [o, split, command_line] {
-      o->split = ParseOption("--split", *split, ParseExperimentSplit);
-      const nlohmann::json r = RunExperiment(*o, command_line);
+      o->split = ParseOption("--split", *split, training::ParseExperimentSplit);
+      const nlohmann::json r = training::RunExperiment(*o, command_line);
       std::cout << "Experiment " << o->number << " (" << ToString(o->split) << "): " << r["train_samples"]
                 << " training, " << r["test_samples"] << " test samples. Macro F1:";
       for (const auto& [name, d] : r["descriptors"].items())

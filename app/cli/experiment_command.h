@@ -1,6 +1,6 @@
 #pragma once
 /// @file
-/// `sortcell experiment 1|2|3`: the options parsed, then app/recognition/experiment.h runs it.
+/// `sortcell experiment 1|2|3`: the options parsed, then training/experiment.h runs it.
 
 #include <CLI/CLI.hpp>
 
@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "app/recognition/experiment.h"
+#include "training/experiment.h"
 
 namespace sortcell::app {
 

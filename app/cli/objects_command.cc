@@ -5,8 +5,8 @@
 #include <iostream>
 #include <memory>
 
-#include "app/common/object_set.h"
-#include "app/common/output_dir.h"
+#include "files/object_set.h"
+#include "files/output_dir.h"
 #include "app/objects/object_check.h"
 #include "robot/gripper_geometry.h"
 
@@ -71,10 +71,11 @@ void AddObjectsCommand(CLI::App& app, std::function<int()>& run, const std::vect
       ->capture_default_str();
   check->callback([&run, cli, command_line] {
     run = [cli, command_line] {
-      const ObjectSet set = LoadObjectSet(cli->set);
+      const files::ObjectSet set = files::LoadObjectSet(cli->set);
       const ObjectCheck result = CheckObjects(set, cli->out, cli->options);
-      WriteJson(cli->out / "run.json",
-                RunRecord(command_line, 0, {{"command", "objects check"}, {"object_set", cli->set.string()}}));
+      files::WriteJson(
+          cli->out / "run.json",
+          files::RunRecord(command_line, 0, {{"command", "objects check"}, {"object_set", cli->set.string()}}));
       std::cout << Summary(result, cli->out) << "\n";
       for (const auto& r : result.objects) {
         if (!r.rests || !r.graspable) return 1;

@@ -5,12 +5,12 @@
 #include <tuple>
 
 #include "app/cli/cli_validators.h"
-#include "app/episode/scripted_pick.h"
+#include "simcell/scripted_pick.h"
 
 namespace sortcell::app {
 
 void AddPickCommand(CLI::App& app, std::function<int()>& run, const std::vector<std::string>& command_line) {
-  auto options = std::make_shared<PickOptions>();
+  auto options = std::make_shared<simcell::PickOptions>();
   CLI::App* cmd = app.add_subcommand(
       "pick",
       "Scripted robot-layer check: pick one object whose pose is read from the scene definition (not "
@@ -32,7 +32,7 @@ void AddPickCommand(CLI::App& app, std::function<int()>& run, const std::vector<
   cmd->callback([&run, options, video_size, command_line] {
     std::tie(options->video_options.width, options->video_options.height) = ParseVideoSize(*video_size);
     run = [options, command_line] {
-      const PickResult r = RunPick(*options, command_line);
+      const simcell::PickResult r = simcell::RunPick(*options, command_line);
       std::cout << "Pick " << options->object << " -> " << options->bin << " (scripted pose): " << r.status
                 << (r.in_bin ? ", in the bin" : ", NOT in the bin") << ", slip " << r.slip_mm << " mm, cycle "
                 << r.cycle_time_s << " s simulated, " << r.wall_time_s << " s wall (real-time factor "

@@ -1,6 +1,6 @@
 #pragma once
 /// @file
-/// `sortcell pick`: the CLI of the scripted pick-and-place check (app/episode/scripted_pick.h).
+/// `sortcell pick`: the CLI of the scripted pick-and-place check (simcell/scripted_pick.h).
 
 #include <functional>
 #include <string>

@@ -7,14 +7,14 @@
 #include <memory>
 
 #include "app/cli/cli_validators.h"
-#include "app/recognition/dataset_capture.h"
-#include "app/recognition/default_model.h"
-#include "app/common/object_set.h"
-#include "app/common/output_dir.h"
-#include "app/recognition/out_of_set.h"
-#include "app/recognition/recognition.h"
-#include "app/recognition/rgbd_objects.h"
-#include "app/common/wall_clock.h"
+#include "training/dataset_capture.h"
+#include "training/default_model.h"
+#include "files/object_set.h"
+#include "files/output_dir.h"
+#include "training/out_of_set.h"
+#include "training/recognition.h"
+#include "training/rgbd_objects.h"
+#include "common/wall_clock.h"
 
 namespace sortcell::app {
 namespace {
@@ -34,7 +34,7 @@ struct TrainOptions {
   std::filesystem::path dataset, objects, out;
   std::string descriptor = perception::DescriptorName(perception::DescriptorKind::kColorCvfhNorm);
   std::string label = perception::ToString(perception::LabelKind::kCategory);
-  std::string group_by = ToString(Grouping::kSequence);
+  std::string group_by = ToString(training::Grouping::kSequence);
 };
 
 struct EvalOptions {
@@ -44,14 +44,14 @@ struct EvalOptions {
 // `sortcell dataset --from-rgbd-objects DIR --out OUT`.
 int ImportRgbdObjectsCommand(const DatasetOptions& o, const std::vector<std::string>& command_line) {
   const auto start = WallClock::now();
-  const Dataset d = ImportRgbdObjects(o.rgbd_objects, o.out);
-  SaveDataset(o.out, d);
+  const training::Dataset d = training::ImportRgbdObjects(o.rgbd_objects, o.out);
+  training::SaveDataset(o.out, d);
   const double wall = SecondsSince(start);
-  WriteJson(o.out / "run.json", RunRecord(command_line, 0,
-                                          {{"command", "dataset"},
-                                           {"from_rgbd_objects", o.rgbd_objects.string()},
-                                           {"capture", d.capture},
-                                           {"dataset_wall_s", wall}}));
+  files::WriteJson(o.out / "run.json", files::RunRecord(command_line, 0,
+                                                        {{"command", "dataset"},
+                                                         {"from_rgbd_objects", o.rgbd_objects.string()},
+                                                         {"capture", d.capture},
+                                                         {"dataset_wall_s", wall}}));
   std::cout << "Dataset from the RGB-D Object Dataset views in " << o.rgbd_objects.string() << ": " << d.samples.size()
             << " samples (" << d.Labels(perception::LabelKind::kCategory).size() << " categories, "
             << d.Labels(perception::LabelKind::kInstance).size() << " instances), " << d.capture["skipped"].size()
@@ -61,27 +61,27 @@ int ImportRgbdObjectsCommand(const DatasetOptions& o, const std::vector<std::str
 
 // `sortcell eval`: the paper's tables for the samples of the model's classes; for samples of other
 // categories (an out-of-set object), what they were called and how confidently (out_of_set.h).
-int EvalCommand(const perception::RecognitionModel& model, const Dataset& d, const EvalOptions& o,
+int EvalCommand(const perception::RecognitionModel& model, const training::Dataset& d, const EvalOptions& o,
                 const std::vector<std::string>& command_line) {
   // Out-of-set samples are classified too: the descriptors must be the model's kind before either path.
-  CheckDescriptorParams(model, d, o.dataset.string());
+  training::CheckDescriptorParams(model, d, o.dataset.string());
   std::vector<int> in_set, out_of_set;
-  SplitBySet(model, d, in_set, out_of_set);
+  training::SplitBySet(model, d, in_set, out_of_set);
   const std::string title = "Evaluation of " + o.model.string() + " on " + o.dataset.string();
   nlohmann::json results = nlohmann::json::object();
   std::string summary;
   if (!in_set.empty()) {
-    const Evaluation e = EvaluateModel(model, d, in_set, o.dataset.string());
-    WriteRecognitionReport(o.out, title, {e});
-    results = EvaluationJson(e);
+    const training::Evaluation e = training::EvaluateModel(model, d, in_set, o.dataset.string());
+    training::WriteRecognitionReport(o.out, title, {e});
+    results = training::EvaluationJson(e);
     summary = fmt::format("{} samples of its classes: accuracy {}, macro F1 {}", in_set.size(), e.metrics.accuracy,
                           e.metrics.macro_f1);
   }
   if (!out_of_set.empty()) {
-    const OutOfSetReport report = ClassifyOutOfSet(model, d, out_of_set);
-    results["out_of_set"] = OutOfSetJson(report);
+    const training::OutOfSetReport report = training::ClassifyOutOfSet(model, d, out_of_set);
+    results["out_of_set"] = training::OutOfSetJson(report);
     std::ofstream tables(o.out / "tables.md", in_set.empty() ? std::ios::trunc : std::ios::app);
-    tables << (in_set.empty() ? "# " + title + "\n\n" : "\n") << OutOfSetMarkdown(report);
+    tables << (in_set.empty() ? "# " + title + "\n\n" : "\n") << training::OutOfSetMarkdown(report);
     if (!tables) throw std::runtime_error("cannot write '" + (o.out / "tables.md").string() + "'");
     double mean = 0;
     for (const auto& [name, c] : report) {
@@ -90,18 +90,18 @@ int EvalCommand(const perception::RecognitionModel& model, const Dataset& d, con
     summary += fmt::format("{}{} samples of categories it does not know (mean confidence {:.2f})",
                            summary.empty() ? "" : "; ", out_of_set.size(), mean);
   }
-  const auto by_instance = ClassifyByInstance(model, d);
-  results["by_instance"] = InstanceJson(by_instance);
+  const auto by_instance = training::ClassifyByInstance(model, d);
+  results["by_instance"] = training::InstanceJson(by_instance);
   {
     std::ofstream tables(o.out / "tables.md", std::ios::app);
-    tables << "\n" << InstanceMarkdown(by_instance);
+    tables << "\n" << training::InstanceMarkdown(by_instance);
     if (!tables) throw std::runtime_error("cannot write '" + (o.out / "tables.md").string() + "'");
   }
   results["descriptor"] = perception::DescriptorName(model.descriptor);
   results["dataset"] = o.dataset.string();
   results["model"] = o.model.string();
-  WriteJson(o.out / "results.json", results);
-  WriteJson(o.out / "run.json", RunRecord(command_line, 0, {{"command", "eval"}}));
+  files::WriteJson(o.out / "results.json", results);
+  files::WriteJson(o.out / "run.json", files::RunRecord(command_line, 0, {{"command", "eval"}}));
   std::cout << "Evaluated " << perception::DescriptorTitle(model.descriptor) << ": " << summary << ". Tables in "
             << o.out.string() << "/tables.md\n";
   for (const auto& [instance, r] : by_instance) {
@@ -116,15 +116,16 @@ int EvalCommand(const perception::RecognitionModel& model, const Dataset& d, con
 // `sortcell train --objects SET --out MODEL`: the default recipe (the cell's default model's), its
 // scenes kept beside the model.
 int TrainFromSetCommand(const TrainOptions& o, const std::vector<std::string>& command_line) {
-  const ObjectSet set = LoadObjectSet(o.objects);
-  if (o.out.has_parent_path()) PrepareOutputDir(o.out.parent_path());
+  const files::ObjectSet set = files::LoadObjectSet(o.objects);
+  if (o.out.has_parent_path()) files::PrepareOutputDir(o.out.parent_path());
   const std::filesystem::path scenes = o.out.string() + ".scenes";
   const auto start = WallClock::now();
-  const perception::RecognitionModel model = TrainDefaultRecipe(set, scenes);
+  const perception::RecognitionModel model = training::TrainDefaultRecipe(set, scenes);
   perception::SaveModel(o.out, model);
-  RecordTrainedOn(set, o.out);  // Trained into the model cache, it is the current default model.
-  WriteJson(scenes / "run.json", RunRecord(command_line, 0, {{"command", "train"}, {"objects", o.objects.string()}}));
-  std::cout << "Trained the default recipe for " << set.name << " (" << DefaultRecipeTitle()
+  training::RecordTrainedOn(set, o.out);  // Trained into the model cache, it is the current default model.
+  files::WriteJson(scenes / "run.json",
+                   files::RunRecord(command_line, 0, {{"command", "train"}, {"objects", o.objects.string()}}));
+  std::cout << "Trained the default recipe for " << set.name << " (" << training::DefaultRecipeTitle()
             << "): " << model.classes.size() << " " << ToString(model.label_kind) << " classes, grouped-CV accuracy "
             << model.cv_accuracy << ", " << std::lround(SecondsSince(start)) << " s. Model " << o.out.string()
             << ", its scenes in " << scenes.string() << "/\n";
@@ -132,14 +133,14 @@ int TrainFromSetCommand(const TrainOptions& o, const std::vector<std::string>& c
 }
 
 int TrainFromDatasetCommand(const TrainOptions& o) {
-  TrainRequest request;
+  training::TrainRequest request;
   request.descriptor = perception::ParseDescriptorKind(o.descriptor);
   request.label_kind = ParseOption("--label", o.label, perception::ParseLabelKind);
-  request.group_by = ParseOption("--group-by", o.group_by, ParseGrouping);
-  const Dataset d = LoadDataset(o.dataset);
-  if (o.out.has_parent_path()) PrepareOutputDir(o.out.parent_path());
+  request.group_by = ParseOption("--group-by", o.group_by, training::ParseGrouping);
+  const training::Dataset d = training::LoadDataset(o.dataset);
+  if (o.out.has_parent_path()) files::PrepareOutputDir(o.out.parent_path());
   const auto start = WallClock::now();
-  const perception::RecognitionModel model = TrainModel(d, {}, request);
+  const perception::RecognitionModel model = training::TrainModel(d, {}, request);
   perception::SaveModel(o.out, model);
   std::cout << "Trained " << perception::DescriptorTitle(model.descriptor) << " on " << d.samples.size() << " samples, "
             << model.classes.size() << " " << ToString(model.label_kind) << " classes: C " << model.classifier.C()
@@ -150,9 +151,9 @@ int TrainFromDatasetCommand(const TrainOptions& o) {
 }
 
 // The simulated capture the options ask for: random cell scenes, or turntable views.
-Dataset CaptureSimulated(const DatasetOptions& o, const ObjectSet& set) {
+training::Dataset CaptureSimulated(const DatasetOptions& o, const files::ObjectSet& set) {
   if (o.scenes > 0) {
-    SceneOptions options;
+    training::SceneOptions options;
     options.scenes = o.scenes;
     options.seed = o.seed;
     options.max_objects = std::min<int>(options.max_objects, static_cast<int>(set.objects.size()));
@@ -161,13 +162,13 @@ Dataset CaptureSimulated(const DatasetOptions& o, const ObjectSet& set) {
     for (const auto& mode : o.placement) options.modes.push_back(*sim::ParsePlacementMode(mode));  // Checked.
     options.placement.lying_fraction = o.lying_fraction;
     options.colour_jitter = o.colour_jitter;
-    return CaptureScenes(set, options, o.out);
+    return training::CaptureScenes(set, options, o.out);
   }
-  TurntableOptions options;
+  training::TurntableOptions options;
   options.views = o.views;
   options.seed = o.seed;
   options.occluded_copies = o.occluded;
-  return CaptureTurntable(set, options, o.out);
+  return training::CaptureTurntable(set, options, o.out);
 }
 
 int RunDatasetCommand(const DatasetOptions& o, const std::vector<std::string>& command_line) {
@@ -175,14 +176,14 @@ int RunDatasetCommand(const DatasetOptions& o, const std::vector<std::string>& c
   if (o.objects.empty()) {
     throw std::invalid_argument("dataset: give --objects SET.yaml (a simulated capture) or --from-rgbd-objects DIR");
   }
-  const ObjectSet set = LoadObjectSet(o.objects);
+  const files::ObjectSet set = files::LoadObjectSet(o.objects);
   const auto start = WallClock::now();
-  const Dataset d = CaptureSimulated(o, set);
-  SaveDataset(o.out, d);
+  const training::Dataset d = CaptureSimulated(o, set);
+  training::SaveDataset(o.out, d);
   const double wall = SecondsSince(start);
-  WriteJson(
+  files::WriteJson(
       o.out / "run.json",
-      RunRecord(
+      files::RunRecord(
           command_line, o.seed,
           {{"command", "dataset"}, {"objects", o.objects.string()}, {"capture", d.capture}, {"dataset_wall_s", wall}}));
   std::cout << "Dataset of " << set.name << ": " << d.samples.size() << " samples ("
@@ -258,7 +259,7 @@ void AddTrainCommand(CLI::App& app, std::function<int()>& run, const std::vector
       "model file holds the descriptor, its parameters, the classes, the scaling and a format version. With "
       "--objects SET instead of --dataset: the default recipe for that set, the one episodes and sweeps train "
       "on first use (" +
-          DefaultRecipeTitle() + "), its scenes kept in MODEL.scenes/.");
+          training::DefaultRecipeTitle() + "), its scenes kept in MODEL.scenes/.");
   CLI::Option* dataset = cmd->add_option("--dataset", o->dataset, "Dataset folder from sortcell dataset");
   CLI::Option* objects = cmd->add_option("--objects", o->objects, "Object set YAML: train the default recipe on it");
   dataset->excludes(objects);
@@ -294,8 +295,8 @@ void AddEvalCommand(CLI::App& app, std::function<int()>& run, const std::vector<
   cmd->callback([&run, o, command_line] {
     run = [o, command_line] {
       const perception::RecognitionModel model = perception::LoadModel(o->model);
-      const Dataset d = LoadDataset(o->dataset);
-      PrepareOutputDir(o->out);
+      const training::Dataset d = training::LoadDataset(o->dataset);
+      files::PrepareOutputDir(o->out);
       return EvalCommand(model, d, *o, command_line);
     };
   });

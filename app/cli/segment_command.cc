@@ -6,8 +6,8 @@
 #include <iostream>
 
 #include "app/cli/classify_command.h"
-#include "app/common/camera_file.h"
-#include "app/common/output_dir.h"
+#include "files/camera_file.h"
+#include "files/output_dir.h"
 #include "assets/image_file.h"
 #include "perception/pcd_io.h"
 #include "perception/segment_overlay.h"
@@ -74,9 +74,9 @@ std::vector<std::string> WriteSegments(const SegmentOptions& options, const perc
     }
   }
   const Eigen::Vector4d& plane = result.plane_C;
-  WriteJson(options.out / "segments.json", {{"frame", result.world_frame ? "world" : "camera"},
-                                            {"plane_camera_frame", {plane[0], plane[1], plane[2], plane[3]}},
-                                            {"segments", segments}});
+  files::WriteJson(options.out / "segments.json", {{"frame", result.world_frame ? "world" : "camera"},
+                                                   {"plane_camera_frame", {plane[0], plane[1], plane[2], plane[3]}},
+                                                   {"segments", segments}});
   return labels;
 }
 
@@ -108,12 +108,12 @@ int RunSegment(const SegmentOptions& options, const std::vector<std::string>& co
         "' is unorganized (height 1); background subtraction compares pixels of organized clouds");
   }
   std::optional<Eigen::Isometry3d> X_WC;
-  if (!options.camera.empty()) X_WC = LoadCameraPose(options.camera);
+  if (!options.camera.empty()) X_WC = files::LoadCameraPose(options.camera);
   perception::Cloud::Ptr background;
   if (!options.background.empty()) background = perception::LoadCloud(options.background, /*organized=*/true);
   std::optional<perception::RecognitionModel> model;
   if (!options.model.empty()) model = perception::LoadModel(options.model);
-  PrepareOutputDir(options.out);
+  files::PrepareOutputDir(options.out);
 
   const auto start = std::chrono::steady_clock::now();
   const perception::SegmentationResult result = SegmentPcd(options, *cloud, X_WC, background.get());
@@ -127,8 +127,8 @@ int RunSegment(const SegmentOptions& options, const std::vector<std::string>& co
       throw std::runtime_error("cannot write '" + (options.out / "overlay.png").string() + "'");
     }
   }
-  WriteJson(options.out / "run.json",
-            RunRecord(command_line, 0, SegmentRunJson(options, cloud->isOrganized(), result, wall_s)));
+  files::WriteJson(options.out / "run.json",
+                   files::RunRecord(command_line, 0, SegmentRunJson(options, cloud->isOrganized(), result, wall_s)));
   return static_cast<int>(result.segments.size());
 }
 

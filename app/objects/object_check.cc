@@ -9,8 +9,8 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "app/common/data_dir.h"
-#include "app/common/output_dir.h"
+#include "files/data_dir.h"
+#include "files/output_dir.h"
 #include "assets/image_file.h"
 #include "assets/mass_properties.h"
 #include "cell/cell_layout.h"
@@ -134,7 +134,7 @@ std::string WhyNot(const ObjectCheckResult& r, const RestLimits& l) {
   return s.empty() ? s : s.substr(0, s.size() - 2);
 }
 
-ObjectCheckResult Judge(const Rig& rig, const Watch& w, const ObjectSpec& spec, const sim::ObjectShape& shape,
+ObjectCheckResult Judge(const Rig& rig, const Watch& w, const files::ObjectSpec& spec, const sim::ObjectShape& shape,
                         const sim::TablePose& spot, const ObjectCheckOptions& options) {
   ObjectCheckResult r;
   r.name = spec.name;
@@ -166,7 +166,7 @@ ObjectCheckResult Judge(const Rig& rig, const Watch& w, const ObjectSpec& spec, 
 }
 
 // Drops `batch` (indices into the set), each on its spot, and watches them settle.
-std::vector<ObjectCheckResult> DropBatch(Rig& rig, const ObjectSet& set, const std::vector<int>& bodies,
+std::vector<ObjectCheckResult> DropBatch(Rig& rig, const files::ObjectSet& set, const std::vector<int>& bodies,
                                          const std::vector<sim::ObjectShape>& shapes, const std::vector<size_t>& batch,
                                          const std::vector<sim::TablePose>& spots, const ObjectCheckOptions& options) {
   const mjModel* m = rig.model.get();
@@ -278,8 +278,9 @@ std::string CheckedKeyframe(const sim::Model& model, const sim::Data& data) {
 // The composed scene on disk for mujoco-simulate: the cell's files named from `out`; imported objects'
 // fragments copied beside it (their meshes named from `out`, their textures from scenes/, where
 // MuJoCo looks for every texture of the cell: texturedir); `keyframe` before its end.
-void WriteSceneFiles(const ObjectSet& set, const std::filesystem::path& models_dir, const std::filesystem::path& out,
-                     const std::filesystem::path& scene, const std::string& keyframe) {
+void WriteSceneFiles(const files::ObjectSet& set, const std::filesystem::path& models_dir,
+                     const std::filesystem::path& out, const std::filesystem::path& scene,
+                     const std::string& keyframe) {
   const std::filesystem::path scenes_dir =
       std::filesystem::absolute(models_dir.parent_path() / "scenes").lexically_normal();
   const std::filesystem::path out_dir = std::filesystem::absolute(out).lexically_normal();
@@ -292,41 +293,42 @@ void WriteSceneFiles(const ObjectSet& set, const std::filesystem::path& models_d
       fragments.push_back(o.model);
       continue;
     }
-    const std::string text = RelativeFiles(ReadTextFile(o.model), [&](const std::filesystem::path& f) {
+    const std::string text = RelativeFiles(files::ReadTextFile(o.model), [&](const std::filesystem::path& f) {
       return f.extension() == ".png" ? from_scenes(f) : from_out(f);
     });
     fragments.push_back(out_dir / "objects" / (o.name + ".inc.xml"));
-    WriteTextFile(fragments.back(), text);
+    files::WriteTextFile(fragments.back(), text);
   }
   for (auto file : sim::ComposeCell(models_dir, fragments)) {
     file.text = RelativeFiles(file.text, from_out);
     if (file.name != "sortcell_composed.xml") {
-      WriteTextFile(out / file.name, file.text);
+      files::WriteTextFile(out / file.name, file.text);
       continue;
     }
     const size_t after_compiler = file.text.find("/>\n") + 3;
     file.text.insert(after_compiler, "  <compiler texturedir=\"" + from_out(scenes_dir).string() + "/\"/>\n");
     file.text.insert(file.text.rfind("</mujoco>"), keyframe);
-    WriteTextFile(scene, file.text);
+    files::WriteTextFile(scene, file.text);
   }
 }
 
-void WriteCheckJson(const ObjectSet& set, const ObjectCheck& check, const std::filesystem::path& out) {
+void WriteCheckJson(const files::ObjectSet& set, const ObjectCheck& check, const std::filesystem::path& out) {
   nlohmann::json objects = nlohmann::json::array();
   for (const auto& r : check.objects) objects.push_back(ResultJson(r));
   nlohmann::json stills = nlohmann::json::array();
   for (const auto& s : check.stills) stills.push_back(s.filename().string());
-  WriteJson(out / "check.json", {{"object_set", set.source.string()},
-                                 {"objects", objects},
-                                 {"stills", stills},
-                                 {"scene", check.scene.filename().string()}});
+  files::WriteJson(out / "check.json", {{"object_set", set.source.string()},
+                                        {"objects", objects},
+                                        {"stills", stills},
+                                        {"scene", check.scene.filename().string()}});
 }
 
 }  // namespace
 
-ObjectCheck CheckObjects(const ObjectSet& set, const std::filesystem::path& out, const ObjectCheckOptions& options) {
-  PrepareOutputDir(out);
-  const std::filesystem::path models_dir = std::filesystem::path(DataDir()) / "models";
+ObjectCheck CheckObjects(const files::ObjectSet& set, const std::filesystem::path& out,
+                         const ObjectCheckOptions& options) {
+  files::PrepareOutputDir(out);
+  const std::filesystem::path models_dir = std::filesystem::path(files::DataDir()) / "models";
   std::vector<std::filesystem::path> fragments;
   for (const auto& o : set.objects) fragments.push_back(o.model);
   Rig rig(sim::LoadComposedCell(models_dir, fragments, set.source.string()));

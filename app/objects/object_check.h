@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "app/common/object_set.h"
+#include "files/object_set.h"
 
 namespace sortcell::app {
 
@@ -61,7 +61,7 @@ struct ObjectCheck {
 /// Drops every object of `set` (in batches that fit the table, each object on its own spot) and writes
 /// check.json, the stills (objects_<k>.png) and scene.xml into `out`.
 /// @throws std::invalid_argument for an unusable output folder; std::runtime_error if MuJoCo diverges.
-ObjectCheck CheckObjects(const ObjectSet& set, const std::filesystem::path& out,
+ObjectCheck CheckObjects(const files::ObjectSet& set, const std::filesystem::path& out,
                          const ObjectCheckOptions& options = {});
 
 }  // namespace sortcell::app

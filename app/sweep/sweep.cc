@@ -18,16 +18,16 @@
 #include <stdexcept>
 #include <thread>
 
-#include "app/common/build_identity.h"
-#include "app/common/cell_file.h"
-#include "app/common/data_dir.h"
-#include "app/common/object_set.h"
-#include "app/common/output_dir.h"
-#include "app/common/progress.h"
-#include "app/common/wall_clock.h"
-#include "app/episode/episode_setup.h"
-#include "app/episode/sim_layout.h"
-#include "app/recognition/default_model.h"
+#include "files/build_identity.h"
+#include "files/cell_file.h"
+#include "files/data_dir.h"
+#include "files/object_set.h"
+#include "files/output_dir.h"
+#include "files/progress.h"
+#include "common/wall_clock.h"
+#include "simcell/episode_setup.h"
+#include "simcell/sim_layout.h"
+#include "training/default_model.h"
 #include "app/sweep/sweep_lock.h"
 #include "app/sweep/sweep_record.h"
 #include "app/sweep/sweep_report.h"
@@ -50,7 +50,7 @@ void CheckOptions(const SweepOptions& options) {
 
 // What spec.yaml in the output folder holds: the spec's text, and the --set overrides after it.
 std::string SpecCopyText(const SweepOptions& options) {
-  std::string text = ReadTextFile(options.spec);
+  std::string text = files::ReadTextFile(options.spec);
   if (options.sets.empty()) return text;
   if (!text.empty() && text.back() != '\n') text += '\n';
   text += "# Overridden on the command line (sortcell sweep --set), applied over the keys above:\n";
@@ -60,7 +60,7 @@ std::string SpecCopyText(const SweepOptions& options) {
 
 void CheckSameSpec(const std::filesystem::path& out, const std::filesystem::path& spec_copy,
                    const std::string& spec_text) {
-  if (std::filesystem::exists(spec_copy) && ReadTextFile(spec_copy) != spec_text) {
+  if (std::filesystem::exists(spec_copy) && files::ReadTextFile(spec_copy) != spec_text) {
     throw std::invalid_argument("output folder '" + out.string() + "' holds a sweep of another spec (" +
                                 spec_copy.string() + "): use another --out");
   }
@@ -72,7 +72,7 @@ SweepResults ReadFinishedResults(const std::filesystem::path& file, const SweepO
   if (options.resume) return ReadSweepResults(file);
   SweepResults results;
   if (!std::filesystem::exists(file)) return results;
-  const std::string text = ReadTextFile(file);
+  const std::string text = files::ReadTextFile(file);
   results.file_bytes = text.size();
   int lines = 0;
   for (size_t start = 0, end; (end = text.find('\n', start)) != std::string::npos; start = end + 1) {
@@ -88,9 +88,10 @@ SweepResults ReadFinishedResults(const std::filesystem::path& file, const SweepO
 
 // The model every episode sorts with (the spec's, or the set's default, trained if missing), after
 // loading it and every model of a `model` axis once, so a bad one fails before any worker starts.
-std::filesystem::path CheckModels(const SweepSpec& spec, const ObjectSet& set, const std::filesystem::path& spec_file) {
+std::filesystem::path CheckModels(const SweepSpec& spec, const files::ObjectSet& set,
+                                  const std::filesystem::path& spec_file) {
   std::filesystem::path model = spec.model;
-  if (model.empty()) model = EnsureDefaultModel(set);
+  if (model.empty()) model = training::EnsureDefaultModel(set);
   std::vector<std::filesystem::path> models{model};
   for (const auto& axis : spec.axes) {
     if (axis.name == "model") {
@@ -113,7 +114,7 @@ std::filesystem::path CheckModels(const SweepSpec& spec, const ObjectSet& set, c
 void DropUnreadableRecords(const std::filesystem::path& file, const SweepResults& results) {
   if (!results.damaged.empty()) {
     for (const auto& line : results.damaged) spdlog::warn("{}: dropped; its episode runs again", line);
-    WriteTextFile(file, results.good_text);  // Atomic: the old file stays until the new one is whole.
+    files::WriteTextFile(file, results.good_text);  // Atomic: the old file stays until the new one is whole.
     return;
   }
   if (results.file_bytes <= results.complete_bytes) return;
@@ -202,10 +203,10 @@ struct SweepSetup {
 
 // The digest of every model a worker may sort with.
 std::map<std::string, std::string> ModelDigests(const SweepSpec& spec, const std::filesystem::path& model) {
-  std::map<std::string, std::string> digests{{model.string(), FileDigest(model)}};
+  std::map<std::string, std::string> digests{{model.string(), files::FileDigest(model)}};
   for (const auto& axis : spec.axes) {
     if (axis.name != "model") continue;
-    for (const auto& v : axis.values) digests[v.get<std::string>()] = FileDigest(v.get<std::string>());
+    for (const auto& v : axis.values) digests[v.get<std::string>()] = files::FileDigest(v.get<std::string>());
   }
   return digests;
 }
@@ -248,7 +249,7 @@ Worker StartEpisode(const SweepSetup& s, int episode) {
   std::tie(w.seed, w.axes) = s.spec.Episode(episode);
   w.dir = s.options.out / fmt::format("episodes/{:06d}", episode);
   std::filesystem::create_directories(w.dir);
-  RemoveStalePartialFiles(w.dir);  // A worker killed mid-write in an earlier, killed run.
+  files::RemoveStalePartialFiles(w.dir);  // A worker killed mid-write in an earlier, killed run.
   std::filesystem::remove(w.dir / "metrics.json");
   w.arguments = EpisodeArguments(s, w);
   w.model_digest = s.model_digests.at(ModelOf(s, w));
@@ -261,7 +262,7 @@ Worker StartEpisode(const SweepSetup& s, int episode) {
 std::string LastLine(const std::filesystem::path& file) {
   std::string text;
   try {
-    text = ReadTextFile(file);
+    text = files::ReadTextFile(file);
   } catch (const std::runtime_error&) {
     return "";
   }
@@ -294,7 +295,7 @@ SweepRecord FinishedRecord(const Worker& w, const std::string& build, int status
   std::string problem;
   if (!timed_out && WIFEXITED(status) && WEXITSTATUS(status) == 0 && std::filesystem::exists(metrics_file)) {
     try {
-      ReadSummaryAndItems(nlohmann::json::parse(ReadTextFile(metrics_file)), record.summary, record.items);
+      ReadSummaryAndItems(nlohmann::json::parse(files::ReadTextFile(metrics_file)), record.summary, record.items);
       record.status = RunStatus::kOk;
       return record;
     } catch (const nlohmann::json::exception& e) {
@@ -320,7 +321,7 @@ class EpisodeRunner {
       : setup_(setup), writer_(writer), records_(records), run_(run) {}
 
   void Run(const std::vector<int>& todo) {
-    Progress progress("sweep " + setup_.spec.source.filename().string(), static_cast<int>(todo.size()));
+    files::Progress progress("sweep " + setup_.spec.source.filename().string(), static_cast<int>(todo.size()));
     size_t next = 0;
     while ((next < todo.size() || !running_.empty()) && g_stop_signal == 0) {
       while (next < todo.size() && static_cast<int>(running_.size()) < setup_.options.jobs) {
@@ -348,7 +349,7 @@ class EpisodeRunner {
   }
 
   // Records a worker that has ended, if one has. Returns whether one had.
-  bool ReapOne(Progress& progress) {
+  bool ReapOne(files::Progress& progress) {
     int status = 0;
     const pid_t pid = waitpid(-1, &status, WNOHANG);
     const auto it = running_.find(pid);
@@ -358,7 +359,7 @@ class EpisodeRunner {
     return true;
   }
 
-  void KillOverdue(Progress& progress) {
+  void KillOverdue(files::Progress& progress) {
     for (auto it = running_.begin(); it != running_.end();) {
       if (SecondsSince(it->second.started) > setup_.spec.episode_timeout_s) {
         kill(it->first, SIGKILL);
@@ -370,7 +371,7 @@ class EpisodeRunner {
     }
   }
 
-  void Finish(const Worker& w, int status, bool timed_out, Progress& progress) {
+  void Finish(const Worker& w, int status, bool timed_out, files::Progress& progress) {
     SweepRecord record = FinishedRecord(w, setup_.build, status, timed_out);
     if (!record.ok()) {
       ++run_.crashed;
@@ -407,12 +408,12 @@ double AxisMax(const SweepSpec& spec, const std::string& name) {
   return most;
 }
 
-void CheckCell(const SweepSpec& spec, const ObjectSet& set) {
-  const CellFile cell = ReadCellFileOrDefault(spec.cell);
-  EpisodeOptions unknowns;
+void CheckCell(const SweepSpec& spec, const files::ObjectSet& set) {
+  const files::CellFile cell = files::ReadCellFileOrDefault(spec.cell);
+  simcell::EpisodeOptions unknowns;
   unknowns.unknown_set = spec.unknown_set;
   unknowns.unknown_objects = spec.unknown_set.empty() ? 0 : 1;
-  const ObjectSet unknown = LoadUnknownSet(unknowns, set);
+  const files::ObjectSet unknown = simcell::LoadUnknownSet(unknowns, set);
   const std::string in_spec = "sweep spec '" + spec.source.string() + "': ";
   if (AxisMax(spec, "unknown_objects") > static_cast<double>(unknown.objects.size())) {
     throw std::invalid_argument(in_spec + "axis 'unknown_objects' reaches " +
@@ -424,8 +425,8 @@ void CheckCell(const SweepSpec& spec, const ObjectSet& set) {
     throw std::invalid_argument(in_spec + "axis 'reject_below' needs a 'reject' bin in cell layout '" +
                                 cell.source.string() + "'");
   }
-  const sim::Model model = LoadEpisodeScene(spec.scene, WithUnknown(set, unknown), cell);
-  const cell::CellLayout layout = ReadCellLayout(model, cell);
+  const sim::Model model = simcell::LoadEpisodeScene(spec.scene, simcell::WithUnknown(set, unknown), cell);
+  const cell::CellLayout layout = simcell::ReadCellLayout(model, cell);
   const std::string where = "cell layout '" + cell.source.string() + "'";
   if (!unknown.objects.empty() && layout.rules.reject_bin.empty()) {
     throw std::invalid_argument(where + ": unknown objects (" + spec.unknown_set.string() + ") need a 'reject' bin");
@@ -439,7 +440,7 @@ void CheckCell(const SweepSpec& spec, const ObjectSet& set) {
     objects_and_bins.emplace_back(o.name, *bin);
   }
   for (const auto& o : unknown.objects) objects_and_bins.emplace_back(o.name, layout.rules.reject_bin);
-  for (const auto& w : BinCapacityWarnings(model, layout, objects_and_bins)) spdlog::warn("{}: {}", where, w);
+  for (const auto& w : simcell::BinCapacityWarnings(model, layout, objects_and_bins)) spdlog::warn("{}: {}", where, w);
 }
 
 }  // namespace
@@ -450,11 +451,11 @@ SweepRun RunSweep(const SweepOptions& options, const std::vector<std::string>& c
   // and the folder's earlier results are known to be good.
   CheckOptions(options);
   const SweepSpec spec = LoadSweepSpec(options.spec, options.sets);
-  const ObjectSet set = LoadObjectSet(spec.object_set);
+  const files::ObjectSet set = files::LoadObjectSet(spec.object_set);
   CheckCell(spec, set);  // Fails here, once, rather than in every worker.
-  PrepareOutputDir(options.out);
-  const SweepLock lock(options.out);     // Before anything in the folder is read or written.
-  RemoveStalePartialFiles(options.out);  // What a killed sweep was writing.
+  files::PrepareOutputDir(options.out);
+  const SweepLock lock(options.out);            // Before anything in the folder is read or written.
+  files::RemoveStalePartialFiles(options.out);  // What a killed sweep was writing.
   const std::filesystem::path results_file = options.out / "results.jsonl";
   const std::filesystem::path spec_copy = options.out / "spec.yaml";
   const std::string spec_text = SpecCopyText(options);
@@ -462,22 +463,22 @@ SweepRun RunSweep(const SweepOptions& options, const std::vector<std::string>& c
   SweepResults finished = ReadFinishedResults(results_file, options);
   const std::filesystem::path model = CheckModels(spec, set, options.spec);
 
-  if (!std::filesystem::exists(spec_copy)) WriteTextFile(spec_copy, spec_text);
+  if (!std::filesystem::exists(spec_copy)) files::WriteTextFile(spec_copy, spec_text);
   DropUnreadableRecords(results_file, finished);
   SweepRun run;
   run.total = spec.EpisodeCount();
   const std::vector<int> todo = EpisodesToRun(options, finished.records, run);
-  WriteJson(options.out / ("run_shard" + std::to_string(options.shard) + ".json"),
-            RunRecord(command_line, spec.seed,
-                      {{"command", "sweep"},
-                       {"spec", options.spec.string()},
-                       {"jobs", options.jobs},
-                       {"shard", std::to_string(options.shard) + "/" + std::to_string(options.shards)},
-                       {"episodes_to_run", todo.size()},
-                       {"set", options.sets}}));
+  files::WriteJson(options.out / ("run_shard" + std::to_string(options.shard) + ".json"),
+                   files::RunRecord(command_line, spec.seed,
+                                    {{"command", "sweep"},
+                                     {"spec", options.spec.string()},
+                                     {"jobs", options.jobs},
+                                     {"shard", std::to_string(options.shard) + "/" + std::to_string(options.shards)},
+                                     {"episodes_to_run", todo.size()},
+                                     {"set", options.sets}}));
 
   SweepResultsWriter writer(results_file);
-  const SweepSetup setup{spec, options, model, BuildDigest(), ModelDigests(spec, model)};
+  const SweepSetup setup{spec, options, model, files::BuildDigest(), ModelDigests(spec, model)};
   {
     const StopOnSignals stop;
     EpisodeRunner(setup, writer, finished.records, run).Run(todo);

@@ -7,14 +7,14 @@
 #include <map>
 #include <stdexcept>
 
-#include "app/common/output_dir.h"
+#include "files/output_dir.h"
 #include "app/sweep/sweep_report.h"
 
 namespace sortcell::app {
 namespace {
 
 SortRate RateOf(const std::vector<SweepRecord>& records) {
-  ItemTally tally;  // Counted as the sweep's summary counts them.
+  simcell::ItemTally tally;  // Counted as the sweep's summary counts them.
   for (const auto& record : records) {
     if (!record.ok()) continue;
     for (const auto& item : record.items) tally.Add(item);
@@ -173,7 +173,7 @@ SweepComparison CompareSweepFolders(const std::filesystem::path& a, const std::f
   SweepComparison c = CompareSweepRecords(records[0], records[1]);
   std::error_code ec;
   if (std::filesystem::exists(a / "spec.yaml", ec) && std::filesystem::exists(b / "spec.yaml", ec)) {
-    c.specs_differ = ReadTextFile(a / "spec.yaml") != ReadTextFile(b / "spec.yaml");
+    c.specs_differ = files::ReadTextFile(a / "spec.yaml") != files::ReadTextFile(b / "spec.yaml");
   }
   return c;
 }

@@ -7,8 +7,8 @@
 #include <stdexcept>
 #include <string>
 
-#include "app/common/data_dir.h"
-#include "app/common/output_dir.h"
+#include "files/data_dir.h"
+#include "files/output_dir.h"
 #include "app/sweep/sweep_record.h"
 
 namespace sortcell::app {
@@ -25,7 +25,7 @@ nlohmann::json EpisodeRow(const SweepRecord& r) {
 
 nlohmann::json ReadJsonFile(const std::filesystem::path& file) {
   try {
-    return nlohmann::json::parse(ReadTextFile(file));
+    return nlohmann::json::parse(files::ReadTextFile(file));
   } catch (const nlohmann::json::exception& e) {
     throw std::invalid_argument("'" + file.string() + "': not JSON (" + e.what() + ")");
   }
@@ -38,7 +38,7 @@ bool CopyIfThere(const std::filesystem::path& from, const std::filesystem::path&
     spdlog::warn("report: {} is missing (Debian's libjs-chart.js): the page will have no plots", from.string());
     return false;
   }
-  WriteTextFile(to, ReadTextFile(from));
+  files::WriteTextFile(to, files::ReadTextFile(from));
   return true;
 }
 
@@ -68,7 +68,7 @@ nlohmann::json ReportData(const std::filesystem::path& dir) {
 }
 
 std::string ReportPage(const nlohmann::json& data) {
-  std::string page = ReadTextFile(std::filesystem::path(DataDir()) / "web/sweep_report.html");
+  std::string page = files::ReadTextFile(std::filesystem::path(files::DataDir()) / "web/sweep_report.html");
   const size_t at = page.find(kPlaceholder);
   if (at == std::string::npos) throw std::runtime_error("report template: no " + std::string(kPlaceholder) + " in it");
   // Every '<' as \u003c (inside JSON strings, the only place one can be): no "</script>" and no "<!--"
@@ -91,9 +91,9 @@ std::filesystem::path WriteHtmlReport(const std::filesystem::path& dir) {
   if (CopyIfThere(ChartJsFile(), report / "chart.min.js")) {
     std::error_code ec;
     if (std::filesystem::exists(kChartLicence, ec))
-      WriteTextFile(report / "CHART_JS_LICENSE", ReadTextFile(kChartLicence));
+      files::WriteTextFile(report / "CHART_JS_LICENSE", files::ReadTextFile(kChartLicence));
   }
-  WriteTextFile(report / "index.html", ReportPage(data));
+  files::WriteTextFile(report / "index.html", ReportPage(data));
   return report / "index.html";
 }
 

@@ -7,8 +7,8 @@
 #include <system_error>
 #include <utility>
 
-#include "app/common/json_fields.h"
-#include "app/common/output_dir.h"
+#include "files/json_fields.h"
+#include "files/output_dir.h"
 
 namespace sortcell::app {
 namespace {
@@ -19,16 +19,16 @@ void ReadOptional(const nlohmann::json& json, const char* key, std::optional<T>&
   out.reset();
   if (!json.contains(key)) return;
   T value;
-  ReadField(json, "", key, value);
+  files::ReadField(json, "", key, value);
   out = value;
 }
 
 void ReadEpisodeIndex(const nlohmann::json& j, SweepRecord& v) {
-  ReadField(j, "", "episode", v.episode);
+  files::ReadField(j, "", "episode", v.episode);
   if (!j["episode"].is_number_integer() || v.episode < 0) {
     throw std::invalid_argument("episode: expected a non-negative integer, found " + j["episode"].dump());
   }
-  ReadField(j, "", "seed", v.seed);
+  files::ReadField(j, "", "seed", v.seed);
   if (!j["seed"].is_number_unsigned()) {
     throw std::invalid_argument("seed: expected a non-negative integer, found " + j["seed"].dump());
   }
@@ -36,7 +36,7 @@ void ReadEpisodeIndex(const nlohmann::json& j, SweepRecord& v) {
 
 void ReadStatus(const nlohmann::json& j, RunStatus& status) {
   std::string text;
-  ReadField(j, "", "status", text);
+  files::ReadField(j, "", "status", text);
   try {
     status = ParseRunStatus(text);
   } catch (const std::invalid_argument& e) {
@@ -51,9 +51,9 @@ void ReadReplay(const nlohmann::json& j, SweepRecord& v) {
   v.model_digest.clear();
   if (!j.contains("replay")) return;
   const nlohmann::json& replay = j.at("replay");
-  ReadField(replay, "replay", "arguments", v.worker_arguments);
-  ReadField(replay, "replay", "build", v.build);
-  ReadField(replay, "replay", "model_digest", v.model_digest);
+  files::ReadField(replay, "replay", "arguments", v.worker_arguments);
+  files::ReadField(replay, "replay", "build", v.build);
+  files::ReadField(replay, "replay", "model_digest", v.model_digest);
   if (v.worker_arguments.empty())
     throw std::invalid_argument("replay.arguments: expected the episode's arguments, found none");
 }
@@ -116,14 +116,14 @@ void to_json(nlohmann::json& j, const SweepRecord& v) {
 void from_json(const nlohmann::json& j, SweepRecord& v) {
   if (!j.is_object()) throw std::invalid_argument(std::string("record: expected an object, found ") + j.type_name());
   ReadEpisodeIndex(j, v);
-  ReadField(j, "", "axes", v.axes);
+  files::ReadField(j, "", "axes", v.axes);
   if (!v.axes.is_object())
     throw std::invalid_argument(std::string("axes: expected an object, found ") + v.axes.type_name());
-  ReadField(j, "", "wall_time_s", v.wall_time_s);
+  files::ReadField(j, "", "wall_time_s", v.wall_time_s);
   ReadOptional(j, "peak_memory_mb", v.peak_memory_mb);
   ReadStatus(j, v.status);
   ReadReplay(j, v);
-  v.summary = EpisodeSummary{};
+  v.summary = simcell::EpisodeSummary{};
   v.items.clear();
   if (v.ok()) ReadSummaryAndItems(j, v.summary, v.items);
   ReadOptional(j, "exit_code", v.exit_code);
@@ -131,7 +131,8 @@ void from_json(const nlohmann::json& j, SweepRecord& v) {
   ReadOptional(j, "error", v.error);
 }
 
-void ReadSummaryAndItems(const nlohmann::json& json, EpisodeSummary& summary, std::vector<ItemResult>& items) {
+void ReadSummaryAndItems(const nlohmann::json& json, simcell::EpisodeSummary& summary,
+                         std::vector<simcell::ItemResult>& items) {
   if (!json.is_object())
     throw std::invalid_argument(std::string("record: expected an object, found ") + json.type_name());
   const auto s = json.find("summary");
@@ -146,7 +147,7 @@ void ReadSummaryAndItems(const nlohmann::json& json, EpisodeSummary& summary, st
     const nlohmann::json& item = (*list)[i];
     if (!item.is_object()) throw std::invalid_argument(where + ": expected an object, found " + item.type_name());
     try {
-      items.push_back(item.get<ItemResult>());
+      items.push_back(item.get<simcell::ItemResult>());
     } catch (const std::invalid_argument& e) {
       throw std::invalid_argument(where + "." + e.what());  // ItemResult's messages start with the key.
     }
@@ -179,7 +180,7 @@ SweepResults ReadSweepResults(const std::filesystem::path& file) {
   SweepResults results;
   std::error_code ec;
   if (!std::filesystem::exists(file, ec)) return results;
-  const std::string text = ReadTextFile(file);
+  const std::string text = files::ReadTextFile(file);
   results.file_bytes = text.size();
   size_t start = 0;
   int line = 0;
@@ -206,7 +207,7 @@ SweepResults ReadSweepResults(const std::filesystem::path& file) {
 SweepResultsWriter::SweepResultsWriter(std::filesystem::path file) : file_(std::move(file)) {
   errno = 0;
   out_.open(file_, std::ios::binary | std::ios::app);
-  if (!out_) throw std::runtime_error("cannot append to '" + file_.string() + "'" + SystemReason(errno));
+  if (!out_) throw std::runtime_error("cannot append to '" + file_.string() + "'" + files::SystemReason(errno));
 }
 
 void SweepResultsWriter::Append(const SweepRecord& record) {
@@ -215,9 +216,9 @@ void SweepResultsWriter::Append(const SweepRecord& record) {
   errno = 0;
   out_ << line << '\n';
   out_.flush();
-  if (!out_) throw std::runtime_error("cannot write '" + file_.string() + "'" + SystemReason(errno));
+  if (!out_) throw std::runtime_error("cannot write '" + file_.string() + "'" + files::SystemReason(errno));
 }
 
-void SweepResultsWriter::Close() { CloseChecked(out_, file_); }
+void SweepResultsWriter::Close() { files::CloseChecked(out_, file_); }
 
 }  // namespace sortcell::app

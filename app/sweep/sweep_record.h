@@ -22,7 +22,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "app/episode/episode_metrics.h"
+#include "simcell/episode_metrics.h"
 #include "common/enum_names.h"
 
 namespace sortcell::app {
@@ -55,8 +55,8 @@ struct SweepRecord {
   std::optional<double> peak_memory_mb;
   RunStatus status = RunStatus::kOk;
   // kOk: the episode's metrics.
-  EpisodeSummary summary;
-  std::vector<ItemResult> items;
+  simcell::EpisodeSummary summary;
+  std::vector<simcell::ItemResult> items;
   /// What `sortcell replay` needs to run the episode again exactly: the worker's `sortcell episode`
   /// arguments (without `--out`), and digests of the build and of the model file that ran it. Absent
   /// (empty) in results written before replays.
@@ -81,7 +81,8 @@ void from_json(const nlohmann::json& j, SweepRecord& v);
 
 /// Reads `json["summary"]` and `json["items"]` (a metrics.json, or a record of status ok).
 /// @throws std::invalid_argument naming the key, as from_json.
-void ReadSummaryAndItems(const nlohmann::json& json, EpisodeSummary& summary, std::vector<ItemResult>& items);
+void ReadSummaryAndItems(const nlohmann::json& json, simcell::EpisodeSummary& summary,
+                         std::vector<simcell::ItemResult>& items);
 
 /// results.jsonl as read.
 struct SweepResults {

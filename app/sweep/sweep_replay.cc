@@ -7,8 +7,8 @@
 #include <algorithm>
 #include <stdexcept>
 
-#include "app/common/build_identity.h"
-#include "app/common/output_dir.h"
+#include "files/build_identity.h"
+#include "files/output_dir.h"
 #include "app/sweep/worker_process.h"
 
 namespace sortcell::app {
@@ -57,7 +57,7 @@ void CheckReplayable(const SweepRecord& r, const std::filesystem::path& dir, con
   const std::filesystem::path model = ModelArgument(r);
   std::string digest;
   try {
-    digest = FileDigest(model);
+    digest = files::FileDigest(model);
   } catch (const std::runtime_error& e) {
     throw std::invalid_argument(fmt::format("episode {}: its model is gone ({})", r.episode, e.what()));
   }
@@ -103,7 +103,8 @@ std::vector<std::string> RecordDifferences(const nlohmann::json& sweep, const nl
 }
 
 ReplayResult ReplayEpisode(const ReplayOptions& o) {
-  return ReplayRecord(RecordOf(ReadSweepFolder(o.sweep_dir), o, o.sweep_dir / "results.jsonl"), o, BuildDigest());
+  return ReplayRecord(RecordOf(ReadSweepFolder(o.sweep_dir), o, o.sweep_dir / "results.jsonl"), o,
+                      files::BuildDigest());
 }
 
 ReplayResult ReplayRecord(const SweepRecord& recorded, const ReplayOptions& o, const std::string& build) {
@@ -112,7 +113,7 @@ ReplayResult ReplayRecord(const SweepRecord& recorded, const ReplayOptions& o, c
   std::error_code ec;
   CheckReplayable(result.recorded, o.sweep_dir, build);
   result.out = o.out.empty() ? o.sweep_dir / fmt::format("replays/{:06d}", recorded.episode) : o.out;
-  PrepareOutputDir(result.out);
+  files::PrepareOutputDir(result.out);
   std::filesystem::remove(result.out / "metrics.json", ec);
   const int status = WaitFor(SpawnSelf(ReplayArguments(result.recorded, o, result.out), result.out / "log.txt"));
   const std::filesystem::path metrics = result.out / "metrics.json";
@@ -124,7 +125,7 @@ ReplayResult ReplayRecord(const SweepRecord& recorded, const ReplayOptions& o, c
   }
   SweepRecord replayed = result.recorded;
   try {
-    ReadSummaryAndItems(nlohmann::json::parse(ReadTextFile(metrics)), replayed.summary, replayed.items);
+    ReadSummaryAndItems(nlohmann::json::parse(files::ReadTextFile(metrics)), replayed.summary, replayed.items);
   } catch (const std::exception& e) {
     throw std::runtime_error("'" + metrics.string() + "': " + e.what());
   }

@@ -13,10 +13,10 @@
 #include <stdexcept>
 #include <string>
 
-#include "app/common/json_fields.h"
-#include "app/common/output_dir.h"
-#include "app/common/record_fields.h"
-#include "app/episode/episode_metrics.h"
+#include "files/json_fields.h"
+#include "files/output_dir.h"
+#include "files/record_fields.h"
+#include "simcell/episode_metrics.h"
 
 namespace sortcell::app {
 namespace {
@@ -26,7 +26,7 @@ namespace {
 struct Tally {
   int episodes = 0, failed_episodes = 0, attempts = 0, grasps = 0;
   double sim_s = 0, wall_s = 0;
-  ItemTally items;
+  simcell::ItemTally items;
   std::map<std::string, double> phase_s;        // Simulated seconds in each pick phase, over every attempt.
   std::map<std::string, double> phase_bound_s;  // The arm's least time in each, over every attempt.
   int saturated = 0;
@@ -45,7 +45,7 @@ struct Tally {
     sim_s += record.summary.run.sim_time_s;
     wall_s += record.summary.run.wall_time_s;
     for (const auto& item : record.items) items.Add(item);
-    const RunFigures& run = record.summary.run;
+    const simcell::RunFigures& run = record.summary.run;
     for (const auto& [phase, mean_s] : run.cycle_phases_s) phase_s[phase] += mean_s * record.summary.grasp_attempts;
     for (const auto& [phase, mean_s] : run.cycle_phases_bound_s) {
       phase_bound_s[phase] += mean_s * record.summary.grasp_attempts;
@@ -72,7 +72,7 @@ struct GroupFigures {
   double carry_slip_max_mm = 0, carry_turn_max_deg = 0;
   std::optional<double> carry_slip_mean_mm;
   std::pair<double, double> ci95{0, 1};
-  OutcomeCounts outcomes;
+  simcell::OutcomeCounts outcomes;
   double sim_time_s = 0, episode_wall_time_s = 0;
   int unknown = 0, unknown_rejected = 0, unknown_in_category_bin = 0, known = 0, known_rejected = 0;
 };
@@ -83,19 +83,19 @@ GroupFigures Figures(const Tally& t) {
   f.episodes_failed = t.failed_episodes;
   f.items = t.items.items;
   f.sorted = t.items.Count(cell::ItemOutcome::kSorted);
-  f.correct_sort_rate = Ratio(f.sorted, f.items);
+  f.correct_sort_rate = simcell::Ratio(f.sorted, f.items);
   f.ci95 = WilsonInterval(f.sorted, f.items);
   for (const auto outcome : cell::kItemOutcomes) f.outcomes[outcome] = t.items.Count(outcome);
-  f.recognition_accuracy = Ratio(t.items.recognised, t.items.classified);
-  f.grasp_success_rate = Ratio(t.grasps, t.attempts);
+  f.recognition_accuracy = simcell::Ratio(t.items.recognised, t.items.classified);
+  f.grasp_success_rate = simcell::Ratio(t.grasps, t.attempts);
   f.grasp_attempts = t.attempts;
-  f.mean_cycle_time_s = Ratio(t.items.cycle_s, t.items.completed);
+  f.mean_cycle_time_s = simcell::Ratio(t.items.cycle_s, t.items.completed);
   f.mean_cycle_bound_s = t.items.MeanCycleBound();
   f.cycle_to_bound = t.items.CycleToBound();
   f.sim_time_s = t.sim_s;
   f.episode_wall_time_s = t.wall_s;
   if (t.wall_s > 0) f.real_time_factor = t.sim_s / t.wall_s;
-  f.picks_per_hour = PicksPerHour(f.sorted, t.sim_s);
+  f.picks_per_hour = simcell::PicksPerHour(f.sorted, t.sim_s);
   if (t.attempts > 0) {
     for (const auto& [phase, seconds] : t.phase_s) f.cycle_phases_s[phase] = seconds / t.attempts;
     for (const auto& [phase, seconds] : t.phase_bound_s) f.cycle_phases_bound_s[phase] = seconds / t.attempts;
@@ -103,7 +103,7 @@ GroupFigures Figures(const Tally& t) {
   f.torque_saturated_samples = t.saturated;
   f.tracking_max_error_rad = t.max_error;
   f.carry_slip_max_mm = t.slip_max_mm;
-  f.carry_slip_mean_mm = Ratio(t.slip_sum_mm, t.carries);
+  f.carry_slip_mean_mm = simcell::Ratio(t.slip_sum_mm, t.carries);
   f.carry_turn_max_deg = t.turn_max_deg;
   f.unknown = t.items.unknown;
   f.unknown_rejected = t.items.unknown_rejected;
@@ -117,19 +117,16 @@ GroupFigures Figures(const Tally& t) {
 nlohmann::json RejectionJson(const GroupFigures& f) {
   return {{"unknown_objects", f.unknown},
           {"unknown_rejected", f.unknown_rejected},
-          {"unknown_rejected_rate", OrNull(Ratio(f.unknown_rejected, f.unknown))},
+          {"unknown_rejected_rate", files::OrNull(simcell::Ratio(f.unknown_rejected, f.unknown))},
           {"unknown_in_category_bin", f.unknown_in_category_bin},
-          {"unknown_in_category_bin_rate", OrNull(Ratio(f.unknown_in_category_bin, f.unknown))},
+          {"unknown_in_category_bin_rate", files::OrNull(simcell::Ratio(f.unknown_in_category_bin, f.unknown))},
           {"known_objects", f.known},
           {"known_rejected", f.known_rejected},
-          {"known_rejected_rate", OrNull(Ratio(f.known_rejected, f.known))}};
+          {"known_rejected_rate", files::OrNull(simcell::Ratio(f.known_rejected, f.known))}};
 }
 
-}  // namespace
-
 // summary.json's keys of a group (the outcome counts and the rejection figures beside them).
-template <>
-struct RecordFields<GroupFigures> {
+struct GroupFiguresFields {
   template <typename Self, typename F>
   static void Visit(Self& f, F&& field) {
     field("episodes", f.episodes);
@@ -156,13 +153,13 @@ struct RecordFields<GroupFigures> {
     field("real_time_factor", f.real_time_factor);
   }
 };
-
-namespace {
+// Defined, not only declared (as records elsewhere do): a function in an unnamed namespace must be.
+[[maybe_unused]] GroupFiguresFields RecordFieldsOf(const GroupFigures*) { return {}; }
 
 nlohmann::json FiguresJson(const GroupFigures& f) {
   nlohmann::json j;
-  WriteFields(j, f);
-  j["outcomes"] = OutcomeCountsJson(f.outcomes);
+  files::WriteFields(j, f);
+  j["outcomes"] = simcell::OutcomeCountsJson(f.outcomes);
   j["rejection"] = RejectionJson(f);
   return j;
 }
@@ -243,9 +240,9 @@ std::string CsvHeader() {
 }
 
 std::string CsvRow(const std::string& axis, const std::string& value, const GroupFigures& f) {
-  std::string row =
-      fmt::format("{},{},{},{},{},{},{},{}", CsvField(axis), CsvField(value), f.episodes, f.items, f.sorted,
-                  f.correct_sort_rate ? Number(*f.correct_sort_rate) : "", Number(f.ci95.first), Number(f.ci95.second));
+  std::string row = fmt::format("{},{},{},{},{},{},{},{}", files::CsvField(axis), files::CsvField(value), f.episodes,
+                                f.items, f.sorted, f.correct_sort_rate ? Number(*f.correct_sort_rate) : "",
+                                Number(f.ci95.first), Number(f.ci95.second));
   for (const auto o : Failures()) row += fmt::format(",{}", f.outcomes.at(o));
   return row + fmt::format(",{}\n", f.episodes_failed);
 }
@@ -300,9 +297,9 @@ std::string MarkdownOverview(const SweepSpec& spec, const GroupFigures& all) {
     md += fmt::format(
         "Unknown objects: {} of {} rejected ({}), {} sorted into a category bin ({}); known objects wrongly "
         "rejected: {} of {} ({}).\n\n",
-        all.unknown_rejected, all.unknown, Percent(Ratio(all.unknown_rejected, all.unknown)),
-        all.unknown_in_category_bin, Percent(Ratio(all.unknown_in_category_bin, all.unknown)), all.known_rejected,
-        all.known, Percent(Ratio(all.known_rejected, all.known)));
+        all.unknown_rejected, all.unknown, Percent(simcell::Ratio(all.unknown_rejected, all.unknown)),
+        all.unknown_in_category_bin, Percent(simcell::Ratio(all.unknown_in_category_bin, all.unknown)),
+        all.known_rejected, all.known, Percent(simcell::Ratio(all.known_rejected, all.known)));
   }
   md += "Outcomes: ";
   for (size_t i = 0; i < cell::kItemOutcomes.size(); ++i) {
@@ -348,7 +345,7 @@ void Plot(const std::filesystem::path& dir, const std::string& axis, const std::
     rows += fmt::format("{} \"{}\" {} {} {}\n", i, label, 100 * *f.correct_sort_rate, 100 * f.ci95.first,
                         100 * f.ci95.second);
   }
-  WriteTextFile(data, rows);
+  files::WriteTextFile(data, rows);
   const std::filesystem::path png = dir / ("plot_" + axis + ".png");
   const std::string script = fmt::format(
       "set terminal pngcairo size 800,500\nset output '{0}'\nset title 'Correct-sort rate by {1} (95% CI)'\n"
@@ -426,7 +423,7 @@ nlohmann::json CalibrationSummary(const std::vector<SweepRecord>& records) {
   int ok = 0;
   for (const auto& r : records) {
     if (!r.ok() || !r.summary.calibration) continue;
-    const CalibrationFigures& c = *r.summary.calibration;
+    const simcell::CalibrationFigures& c = *r.summary.calibration;
     ok += c.status == "ok";
     error_m.push_back(c.error_m), error_rad.push_back(c.error_rad);
     prior_m.push_back(c.prior_error_m), prior_rad.push_back(c.prior_error_rad);
@@ -551,9 +548,9 @@ nlohmann::json WriteSweepReport(const std::filesystem::path& dir, const SweepSpe
   }
   if (!objects.empty()) md += MarkdownAxisTable("object", objects);
   summary["by_object"] = by_object;
-  WriteTextFile(dir / "summary.csv", csv);
-  WriteTextFile(dir / "summary.md", md);
-  WriteJson(dir / "summary.json", summary);
+  files::WriteTextFile(dir / "summary.csv", csv);
+  files::WriteTextFile(dir / "summary.md", md);
+  files::WriteJson(dir / "summary.json", summary);
   return summary;
 }
 

@@ -9,9 +9,9 @@
 #include <cstdio>
 #include <stdexcept>
 
-#include "app/common/build_identity.h"
-#include "app/common/json_fields.h"
-#include "app/common/output_dir.h"
+#include "files/build_identity.h"
+#include "files/json_fields.h"
+#include "files/output_dir.h"
 #include "app/sweep/sweep_record.h"
 #include "app/sweep/sweep_replay.h"
 #include "sim/ffmpeg_pipe.h"
@@ -27,7 +27,7 @@ std::string Spaced(std::string text) {
 }
 
 // When the gripper, having held the object, first found itself empty: the end of that phase.
-std::optional<PhaseHold> LostDuring(const AttemptLogEntry& a) {
+std::optional<simcell::PhaseHold> LostDuring(const simcell::AttemptLogEntry& a) {
   bool held = false;
   for (const auto& p : a.phases) {
     if (p.hold == "holding") held = true;
@@ -36,7 +36,7 @@ std::optional<PhaseHold> LostDuring(const AttemptLogEntry& a) {
   return std::nullopt;
 }
 
-std::string GraspInWords(const AttemptLogEntry& a) {
+std::string GraspInWords(const simcell::AttemptLogEntry& a) {
   for (const auto& p : a.phases) {
     if (p.phase != "grasp") continue;
     std::string text = fmt::format("closed at {:.0f} mm", 1000 * p.gap_m);
@@ -46,7 +46,7 @@ std::string GraspInWords(const AttemptLogEntry& a) {
   return "never closed";
 }
 
-std::string ResultInWords(const AttemptLogEntry& a) {
+std::string ResultInWords(const simcell::AttemptLogEntry& a) {
   if (a.result == "released") return "released over bin " + a.bin;
   if (a.result == "missed") return "closed on nothing";
   if (a.result == "dropped") {
@@ -59,14 +59,14 @@ std::string ResultInWords(const AttemptLogEntry& a) {
   return Spaced(a.result);
 }
 
-double FailedAt(const AttemptLogEntry& a) {
+double FailedAt(const simcell::AttemptLogEntry& a) {
   if (a.result == "dropped") {
     if (const auto lost = LostDuring(a)) return lost->end_s;
   }
   return a.time_s + a.duration_s.value_or(0);
 }
 
-bool NearItem(const AttemptLogEntry& a, const ItemResult& item) {
+bool NearItem(const simcell::AttemptLogEntry& a, const simcell::ItemResult& item) {
   return std::hypot(a.xy[0] - item.final_xyz[0], a.xy[1] - item.final_xyz[1]) < kSameClusterM;
 }
 
@@ -92,14 +92,14 @@ std::string FileSafe(const std::string& name) {
   return safe;
 }
 
-std::vector<AttemptLogEntry> AttemptsOf(const std::filesystem::path& metrics_file) {
+std::vector<simcell::AttemptLogEntry> AttemptsOf(const std::filesystem::path& metrics_file) {
   try {
-    const auto metrics = nlohmann::json::parse(ReadTextFile(metrics_file));
-    std::vector<AttemptLogEntry> attempts;
+    const auto metrics = nlohmann::json::parse(files::ReadTextFile(metrics_file));
+    std::vector<simcell::AttemptLogEntry> attempts;
     const auto& list = metrics.at("attempts");
     for (size_t i = 0; i < list.size(); ++i) {
       try {
-        attempts.push_back(list[i].get<AttemptLogEntry>());
+        attempts.push_back(list[i].get<simcell::AttemptLogEntry>());
       } catch (const std::invalid_argument& e) {
         throw std::invalid_argument("attempts[" + std::to_string(i) + "]." + e.what());
       }
@@ -142,7 +142,7 @@ void ReviewEpisode(const std::filesystem::path& dir, const SweepRecord& record, 
 
 }  // namespace
 
-std::string AttemptInWords(const AttemptLogEntry& a, int number) {
+std::string AttemptInWords(const simcell::AttemptLogEntry& a, int number) {
   const std::string called =
       a.category.empty() ? "not described"
                          : "called " + a.category + (a.confidence ? fmt::format(" ({:.2f})", *a.confidence) : "");
@@ -157,8 +157,8 @@ std::string AttemptInWords(const AttemptLogEntry& a, int number) {
   return text;
 }
 
-std::vector<ItemFailure> FailuresOf(const std::vector<ItemResult>& items, const std::vector<AttemptLogEntry>& attempts,
-                                    double episode_end_s) {
+std::vector<ItemFailure> FailuresOf(const std::vector<simcell::ItemResult>& items,
+                                    const std::vector<simcell::AttemptLogEntry>& attempts, double episode_end_s) {
   std::vector<ItemFailure> failures;
   for (const auto& item : items) {
     if (item.outcome == cell::ItemOutcome::kSorted) continue;
@@ -167,7 +167,7 @@ std::vector<ItemFailure> FailuresOf(const std::vector<ItemResult>& items, const 
     f.outcome = item.outcome;
     f.at_s = episode_end_s;
     int number = 0;
-    const AttemptLogEntry* skipped = nullptr;
+    const simcell::AttemptLogEntry* skipped = nullptr;
     for (const auto& a : attempts) {
       if (a.duration_s && a.truth_object == item.name) {
         f.log.push_back(AttemptInWords(a, ++number));
@@ -200,7 +200,7 @@ nlohmann::json ReviewJson(const SweepReview& review) {
                         {"log", r.failure.log},
                         {"clip", r.clip},
                         {"still", r.still},
-                        {"decided_at_s", OrNull(r.failure.decided_at_s)}});
+                        {"decided_at_s", files::OrNull(r.failure.decided_at_s)}});
   }
   return {{"episodes_replayed", review.episodes_replayed},
           {"mismatches", review.mismatches},
@@ -210,10 +210,11 @@ nlohmann::json ReviewJson(const SweepReview& review) {
 
 SweepReview ReviewSweep(const std::filesystem::path& dir, double before_s, double after_s) {
   SweepReview review;
-  const std::string build = BuildDigest();
+  const std::string build = files::BuildDigest();
   for (const auto& record : ReadSweepFolder(dir)) {
-    const bool failed = std::any_of(record.items.begin(), record.items.end(),
-                                    [](const ItemResult& i) { return i.outcome != cell::ItemOutcome::kSorted; });
+    const bool failed = std::any_of(record.items.begin(), record.items.end(), [](const simcell::ItemResult& i) {
+      return i.outcome != cell::ItemOutcome::kSorted;
+    });
     if (!record.ok() || !failed) continue;
     try {
       ReviewEpisode(dir, record, build, before_s, after_s, review);
@@ -225,7 +226,7 @@ SweepReview ReviewSweep(const std::filesystem::path& dir, double before_s, doubl
   }
   std::stable_sort(review.failures.begin(), review.failures.end(),
                    [](const ReviewedFailure& a, const ReviewedFailure& b) { return a.episode < b.episode; });
-  WriteJson(dir / "review.json", ReviewJson(review));
+  files::WriteJson(dir / "review.json", ReviewJson(review));
   return review;
 }
 

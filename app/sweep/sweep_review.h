@@ -13,13 +13,13 @@
 
 #include <nlohmann/json.hpp>
 
-#include "app/episode/episode_metrics.h"
+#include "simcell/episode_metrics.h"
 
 namespace sortcell::app {
 
 /// One attempt (or a cluster left alone) in words: "attempt 2 at 31.4-36.0 s: called cup (0.91) for
 /// bin cup; closed at 41 mm on a 71 mm wide view; dropped during carry at 34.2 s".
-std::string AttemptInWords(const AttemptLogEntry& attempt, int number);
+std::string AttemptInWords(const simcell::AttemptLogEntry& attempt, int number);
 
 /// A failed item of one episode: when it failed (simulated seconds) and what the cell did about it.
 struct ItemFailure {
@@ -37,8 +37,8 @@ struct ItemFailure {
 /// ended, or, if it was dropped, when the gripper found itself empty; an item never attempted failed
 /// when the cell last looked at it and left it (a skipped cluster where it lies, within 5 cm), else at
 /// the episode's end.
-std::vector<ItemFailure> FailuresOf(const std::vector<ItemResult>& items, const std::vector<AttemptLogEntry>& attempts,
-                                    double episode_end_s);
+std::vector<ItemFailure> FailuresOf(const std::vector<simcell::ItemResult>& items,
+                                    const std::vector<simcell::AttemptLogEntry>& attempts, double episode_end_s);
 
 struct ReviewedFailure {
   int episode = 0;

@@ -5,9 +5,9 @@
 #include <stdexcept>
 #include <utility>
 
-#include "app/common/seeding.h"
-#include "app/common/yaml_reader.h"
-#include "app/episode/episode.h"
+#include "common/seeding.h"
+#include "files/yaml_reader.h"
+#include "simcell/episode.h"
 #include "sim/clutter_placement.h"
 
 namespace sortcell::app {
@@ -23,7 +23,7 @@ class SpecReader {
   explicit SpecReader(const std::filesystem::path& file)
       : yaml_("sweep spec", file), base_(std::filesystem::absolute(file).parent_path()) {}
 
-  const YamlReader& yaml() const { return yaml_; }
+  const files::YamlReader& yaml() const { return yaml_; }
 
   std::filesystem::path File(const std::string& key, const std::string& value) const {
     const std::filesystem::path p = (base_ / value).lexically_normal();
@@ -33,7 +33,7 @@ class SpecReader {
   }
 
  private:
-  YamlReader yaml_;
+  files::YamlReader yaml_;
   std::filesystem::path base_;
 };
 
@@ -106,7 +106,7 @@ void ApplyOverride(YAML::Node& root, const std::string& text) {
 // ---- the keys ----
 
 void ReadFiles(const SpecReader& r, const YAML::Node& root, SweepSpec& spec) {
-  const YamlReader& y = r.yaml();
+  const files::YamlReader& y = r.yaml();
   spec.scene = r.File("scene", y.String(root, "scene", "the top level"));
   spec.object_set = r.File("object_set", y.String(root, "object_set", "the top level"));
   if (root["model"] && !root["model"].IsNull()) spec.model = r.File("model", y.String(root, "model", "the top level"));
@@ -114,7 +114,7 @@ void ReadFiles(const SpecReader& r, const YAML::Node& root, SweepSpec& spec) {
   if (root["unknown_set"]) spec.unknown_set = r.File("unknown_set", y.String(root, "unknown_set", "the top level"));
 }
 
-void ReadEpisodes(const YamlReader& y, const YAML::Node& root, SweepSpec& spec) {
+void ReadEpisodes(const files::YamlReader& y, const YAML::Node& root, SweepSpec& spec) {
   if (root["seed"]) spec.seed = static_cast<uint64_t>(y.Integer(root["seed"], "seed"));
   if (root["episodes"] && root["seeds"]) y.Fail("give either 'episodes' or 'seeds', not both");
   if (root["episodes"]) {
@@ -124,14 +124,14 @@ void ReadEpisodes(const YamlReader& y, const YAML::Node& root, SweepSpec& spec) 
   if (root["seeds"]) {
     const YAML::Node seeds = root["seeds"];
     if (!seeds.IsSequence() || seeds.size() == 0)
-      y.Fail("key 'seeds': expected a non-empty list, found " + NodeKind(seeds));
+      y.Fail("key 'seeds': expected a non-empty list, found " + files::NodeKind(seeds));
     for (size_t i = 0; i < seeds.size(); ++i) {
       spec.seeds.push_back(static_cast<uint64_t>(y.Integer(seeds[i], "seeds[" + std::to_string(i) + "]")));
     }
   }
 }
 
-void ReadRunSettings(const YamlReader& y, const YAML::Node& root, SweepSpec& spec) {
+void ReadRunSettings(const files::YamlReader& y, const YAML::Node& root, SweepSpec& spec) {
   if (root["mode"]) {
     const std::string mode = y.String(root, "mode", "the top level");
     if (mode != "random" && mode != "grid") y.Fail("key 'mode': expected random or grid, found '" + mode + "'");
@@ -145,11 +145,11 @@ void ReadRunSettings(const YamlReader& y, const YAML::Node& root, SweepSpec& spe
 
 // A value of an axis whose values are an enum's spellings (`names`).
 template <typename E, size_t N>
-std::string NamedAxisValue(const YamlReader& y, const EnumNames<E, N>& names, const YAML::Node& v,
+std::string NamedAxisValue(const files::YamlReader& y, const EnumNames<E, N>& names, const YAML::Node& v,
                            const std::string& where) {
   if (!v.IsScalar() || !FindName(names, v.Scalar())) {
     y.Fail("key '" + where + "': expected " + ExpectedNames(names) + ", found " +
-           (v.IsScalar() ? "'" + v.Scalar() + "'" : NodeKind(v)));
+           (v.IsScalar() ? "'" + v.Scalar() + "'" : files::NodeKind(v)));
   }
   return v.Scalar();
 }
@@ -157,13 +157,14 @@ std::string NamedAxisValue(const YamlReader& y, const EnumNames<E, N>& names, co
 // One value of axis `name` (key `where` for messages): a model file, an object count, or a number
 // (a scale > 0; a camera shift or turn >= 0).
 nlohmann::json AxisValue(const SpecReader& r, const std::string& name, const YAML::Node& v, const std::string& where) {
-  const YamlReader& y = r.yaml();
+  const files::YamlReader& y = r.yaml();
   if (name == "model") {
-    if (!v.IsScalar() || v.Scalar().empty()) y.Fail("key '" + where + "': expected a model file, found " + NodeKind(v));
+    if (!v.IsScalar() || v.Scalar().empty())
+      y.Fail("key '" + where + "': expected a model file, found " + files::NodeKind(v));
     return r.File(where, v.Scalar()).string();
   }
   if (name == "placement") return NamedAxisValue(y, sim::kPlacementModeNames, v, where);
-  if (name == "self_calibrate") return NamedAxisValue(y, kSelfCalibrationNames, v, where);
+  if (name == "self_calibrate") return NamedAxisValue(y, simcell::kSelfCalibrationNames, v, where);
   if (name == "objects" || name == "unknown_objects") {
     const long long k = y.Integer(v, where);
     if (name == "objects" && k < 1) y.Fail("key '" + where + "': expected at least 1 object");
@@ -180,7 +181,7 @@ nlohmann::json AxisValue(const SpecReader& r, const std::string& name, const YAM
 }
 
 SweepAxis ReadAxis(const SpecReader& r, const std::string& name, const YAML::Node& node) {
-  const YamlReader& y = r.yaml();
+  const files::YamlReader& y = r.yaml();
   SweepAxis axis;
   axis.name = name;
   const std::string key = "axes." + name;
@@ -193,7 +194,7 @@ SweepAxis ReadAxis(const SpecReader& r, const std::string& name, const YAML::Nod
     if (name == "model") y.Fail("key '" + key + "': models are a list of files, not a range");
     if (name == "placement") y.Fail("key '" + key + "': placements are a list of modes, not a range");
     if (name == "self_calibrate") {
-      y.Fail("key '" + key + "': self_calibrate is a list of " + ExpectedNames(kSelfCalibrationNames) +
+      y.Fail("key '" + key + "': self_calibrate is a list of " + ExpectedNames(simcell::kSelfCalibrationNames) +
              ", not a range");
     }
     if (!node["min"] || !node["max"]) y.Fail("key '" + key + "': a range needs min and max");
@@ -201,7 +202,7 @@ SweepAxis ReadAxis(const SpecReader& r, const std::string& name, const YAML::Nod
     axis.max = AxisValue(r, name, node["max"], key + ".max").get<double>();
     if (axis.max < axis.min) y.Fail("key '" + key + "': max is below min");
   } else {
-    y.Fail("key '" + key + "': expected a list of values or {min, max}, found " + NodeKind(node));
+    y.Fail("key '" + key + "': expected a list of values or {min, max}, found " + files::NodeKind(node));
   }
   return axis;
 }
@@ -209,7 +210,7 @@ SweepAxis ReadAxis(const SpecReader& r, const std::string& name, const YAML::Nod
 void ReadAxes(const SpecReader& r, const YAML::Node& root, SweepSpec& spec) {
   const YAML::Node axes = root["axes"];
   if (!axes || axes.IsNull()) return;
-  if (!axes.IsMap()) r.yaml().Fail("key 'axes': expected a map of axis names, found " + NodeKind(axes));
+  if (!axes.IsMap()) r.yaml().Fail("key 'axes': expected a map of axis names, found " + files::NodeKind(axes));
   const std::vector<std::string>& names = SweepAxisNames();
   r.yaml().RejectUnknownKeys(axes, "axes", std::set<std::string>(names.begin(), names.end()));
   for (const auto& item : axes) spec.axes.push_back(ReadAxis(r, item.first.as<std::string>(), item.second));

@@ -8,7 +8,7 @@
 #include <string>
 #include <utility>
 
-#include "app/recognition/dataset.h"
+#include "training/dataset.h"
 #include "run_sortcell.h"
 #include "source_tree.h"
 #include "temp_dir.h"
@@ -21,16 +21,16 @@ using sortcell_test::kSource;
 using sortcell_test::RunSortcell;
 using sortcell_test::TempPath;
 
-sortcell::app::Dataset Scenes(const std::string& name, const std::string& extra) {
+sortcell::training::Dataset Scenes(const std::string& name, const std::string& extra) {
   const fs::path out = TempPath(name);
   const auto r = RunSortcell("dataset --objects " + kSource + "/scenes/objects/paper.yaml --scenes 3 --seed 5 --out " +
                              out.string() + extra);
   EXPECT_EQ(r.exit_code, 0) << r.err;
-  return sortcell::app::LoadDataset(out);
+  return sortcell::training::LoadDataset(out);
 }
 
 // Hue histograms by (scene, instance).
-std::map<std::pair<int, std::string>, Eigen::VectorXf> Hues(const sortcell::app::Dataset& d) {
+std::map<std::pair<int, std::string>, Eigen::VectorXf> Hues(const sortcell::training::Dataset& d) {
   std::map<std::pair<int, std::string>, Eigen::VectorXf> hues;
   for (const auto& s : d.samples) hues[{s.scene, s.instance}] = s.parts.hsv.head(90);
   return hues;

@@ -1,12 +1,12 @@
 // Hand-eye self-calibration in the simulated cell: the gripper's marker is found where the simulator
 // has it, and a calibration recovers a displaced camera's pose.
-#include "app/episode/calibration_run.h"
+#include "simcell/calibration_run.h"
 
 #include <gtest/gtest.h>
 
-#include "app/common/data_dir.h"
-#include "app/episode/sim_cell.h"
-#include "app/episode/sim_layout.h"
+#include "files/data_dir.h"
+#include "simcell/sim_cell.h"
+#include "simcell/sim_layout.h"
 #include "cell/hand_eye_calibration.h"
 #include "perception/cloud_pinhole.h"
 #include "perception/marker_sighting.h"
@@ -27,8 +27,8 @@ std::filesystem::path CellScene() { return std::filesystem::path(SORTCELL_SOURCE
 // At every place the calibration shows the marker: the sighting's centre against the marker site's
 // true position in the true camera frame, clean and through the Kinect's noise.
 TEST(MarkerSighting, FindsTheGrippersMarkerWhereTheSimulatorHasIt) {
-  sim::Model model = LoadScene(CellScene());
-  const cell::CellLayout layout = ReadCellLayout(model, ReadCellFile(DefaultCellFile()));
+  sim::Model model = files::LoadScene(CellScene());
+  const cell::CellLayout layout = simcell::ReadCellLayout(model, files::ReadCellFile(files::DefaultCellFile()));
   sim::Data data(model);
   const std::vector<std::string> bodies = sim::FreeBodyNames(model);  // Off the table: the arm sweeps it.
   for (size_t i = 0; i < bodies.size(); ++i)
@@ -37,7 +37,7 @@ TEST(MarkerSighting, FindsTheGrippersMarkerWhereTheSimulatorHasIt) {
   sim::KinectNoiseParams noise;
   std::mt19937_64 rng(1);
   const int site = model.Id(mjOBJ_SITE, "calibration_marker");
-  const auto joints = cell::MarkerShowingJoints(NominalCameraPose(model, "kinect"), layout.q_observe, {});
+  const auto joints = cell::MarkerShowingJoints(simcell::NominalCameraPose(model, "kinect"), layout.q_observe, {});
   for (const bool noisy : {false, true}) {
     double worst = 0;
     int found = 0;
@@ -64,13 +64,13 @@ TEST(MarkerSighting, FindsTheGrippersMarkerWhereTheSimulatorHasIt) {
 // 0.002 rad in at most 20 simulated seconds, through the Kinect's noise.
 TEST(HandEyeCalibration, RecoversADisplacedCamerasPose) {
   const sortcell_test::TempDir dir;
-  EpisodeOptions options;
+  simcell::EpisodeOptions options;
   options.scene = CellScene();
   options.seed = 3;
   options.variation.camera_shift_m = 0.05;
   options.variation.camera_turn_rad = 0.05;
   options.out = dir.path() / "calibration";
-  const CalibrationFigures figures = RunCalibration(options, {"test"});
+  const simcell::CalibrationFigures figures = simcell::RunCalibration(options, {"test"});
   EXPECT_EQ(figures.status, "ok");
   EXPECT_NEAR(figures.prior_error_m, 0.05, 1e-6);
   EXPECT_LE(figures.error_m, 0.002);

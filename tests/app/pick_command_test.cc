@@ -1,5 +1,5 @@
 // Physical pick-and-place (sim): friction grasps only, every paper object into its category's bin.
-#include "app/episode/scripted_pick.h"
+#include "simcell/scripted_pick.h"
 
 #include <gtest/gtest.h>
 
@@ -21,15 +21,15 @@ using sortcell_test::RunSortcell;
 
 using sortcell_test::kRoot;
 
-PickResult Pick(const std::string& scene, const std::string& object, const std::string& bin,
-                const fs::path& video = {}) {
-  PickOptions options;
+simcell::PickResult Pick(const std::string& scene, const std::string& object, const std::string& bin,
+                         const fs::path& video = {}) {
+  simcell::PickOptions options;
   options.scene = kRoot / scene;
   options.object = object;
   options.bin = bin;
   options.video = video;
   options.out = fs::path(sortcell_test::TestTempDir()) / ("pick_" + object + "_" + bin);
-  return RunPick(options, {"sortcell", "pick"});
+  return simcell::RunPick(options, {"sortcell", "pick"});
 }
 
 TEST(PickScenes, NoWeldsNoEqualityConstraints) {
@@ -47,7 +47,7 @@ struct PaperObject {
 class PaperPick : public ::testing::TestWithParam<PaperObject> {};
 
 TEST_P(PaperPick, HeldByFrictionAndPlacedInItsBin) {
-  const PickResult r = Pick("scenes/cell.xml", GetParam().name, GetParam().bin);
+  const simcell::PickResult r = Pick("scenes/cell.xml", GetParam().name, GetParam().bin);
   EXPECT_EQ(r.status, "sorted");
   EXPECT_TRUE(r.in_bin);
   EXPECT_TRUE(r.held);  // still squeezed when lowered into the bin
@@ -64,20 +64,20 @@ INSTANTIATE_TEST_SUITE_P(PaperSet, PaperPick,
                          [](const auto& info) { return std::string(info.param.name); });
 
 TEST(Pick, WidestProduceFitsTheStroke) {
-  const PickResult r = Pick("scenes/produce.xml", "pepper5", "others");  // 85 mm
+  const simcell::PickResult r = Pick("scenes/produce.xml", "pepper5", "others");  // 85 mm
   EXPECT_EQ(r.status, "sorted");
   EXPECT_LT(r.slip_mm, 5.0);
 }
 
 TEST(Pick, PlateIsRefusedAsTooWide) {
-  const PickResult r = Pick("scenes/produce.xml", "plate1", "others");
+  const simcell::PickResult r = Pick("scenes/produce.xml", "plate1", "others");
   EXPECT_EQ(r.status, "too_wide");
   EXPECT_FALSE(r.in_bin);
 }
 
 TEST(Pick, SameSceneSameResult) {
-  const PickResult a = Pick("scenes/cell.xml", "box", "ball");
-  const PickResult b = Pick("scenes/cell.xml", "box", "ball");
+  const simcell::PickResult a = Pick("scenes/cell.xml", "box", "ball");
+  const simcell::PickResult b = Pick("scenes/cell.xml", "box", "ball");
   EXPECT_EQ(a.slip_mm, b.slip_mm);
   EXPECT_EQ(a.cycle_time_s, b.cycle_time_s);
 }

@@ -6,7 +6,7 @@
 
 #include <filesystem>
 
-#include "app/episode/scripted_pick.h"
+#include "simcell/scripted_pick.h"
 #include "temp_dir.h"
 
 namespace sortcell::app {
@@ -16,15 +16,15 @@ namespace fs = std::filesystem;
 
 TEST(PickVideo, H264At30FpsAndSameOutcome) {
   const fs::path dir = fs::path(sortcell_test::TestTempDir()) / "pick_video";
-  PickOptions options;
+  simcell::PickOptions options;
   options.scene = fs::path(SORTCELL_SOURCE_DIR) / "scenes/cell.xml";
   options.object = "ball";
   options.bin = "ball";
   options.out = dir / "plain";
-  const PickResult plain = RunPick(options, {"sortcell"});
+  const simcell::PickResult plain = simcell::RunPick(options, {"sortcell"});
   options.out = dir / "video";
   options.video = dir / "video" / "pick.mp4";
-  const PickResult recorded = RunPick(options, {"sortcell"});
+  const simcell::PickResult recorded = simcell::RunPick(options, {"sortcell"});
   EXPECT_EQ(plain.slip_mm, recorded.slip_mm);
   EXPECT_EQ(plain.cycle_time_s, recorded.cycle_time_s);
   EXPECT_EQ(recorded.status, "sorted");

@@ -10,7 +10,7 @@
 #include <nlohmann/json.hpp>
 #include <spdlog/fmt/fmt.h>
 
-#include "app/common/cell_file.h"
+#include "files/cell_file.h"
 #include "run_sortcell.h"
 #include "source_tree.h"
 
@@ -35,7 +35,7 @@ nlohmann::json EvalOnScenes(const std::string& objects, int scenes) {
 }
 
 double DefaultRejectBelow() {
-  return sortcell::app::ReadCellFile(kSource + "/scenes/cells/default_reject.yaml").rules.reject_below;
+  return sortcell::files::ReadCellFile(kSource + "/scenes/cells/default_reject.yaml").rules.reject_below;
 }
 
 TEST(RejectThreshold, TheDefaultRejectsFewKnownViewsAndMostUnknownOnes) {

@@ -20,8 +20,8 @@ namespace {
 using sortcell_test::ErrorOf;
 using sortcell_test::TempDir;
 
-ItemResult Item(const std::string& name, cell::ItemOutcome outcome) {
-  ItemResult item;
+simcell::ItemResult Item(const std::string& name, cell::ItemOutcome outcome) {
+  simcell::ItemResult item;
   item.name = name;
   item.true_category = "cup";
   item.attempts = 1;
@@ -39,7 +39,7 @@ std::vector<SweepRecord> Sweep(int episodes, int dropped) {
     r.axes = {{"objects", 4}, {"placement", e % 2 ? "dense" : "sparse"}};
     for (const char* name : {"cup1", "cup2", "cup3", "cup4"}) r.items.push_back(Item(name, cell::ItemOutcome::kSorted));
     if (e < dropped) r.items[1].outcome = cell::ItemOutcome::kDropped;
-    r.summary = SummarizeEpisode(r.items, 4, 4 - (e < dropped), RunFigures{});
+    r.summary = simcell::SummarizeEpisode(r.items, 4, 4 - (e < dropped), simcell::RunFigures{});
     records.push_back(r);
   }
   return records;

@@ -27,11 +27,11 @@ std::filesystem::path SweepFolder(const std::filesystem::path& dir) {
     r.episode = e;
     r.seed = 40 + e;
     r.axes = {{"placement", "dense"}};
-    ItemResult item;
+    simcell::ItemResult item;
     item.name = e ? "</script><b>cup" : "<!--<script>ball";
     item.outcome = e ? cell::ItemOutcome::kDropped : cell::ItemOutcome::kSorted;
     r.items = {item};
-    r.summary = SummarizeEpisode(r.items, 1, 1, RunFigures{});
+    r.summary = simcell::SummarizeEpisode(r.items, 1, 1, simcell::RunFigures{});
     writer.Append(r);
   }
   writer.Close();

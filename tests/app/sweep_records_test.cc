@@ -54,7 +54,7 @@ SweepRecord OkRecord(int episode, const nlohmann::json& axes) {
   r.axes = axes.is_null() ? nlohmann::json::object() : axes;  // {} is null.
   r.wall_time_s = 6.5;
   r.status = RunStatus::kOk;
-  ItemResult cup;
+  simcell::ItemResult cup;
   cup.name = "cup";
   cup.true_category = "cup";
   cup.predicted_category = "cup";
@@ -63,18 +63,18 @@ SweepRecord OkRecord(int episode, const nlohmann::json& axes) {
   cup.outcome = cell::ItemOutcome::kSorted;
   cup.cycle_time_s = 12.5;
   cup.final_xyz = {0.4, 0.4, 0.01};
-  ItemResult ball;
+  simcell::ItemResult ball;
   ball.name = "ball";
   ball.true_category = "ball";
   ball.attempts = 2;
   ball.outcome = cell::ItemOutcome::kGraspFailed;
-  RunFigures run;
+  simcell::RunFigures run;
   run.sim_time_s = 40;
   run.wall_time_s = 4;
   run.real_time_factor = 10;
   run.frames = 3;
   r.items = {cup, ball};
-  r.summary = SummarizeEpisode(r.items, 3, 1, run);
+  r.summary = simcell::SummarizeEpisode(r.items, 3, 1, run);
   return r;
 }
 
@@ -207,7 +207,7 @@ TEST(SweepResults, WrittenRecordsReadBack) {
 
 TEST(SweepResults, ACalibratedEpisodesFiguresReadBack) {
   SweepRecord r = OkRecord(0, {{"camera_shift_m", 0.04}});
-  CalibrationFigures c;
+  simcell::CalibrationFigures c;
   c.status = "ok";
   c.sightings = 18, c.inliers = 17;
   c.rms_residual_m = 0.0002, c.duration_s = 17.6, c.error_m = 0.0004, c.error_rad = 0.0005;
@@ -373,7 +373,7 @@ TEST(SweepReport, FailuresByObjectAndTheCalibrations) {
   const TempDir dir("report_objects");
   std::vector<SweepRecord> records{OkRecord(0, {}), OkRecord(1, {})};
   records[1].items[1].outcome = cell::ItemOutcome::kSorted;  // The ball, sorted once of twice.
-  CalibrationFigures c;
+  simcell::CalibrationFigures c;
   c.status = "ok";
   c.error_m = 0.0004, c.error_rad = 0.0003, c.prior_error_m = 0.05, c.prior_error_rad = 0.05, c.duration_s = 17.5;
   records[0].summary.calibration = c;

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "app/common/build_identity.h"
+#include "files/build_identity.h"
 #include "app/sweep/sweep_record.h"
 #include "app/sweep/sweep_replay.h"
 #include "run_sortcell.h"
@@ -24,15 +24,15 @@ SweepRecord Recorded(const std::filesystem::path& model) {
   r.episode = 2;
   r.seed = 9;
   r.axes = {{"objects", 2}};
-  ItemResult cup;
+  simcell::ItemResult cup;
   cup.name = "cup";
   cup.true_category = "cup";
   cup.outcome = cell::ItemOutcome::kDropped;
   r.items = {cup};
-  r.summary = SummarizeEpisode(r.items, 1, 1, RunFigures{});
+  r.summary = simcell::SummarizeEpisode(r.items, 1, 1, simcell::RunFigures{});
   r.worker_arguments = {"episode", "--seed", "9", "--model", model.string()};
-  r.build = FileDigest(SORTCELL_BINARY);
-  r.model_digest = FileDigest(model);
+  r.build = files::FileDigest(SORTCELL_BINARY);
+  r.model_digest = files::FileDigest(model);
   return r;
 }
 

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "app/episode/episode_metrics.h"
+#include "simcell/episode_metrics.h"
 #include "app/sweep/sweep_record.h"
 #include "app/sweep/sweep_review.h"
 #include "temp_dir.h"
@@ -15,8 +15,8 @@
 namespace sortcell::app {
 namespace {
 
-AttemptLogEntry Dropped() {
-  AttemptLogEntry a;
+simcell::AttemptLogEntry Dropped() {
+  simcell::AttemptLogEntry a;
   a.time_s = 30.0;
   a.duration_s = 6.0;
   a.category = "cup";
@@ -32,8 +32,8 @@ AttemptLogEntry Dropped() {
   return a;
 }
 
-AttemptLogEntry Skipped(double x, double y) {
-  AttemptLogEntry a;
+simcell::AttemptLogEntry Skipped(double x, double y) {
+  simcell::AttemptLogEntry a;
   a.time_s = 12.0;
   a.category = "others";
   a.bin = "others";
@@ -42,8 +42,8 @@ AttemptLogEntry Skipped(double x, double y) {
   return a;
 }
 
-ItemResult Item(const std::string& name, cell::ItemOutcome outcome, double x, double y) {
-  ItemResult item;
+simcell::ItemResult Item(const std::string& name, cell::ItemOutcome outcome, double x, double y) {
+  simcell::ItemResult item;
   item.name = name;
   item.outcome = outcome;
   item.final_xyz = {x, y, 0};
@@ -56,14 +56,14 @@ TEST(SweepReview, AttemptsAreToldInWords) {
       "attempt 2 at 30.0-36.0 s: called cup (0.91) for bin cup; closed at 41 mm on a 71 mm wide view; dropped during "
       "carry at 34.2 s");
   EXPECT_EQ(AttemptInWords(Skipped(0.5, 0.1), 0), "at 12.0 s: seen, called others, not attempted: too wide");
-  AttemptLogEntry released = Dropped();
+  simcell::AttemptLogEntry released = Dropped();
   released.result = "released";
   released.squeezed_harder_in = "carry";
   EXPECT_NE(AttemptInWords(released, 1).find("released over bin cup; squeezed harder during carry"), std::string::npos);
 }
 
 TEST(SweepReview, EachFailedItemFailsWhenItsLogSays) {
-  const std::vector<ItemResult> items = {
+  const std::vector<simcell::ItemResult> items = {
       Item("cup", cell::ItemOutcome::kDropped, 0.3, 0.2), Item("plate", cell::ItemOutcome::kUngraspable, 0.5, 0.1),
       Item("ball", cell::ItemOutcome::kSorted, 0.4, -0.2), Item("box", cell::ItemOutcome::kLeftOnTable, 0.6, -0.3)};
   const auto failures = FailuresOf(items, {Skipped(0.51, 0.11), Dropped()}, 80.0);
@@ -79,14 +79,14 @@ TEST(SweepReview, EachFailedItemFailsWhenItsLogSays) {
 }
 
 TEST(SweepReview, TheAttemptLogReadsBackAsWritten) {
-  for (const AttemptLogEntry& a : {Dropped(), Skipped(0.2, 0.3)}) {
+  for (const simcell::AttemptLogEntry& a : {Dropped(), Skipped(0.2, 0.3)}) {
     const nlohmann::json j = a;
-    EXPECT_EQ(nlohmann::json(j.get<AttemptLogEntry>()), j);
+    EXPECT_EQ(nlohmann::json(j.get<simcell::AttemptLogEntry>()), j);
   }
   nlohmann::json bad = Dropped();
   bad["phases"][1].erase("hold");
   try {
-    bad.get<AttemptLogEntry>();
+    bad.get<simcell::AttemptLogEntry>();
     FAIL() << "read a phase without its hold";
   } catch (const std::invalid_argument& e) {
     EXPECT_STREQ(e.what(), "phases[1].hold: missing");
@@ -98,7 +98,7 @@ TEST(SweepReview, AnEpisodeThatCannotBeReplayedCostsOnlyItsOwnReview) {
   SweepRecord old;  // Written before records kept what a replay needs.
   old.episode = 4;
   old.items = {Item("cup", cell::ItemOutcome::kDropped, 0.3, 0.2)};
-  old.summary = SummarizeEpisode(old.items, 1, 1, RunFigures{});
+  old.summary = simcell::SummarizeEpisode(old.items, 1, 1, simcell::RunFigures{});
   SweepRecord fine = old;
   fine.episode = 5;
   fine.items[0].outcome = cell::ItemOutcome::kSorted;  // Nothing to review.

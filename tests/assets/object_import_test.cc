@@ -12,7 +12,7 @@
 
 #include <Eigen/Eigenvalues>
 
-#include "app/common/data_dir.h"
+#include "files/data_dir.h"
 #include "sim/scene_composer.h"
 #include "temp_dir.h"
 #include "user_objects.h"

@@ -11,7 +11,7 @@
 #include <set>
 #include <sstream>
 
-#include "app/common/object_set.h"
+#include "files/object_set.h"
 #include "robot/ur5_dh.h"
 #include "sim/model.h"
 #include "sim/scene_composer.h"
@@ -52,7 +52,7 @@ std::string ReadText(const fs::path& file) {
 // Every produce instance: a textured visual mesh over a collision primitive, and instances of one
 // category differ in size and colour.
 TEST(ModelFiles, ProduceInstancesAreTexturedAndVary) {
-  const auto produce = sortcell::app::LoadObjectSet(kRoot / "scenes/objects/produce.yaml");
+  const auto produce = sortcell::files::LoadObjectSet(kRoot / "scenes/objects/produce.yaml");
   std::vector<fs::path> models;
   for (const auto& o : produce.objects) models.push_back(o.model);
   const Model scene = sortcell::sim::LoadComposedCell(kRoot / "models", models, "produce");
@@ -196,9 +196,9 @@ TEST(ModelFiles, DefaultCellHoldsThePaperObjectsBinsAndKinect) {
 }
 
 TEST(ModelFiles, ObjectSetsComposeIntoTheCell) {
-  const auto paper = sortcell::app::LoadObjectSet(kRoot / "scenes/objects/paper.yaml");
+  const auto paper = sortcell::files::LoadObjectSet(kRoot / "scenes/objects/paper.yaml");
   EXPECT_EQ(paper.Categories(), (std::vector<std::string>{"bottle", "cup", "ball", "others"}));
-  const auto produce = sortcell::app::LoadObjectSet(kRoot / "scenes/objects/produce.yaml");
+  const auto produce = sortcell::files::LoadObjectSet(kRoot / "scenes/objects/produce.yaml");
   EXPECT_EQ(produce.Categories().size(), 10u);
   std::map<std::string, int> instances;
   for (const auto& o : produce.objects) ++instances[o.category];

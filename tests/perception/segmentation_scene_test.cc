@@ -6,7 +6,7 @@
 #include <filesystem>
 #include <map>
 
-#include "app/common/object_set.h"
+#include "files/object_set.h"
 #include "cell/cell_layout.h"
 #include "cell/scene_observation.h"
 #include "perception/segmentation.h"
@@ -125,7 +125,7 @@ TEST(SegmentationScene, CellSceneEveryObjectFoundWithAndWithoutBackground) {
 }
 
 TEST(SegmentationScene, RandomArrangementsOfThePaperObjects) {
-  const app::ObjectSet set = app::LoadObjectSet(kRoot / "scenes/objects/paper.yaml");
+  const files::ObjectSet set = files::LoadObjectSet(kRoot / "scenes/objects/paper.yaml");
   std::vector<std::filesystem::path> models;
   for (const auto& o : set.objects) models.push_back(o.model);
   const sim::Model model = sim::LoadComposedCell(kRoot / "models", models, "paper set");

@@ -8,7 +8,7 @@
 #include <filesystem>
 #include <map>
 
-#include "app/common/object_set.h"
+#include "files/object_set.h"
 #include "cell/cell_layout.h"
 #include "error_of.h"
 #include "sim/arm_io.h"
@@ -25,7 +25,7 @@ using sortcell_test::kRoot;
 class PaperCell : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    const app::ObjectSet set = app::LoadObjectSet(kRoot / "scenes/objects/paper.yaml");
+    const files::ObjectSet set = files::LoadObjectSet(kRoot / "scenes/objects/paper.yaml");
     std::vector<std::filesystem::path> models;
     for (const auto& o : set.objects) {
       models.push_back(o.model);

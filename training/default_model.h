@@ -1,0 +1,52 @@
+#pragma once
+/// @file
+/// The cached recognition model an episode uses when none is named: Color-CVFH (normalization)
+/// trained on random cell scenes of the object set (the conditions the sorting cell sees), kept in
+/// the model cache folder (ModelCacheDir: the build folder's models/ by default, never the source tree).
+
+#include <filesystem>
+#include <string>
+
+#include "files/object_set.h"
+#include "perception/recognition_model.h"
+
+namespace sortcell::training {
+
+/// The folder of cached default models: $SORTCELL_MODEL_CACHE when set; else the folder the build
+/// names (compile definition SORTCELL_DEFAULT_MODEL_CACHE, <build folder>/models); else out/models
+/// under the working directory.
+std::filesystem::path ModelCacheDir();
+
+/// <ModelCacheDir()>/<set name>-color-cvfh-norm.model.json.
+std::filesystem::path DefaultModelPath(const files::ObjectSet& set);
+
+/// The command that makes the default model, for error messages.
+std::string DefaultModelHint(const files::ObjectSet& set);
+
+/// Whether the cached default model of `set` exists and was trained on the set's current object models
+/// and the current Kinect colour model (the digest beside it says so; a model without one was put there
+/// by hand, with sortcell train, and counts as current).
+bool DefaultModelIsCurrent(const files::ObjectSet& set);
+
+/// The default recipe, the one every default model is made with: random cell scenes of `set` (150; seed
+/// 0; sparse, dense and clustered in turns; 30 % of the bottles and boxes lying), and of its training
+/// variety apart (as many scenes per object, in groups of at most 60 objects: MuJoCo 2.2 draws at most
+/// 100 textures in one scene), captured into `dataset_dir` (kept there), and Color-CVFH (normalization)
+/// trained on them all.
+perception::RecognitionModel TrainDefaultRecipe(const files::ObjectSet& set, const std::filesystem::path& dataset_dir);
+
+/// The recipe in words, e.g. "150 random cell scenes, more in proportion for a training variety
+/// (sparse,dense,clustered; 30 % lying; seed 0), Color-CVFH (normalization)".
+std::string DefaultRecipeTitle();
+
+/// Writes beside `model` (<model>.trained_on) what a model of `set` made with TrainDefaultRecipe was
+/// trained on, so that the model cache takes it as current. @throws std::runtime_error if it cannot.
+void RecordTrainedOn(const files::ObjectSet& set, const std::filesystem::path& model);
+
+/// Trains the default model of `set` if it is not there yet, or was trained on other objects, another
+/// Kinect colour or depth model or another recipe (TrainDefaultRecipe; about 30 s for 150 scenes;
+/// the scenes' dataset is kept next to it) and returns its path. Written to a temporary file and
+/// renamed, so concurrent runs never read a half-written model.
+std::filesystem::path EnsureDefaultModel(const files::ObjectSet& set);
+
+}  // namespace sortcell::training
