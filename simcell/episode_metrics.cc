@@ -118,7 +118,7 @@ struct ItemResultFields {
     field("attempts", v.attempts);
     field("outcome", v.outcome);
     field("cycle_time_s", v.cycle_time_s);
-    field("cycle_bound_s", v.cycle_bound_s, files::FieldRule::kAdded);
+    field("cycle_bound_s", v.cycle_bound_s, files::kAdded);
     field("final_xyz", v.final_xyz);
   }
 };
@@ -129,10 +129,10 @@ ItemResultFields RecordFieldsOf(const ItemResult*);
 struct ItemBinFields {
   template <typename Self, typename F>
   static void Visit(Self& v, F&& field) {
-    field("rule_bin", v.rule_bin, files::FieldRule::kAdded);
-    field("bin", v.bin, files::FieldRule::kAdded);
-    field("unknown", v.unknown, files::FieldRule::kAdded);
-    field("rejected", v.rejected, files::FieldRule::kAdded);
+    field("rule_bin", v.rule_bin, files::kAdded);
+    field("bin", v.bin, files::kAdded);
+    field("unknown", v.unknown, files::kAdded);
+    field("rejected", v.rejected, files::kAdded);
   }
 };
 
@@ -158,44 +158,37 @@ struct SummaryFields {
     field("grasps", v.grasps);
     field("grasp_success_rate", v.grasp_success_rate);
     field("mean_cycle_time_s", v.mean_cycle_time_s);
-    field("mean_cycle_bound_s", v.mean_cycle_bound_s, files::FieldRule::kAdded);
-    field("cycle_to_bound", v.cycle_to_bound, files::FieldRule::kAdded);
-    field("calibration", v.calibration, files::FieldRule::kAdded);
+    field("mean_cycle_bound_s", v.mean_cycle_bound_s, files::kAdded);
+    field("cycle_to_bound", v.cycle_to_bound, files::kAdded);
+    field("calibration", v.calibration, files::kAdded);
   }
 };
 
-struct RunFiguresFields {
-  template <typename Self, typename F>
-  static void Visit(Self& v, F&& field) {
-    field("status", v.status);
-    field("sim_time_s", v.sim_time_s);
-    field("wall_time_s", v.wall_time_s);
-    field("real_time_factor", v.real_time_factor);
-    field("frames", v.frames);
-    field("perception_ms_per_frame", v.perception_ms_per_frame);
-    field("render_ms_per_frame", v.render_ms_per_frame);
-    field("video_frames", v.video_frames);
-    field("video_render_wall_s", v.video_render_wall_s);
-    field("mujoco_warnings", v.mujoco_warnings);
-    field("cycle_phases_s", v.cycle_phases_s, files::FieldRule::kAdded);
-    field("cycle_phases_bound_s", v.cycle_phases_bound_s, files::FieldRule::kAdded);
-    field("profile_wall_s", v.profile_wall_s, files::FieldRule::kAdded);
-    field("physics_profile", v.physics_profile, files::FieldRule::kAdded);
-    field("tracking_max_error_rad", v.tracking_max_error_rad, files::FieldRule::kAdded);
-    field("torque_saturated_samples", v.torque_saturated_samples, files::FieldRule::kAdded);
-    field("carry_slip_max_mm", v.carry_slip_max_mm, files::FieldRule::kAdded);
-    field("carry_turn_max_deg", v.carry_turn_max_deg, files::FieldRule::kAdded);
-    field("carries", v.carries, files::FieldRule::kAdded);
+nlohmann::json SummaryJson(const EpisodeSummary& s, bool pooled_run_only) {
+  nlohmann::json j;
+  files::WriteFields(j, s, SummaryFields{});
+  if (pooled_run_only) {
+    j.erase("calibration");  // A group's calibrations are summed up apart (the sweep's).
+    files::WriteFieldsWith(j, s.run, files::kPooled);
+  } else {
+    files::WriteFields(j, s.run);
   }
-};
-RunFiguresFields RecordFieldsOf(const RunFigures*);
+  j["outcomes"] = OutcomeCountsJson(s.outcomes);
+  j["picks_per_hour"] = files::OrNull(s.picks_per_hour);
+  j["carry_slip_mean_mm"] = s.run.carries > 0 ? s.run.carry_slip_sum_mm / s.run.carries : 0.0;
+  return j;
+}
 
-void to_json(nlohmann::json& j, const EpisodeSummary& v) {
-  files::WriteFields(j, v, SummaryFields{});
-  files::WriteFields(j, v.run);
-  j["outcomes"] = OutcomeCountsJson(v.outcomes);
-  j["picks_per_hour"] = files::OrNull(v.picks_per_hour);
-  j["carry_slip_mean_mm"] = v.run.carries > 0 ? v.run.carry_slip_sum_mm / v.run.carries : 0.0;
+void to_json(nlohmann::json& j, const EpisodeSummary& v) { j = SummaryJson(v, false); }
+
+void PoolRunFigures(RunFigures& pooled, const RunFigures& run, int attempts) {
+  files::PoolFields(pooled, run, attempts);
+  pooled.carry_slip_sum_mm += run.carry_slip_sum_mm;  // Not a key: metrics.json carries the mean.
+}
+
+void FinishRunPool(RunFigures& pooled, int attempts) {
+  files::FinishPool(pooled, attempts);
+  pooled.real_time_factor = pooled.wall_time_s > 0 ? pooled.sim_time_s / pooled.wall_time_s : 0;
 }
 
 void from_json(const nlohmann::json& j, EpisodeSummary& v) {
@@ -209,9 +202,8 @@ void from_json(const nlohmann::json& j, EpisodeSummary& v) {
   for (const auto outcome : cell::kItemOutcomes) {
     // `ungraspable` came later: records written before it have none (0).
     v.outcomes[outcome] = 0;
-    files::ReadByRule(
-        outcomes, path + ".outcomes", cell::ToString(outcome), v.outcomes[outcome],
-        outcome == cell::ItemOutcome::kUngraspable ? files::FieldRule::kAdded : files::FieldRule::kRequired);
+    files::ReadByRule(outcomes, path + ".outcomes", cell::ToString(outcome), v.outcomes[outcome],
+                      outcome == cell::ItemOutcome::kUngraspable ? files::kAdded : files::kRequired);
   }
   // Derived, not read: records from before it still have it.
   v.picks_per_hour = PicksPerHour(v.outcomes.at(cell::ItemOutcome::kSorted), v.run.sim_time_s);

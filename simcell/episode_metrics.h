@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cell/outcomes.h"
+#include "files/record_fields.h"
 
 namespace sortcell::simcell {
 
@@ -71,6 +72,42 @@ struct RunFigures {
   double carry_turn_max_deg = 0;  ///< The largest turn of a held object in the gripper, same span (truth).
   int carries = 0;
 };
+
+/// RunFigures' keys in metrics.json's summary, with how a sweep pools them over episodes (per-attempt
+/// means weighted by each episode's grasp attempts) and which are the machine's.
+struct RunFiguresFields {
+  template <typename Self, typename F>
+  static void Visit(Self& v, F&& field) {
+    using namespace files;  // NOLINT(google-build-using-namespace): the flags' names, in this list only.
+    field("status", v.status);
+    field("sim_time_s", v.sim_time_s, kSum);
+    field("wall_time_s", v.wall_time_s, kSum | kMachine);
+    field("real_time_factor", v.real_time_factor, kDerived | kMachine);
+    field("frames", v.frames, kSum);
+    field("perception_ms_per_frame", v.perception_ms_per_frame, kMachine);
+    field("render_ms_per_frame", v.render_ms_per_frame, kMachine);
+    field("video_frames", v.video_frames, kSum | kMachine);
+    field("video_render_wall_s", v.video_render_wall_s, kSum | kMachine);
+    field("mujoco_warnings", v.mujoco_warnings, kSum);
+    field("cycle_phases_s", v.cycle_phases_s, kAdded | kWeightedMean);
+    field("cycle_phases_bound_s", v.cycle_phases_bound_s, kAdded | kWeightedMean);
+    field("profile_wall_s", v.profile_wall_s, kAdded | kSum | kMachine);
+    field("physics_profile", v.physics_profile, kAdded);
+    field("tracking_max_error_rad", v.tracking_max_error_rad, kAdded | kMax);
+    field("torque_saturated_samples", v.torque_saturated_samples, kAdded | kSum);
+    field("carry_slip_max_mm", v.carry_slip_max_mm, kAdded | kMax);
+    field("carry_turn_max_deg", v.carry_turn_max_deg, kAdded | kMax);
+    field("carries", v.carries, kAdded | kSum);
+  }
+};
+RunFiguresFields RecordFieldsOf(const RunFigures*);
+
+/// Adds one episode's run figures to `pooled` as their flags say; `attempts` (its grasp attempts)
+/// weighs its per-attempt means. The slips' sum, not a key of its own, is summed too.
+void PoolRunFigures(RunFigures& pooled, const RunFigures& run, int attempts);
+/// Ends a pool of `attempts` attempts in all: per-attempt sums become means, and the real-time factor
+/// is the pooled simulated time over the pooled wall time.
+void FinishRunPool(RunFigures& pooled, int attempts);
 
 /// The hand-eye self-calibration an episode started with (simcell/calibration_run.h).
 struct CalibrationFigures {
@@ -177,6 +214,10 @@ std::string EpisodeParagraph(const EpisodeMetrics& metrics);
 
 void to_json(nlohmann::json& j, const ItemResult& v);
 void from_json(const nlohmann::json& j, ItemResult& v);
+/// The summary as metrics.json holds it: its figures, the run's flat beside them, the outcome counts and
+/// the derived figures. With `pooled_run_only` (a group of episodes pooled into one summary), only the
+/// run figures a pool has, and no calibration.
+nlohmann::json SummaryJson(const EpisodeSummary& s, bool pooled_run_only);
 void to_json(nlohmann::json& j, const EpisodeSummary& v);
 void from_json(const nlohmann::json& j, EpisodeSummary& v);
 void to_json(nlohmann::json& j, const EpisodeVariation& v);

@@ -282,15 +282,17 @@ SweepRecord FinishedRecord(const Worker& w, const std::string& build, int status
   record.axes = w.axes;
   record.wall_time_s = SecondsSince(w.started);
   if (w.peak_memory_kb > 0) record.peak_memory_mb = w.peak_memory_kb / 1024.0;
+  ReplayRecipe replay;
   for (size_t i = 1; i < w.arguments.size(); ++i) {  // Without argv[0] and the worker's own --out.
     if (w.arguments[i] == "--out") {
       ++i;
     } else {
-      record.worker_arguments.push_back(w.arguments[i]);
+      replay.arguments.push_back(w.arguments[i]);
     }
   }
-  record.build = build;
-  record.model_digest = w.model_digest;
+  replay.build = build;
+  replay.model_digest = w.model_digest;
+  record.replay = std::move(replay);
   const std::filesystem::path metrics_file = w.dir / "metrics.json";
   std::string problem;
   if (!timed_out && WIFEXITED(status) && WEXITSTATUS(status) == 0 && std::filesystem::exists(metrics_file)) {

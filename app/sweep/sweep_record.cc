@@ -13,49 +13,35 @@
 namespace sortcell::app {
 namespace {
 
-// `json[key]`, if present, into `out` (which is reset otherwise).
-template <typename T>
-void ReadOptional(const nlohmann::json& json, const char* key, std::optional<T>& out) {
-  out.reset();
-  if (!json.contains(key)) return;
-  T value;
-  files::ReadField(json, "", key, value);
-  out = value;
-}
+// What a failed episode's record says of the failure.
+struct FailureFields {
+  template <typename Self, typename F>
+  static void Visit(Self& v, F&& field) {
+    field("exit_code", v.exit_code, files::kIfSet);
+    field("signal", v.signal, files::kIfSet);
+    field("error", v.error, files::kIfSet);
+  }
+};
 
-void ReadEpisodeIndex(const nlohmann::json& j, SweepRecord& v) {
-  files::ReadField(j, "", "episode", v.episode);
-  if (!j["episode"].is_number_integer() || v.episode < 0) {
+struct ReplayRecipeFields {
+  template <typename Self, typename F>
+  static void Visit(Self& v, F&& field) {
+    field("arguments", v.arguments);
+    field("build", v.build);
+    field("model_digest", v.model_digest);
+  }
+};
+
+// Checks what the types alone do not: the index, the seed and the axes' kinds.
+void CheckRecordValues(const nlohmann::json& j) {
+  if (!j["episode"].is_number_integer() || j["episode"].get<int64_t>() < 0) {
     throw std::invalid_argument("episode: expected a non-negative integer, found " + j["episode"].dump());
   }
-  files::ReadField(j, "", "seed", v.seed);
   if (!j["seed"].is_number_unsigned()) {
     throw std::invalid_argument("seed: expected a non-negative integer, found " + j["seed"].dump());
   }
-}
-
-void ReadStatus(const nlohmann::json& j, RunStatus& status) {
-  std::string text;
-  files::ReadField(j, "", "status", text);
-  try {
-    status = ParseRunStatus(text);
-  } catch (const std::invalid_argument& e) {
-    throw std::invalid_argument(std::string("status: ") + e.what());
-  }
-}
-
-// The optional replay block: all three keys or none.
-void ReadReplay(const nlohmann::json& j, SweepRecord& v) {
-  v.worker_arguments.clear();
-  v.build.clear();
-  v.model_digest.clear();
-  if (!j.contains("replay")) return;
-  const nlohmann::json& replay = j.at("replay");
-  files::ReadField(replay, "replay", "arguments", v.worker_arguments);
-  files::ReadField(replay, "replay", "build", v.build);
-  files::ReadField(replay, "replay", "model_digest", v.model_digest);
-  if (v.worker_arguments.empty())
-    throw std::invalid_argument("replay.arguments: expected the episode's arguments, found none");
+  if (!j["axes"].is_object())
+    throw std::invalid_argument(std::string("axes: expected an object, found ") + j["axes"].type_name());
 }
 
 // One line of results.jsonl. @throws std::invalid_argument naming the key.
@@ -80,55 +66,41 @@ const char* ToString(RunStatus status) { return NameOf(kRunStatusNames, status);
 RunStatus ParseRunStatus(std::string_view text) { return ParseName(kRunStatusNames, text, "run status"); }
 
 nlohmann::json WithoutMachineFigures(nlohmann::json record) {
-  for (const char* key : {"wall_time_s", "peak_memory_mb", "replay"}) record.erase(key);
+  for (const std::string& key : files::FieldKeys<SweepRecord>(files::kMachine)) record.erase(key);
   if (!record.contains("summary") || !record["summary"].is_object()) return record;
   nlohmann::json& summary = record["summary"];
-  for (const char* key : {"wall_time_s", "real_time_factor", "perception_ms_per_frame", "render_ms_per_frame",
-                          "video_frames", "video_render_wall_s", "profile_wall_s"}) {
-    summary.erase(key);
-  }
+  for (const std::string& key : files::FieldKeys<simcell::RunFigures>(files::kMachine)) summary.erase(key);
   if (summary.contains("physics_profile") && summary["physics_profile"].is_object()) {
     for (const char* key : {"collision_s", "constraint_s", "smooth_s", "step_s"}) summary["physics_profile"].erase(key);
   }
   return record;
 }
 
+void to_json(nlohmann::json& j, const ReplayRecipe& v) { files::WriteFields(j, v, ReplayRecipeFields{}); }
+
+void from_json(const nlohmann::json& j, ReplayRecipe& v) {
+  files::ReadFields(j, "", v, ReplayRecipeFields{});
+  if (v.arguments.empty()) throw std::invalid_argument("arguments: expected the episode's arguments, found none");
+}
+
 void to_json(nlohmann::json& j, const SweepRecord& v) {
-  j = {{"episode", v.episode},
-       {"seed", v.seed},
-       {"axes", v.axes},
-       {"wall_time_s", v.wall_time_s},
-       {"status", ToString(v.status)}};
-  if (v.peak_memory_mb) j["peak_memory_mb"] = *v.peak_memory_mb;
-  if (!v.worker_arguments.empty()) {
-    j["replay"] = {{"arguments", v.worker_arguments}, {"build", v.build}, {"model_digest", v.model_digest}};
-  }
+  files::WriteFields(j, v);
   if (v.ok()) {
     j["summary"] = v.summary;
     j["items"] = v.items;
-    return;
+  } else {
+    files::WriteFields(j, v, FailureFields{});
   }
-  if (v.exit_code) j["exit_code"] = *v.exit_code;
-  if (v.signal) j["signal"] = *v.signal;
-  if (v.error) j["error"] = *v.error;
 }
 
 void from_json(const nlohmann::json& j, SweepRecord& v) {
   if (!j.is_object()) throw std::invalid_argument(std::string("record: expected an object, found ") + j.type_name());
-  ReadEpisodeIndex(j, v);
-  files::ReadField(j, "", "axes", v.axes);
-  if (!v.axes.is_object())
-    throw std::invalid_argument(std::string("axes: expected an object, found ") + v.axes.type_name());
-  files::ReadField(j, "", "wall_time_s", v.wall_time_s);
-  ReadOptional(j, "peak_memory_mb", v.peak_memory_mb);
-  ReadStatus(j, v.status);
-  ReadReplay(j, v);
+  files::ReadFields(j, "", v);
+  CheckRecordValues(j);
   v.summary = simcell::EpisodeSummary{};
   v.items.clear();
   if (v.ok()) ReadSummaryAndItems(j, v.summary, v.items);
-  ReadOptional(j, "exit_code", v.exit_code);
-  ReadOptional(j, "signal", v.signal);
-  ReadOptional(j, "error", v.error);
+  files::ReadFields(j, "", v, FailureFields{});
 }
 
 void ReadSummaryAndItems(const nlohmann::json& json, simcell::EpisodeSummary& summary,

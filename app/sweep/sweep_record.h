@@ -24,6 +24,7 @@
 
 #include "simcell/episode_metrics.h"
 #include "common/enum_names.h"
+#include "files/record_fields.h"
 
 namespace sortcell::app {
 
@@ -44,6 +45,13 @@ const char* ToString(RunStatus status);
 /// @throws std::invalid_argument "unknown run status '<text>' (expected ok, crashed or timeout)".
 RunStatus ParseRunStatus(std::string_view text);
 
+/// What `sortcell replay` needs to run a sweep's episode again exactly: the worker's `sortcell episode`
+/// arguments (without `--out`), and digests of the build and of the model file that ran it.
+struct ReplayRecipe {
+  std::vector<std::string> arguments;
+  std::string build, model_digest;
+};
+
 /// One episode of a sweep: one line of results.jsonl.
 struct SweepRecord {
   int episode = 0;  ///< Index in the spec.
@@ -57,11 +65,8 @@ struct SweepRecord {
   // kOk: the episode's metrics.
   simcell::EpisodeSummary summary;
   std::vector<simcell::ItemResult> items;
-  /// What `sortcell replay` needs to run the episode again exactly: the worker's `sortcell episode`
-  /// arguments (without `--out`), and digests of the build and of the model file that ran it. Absent
-  /// (empty) in results written before replays.
-  std::vector<std::string> worker_arguments;
-  std::string build, model_digest;
+  /// Absent in results written before replays.
+  std::optional<ReplayRecipe> replay;
   // kCrashed, kTimeout: what is known of the failure.
   std::optional<int> exit_code, signal;
   std::optional<std::string> error;
@@ -69,11 +74,30 @@ struct SweepRecord {
   bool ok() const { return status == RunStatus::kOk; }
 };
 
+/// The record's own keys (its episode's summary and items are metrics.json's), listed once.
+struct SweepRecordFields {
+  template <typename Self, typename F>
+  static void Visit(Self& v, F&& field) {
+    using namespace files;  // NOLINT(google-build-using-namespace): the flags' names, in this list only.
+    field("episode", v.episode);
+    field("seed", v.seed);
+    field("axes", v.axes);
+    field("wall_time_s", v.wall_time_s, kMachine);
+    field("status", v.status);
+    field("peak_memory_mb", v.peak_memory_mb, kIfSet | kMachine);
+    field("replay", v.replay, kIfSet | kMachine);
+  }
+};
+SweepRecordFields RecordFieldsOf(const SweepRecord*);
+
 /// A record (or a metrics.json) without the figures of the machine that ran it: wall-clock times, the
 /// real-time factor, memory, the video's frame count and render time, the physics profile's seconds
 /// (its counts stay), and the replay block. Two runs of one episode agree on the rest exactly.
 nlohmann::json WithoutMachineFigures(nlohmann::json record);
 
+void to_json(nlohmann::json& j, const ReplayRecipe& v);
+/// @throws std::invalid_argument "arguments: expected the episode's arguments, found none", or naming a key.
+void from_json(const nlohmann::json& j, ReplayRecipe& v);
 void to_json(nlohmann::json& j, const SweepRecord& v);
 /// @throws std::invalid_argument "<key path>: <what>" for a missing or mistyped key, an unknown
 ///         status or outcome ("summary.grasps: missing", "items[2].outcome: unknown item outcome ...").
@@ -130,3 +154,14 @@ class SweepResultsWriter {
 };
 
 }  // namespace sortcell::app
+
+namespace nlohmann {
+/// Run statuses travel as their spellings; an unknown spelling is an error naming the choices.
+template <>
+struct adl_serializer<sortcell::app::RunStatus> {
+  static void to_json(json& j, sortcell::app::RunStatus v) { j = sortcell::app::ToString(v); }
+  static void from_json(const json& j, sortcell::app::RunStatus& v) {
+    v = sortcell::app::ParseRunStatus(j.get<std::string>());
+  }
+};
+}  // namespace nlohmann

@@ -29,8 +29,9 @@ SweepRecord RecordOf(const std::vector<SweepRecord>& records, const ReplayOption
 
 // The model file the record's arguments name.
 std::filesystem::path ModelArgument(const SweepRecord& r) {
-  const auto it = std::find(r.worker_arguments.begin(), r.worker_arguments.end(), "--model");
-  if (it == r.worker_arguments.end() || it + 1 == r.worker_arguments.end()) {
+  const std::vector<std::string>& arguments = r.replay->arguments;
+  const auto it = std::find(arguments.begin(), arguments.end(), "--model");
+  if (it == arguments.end() || it + 1 == arguments.end()) {
     throw std::invalid_argument(fmt::format("episode {}: its recorded arguments name no --model", r.episode));
   }
   return *(it + 1);
@@ -43,16 +44,16 @@ void CheckReplayable(const SweepRecord& r, const std::filesystem::path& dir, con
                                             r.episode, ToString(r.status),
                                             (dir / fmt::format("episodes/{:06d}/log.txt", r.episode)).string()));
   }
-  if (r.worker_arguments.empty()) {
+  if (!r.replay) {
     throw std::invalid_argument(fmt::format(
         "episode {}: recorded before sweeps kept what a replay needs (arguments, build, model): sweep again",
         r.episode));
   }
-  if (r.build != build) {
+  if (r.replay->build != build) {
     throw std::invalid_argument(
         fmt::format("episode {} ran on another build (digest {}; this sortcell is {}): replay "
                     "it with the build that ran the sweep",
-                    r.episode, r.build, build));
+                    r.episode, r.replay->build, build));
   }
   const std::filesystem::path model = ModelArgument(r);
   std::string digest;
@@ -61,9 +62,9 @@ void CheckReplayable(const SweepRecord& r, const std::filesystem::path& dir, con
   } catch (const std::runtime_error& e) {
     throw std::invalid_argument(fmt::format("episode {}: its model is gone ({})", r.episode, e.what()));
   }
-  if (digest != r.model_digest) {
+  if (digest != r.replay->model_digest) {
     throw std::invalid_argument(fmt::format("episode {}: model '{}' has changed since the sweep (digest {}, now {})",
-                                            r.episode, model.string(), r.model_digest, digest));
+                                            r.episode, model.string(), r.replay->model_digest, digest));
   }
 }
 
@@ -85,7 +86,7 @@ std::string DifferenceText(const nlohmann::json& sweep, const nlohmann::json& op
 std::vector<std::string> ReplayArguments(const SweepRecord& record, const ReplayOptions& options,
                                          const std::filesystem::path& out) {
   std::vector<std::string> args{"sortcell"};
-  args.insert(args.end(), record.worker_arguments.begin(), record.worker_arguments.end());
+  if (record.replay) args.insert(args.end(), record.replay->arguments.begin(), record.replay->arguments.end());
   args.insert(args.end(), {"--out", out.string()});
   if (!options.video.empty()) args.insert(args.end(), {"--video", options.video.string()});
   if (!options.stills.empty()) args.insert(args.end(), {"--stills", options.stills.string()});

@@ -21,18 +21,13 @@
 namespace sortcell::app {
 namespace {
 
-// ---- Totals over a group of episodes ----
+// ---- A group of episodes pooled into one summary ----
 
+// The episodes' items, attempts and run figures, pooled as metrics.json's field lists say.
 struct Tally {
   int episodes = 0, failed_episodes = 0, attempts = 0, grasps = 0;
-  double sim_s = 0, wall_s = 0;
-  simcell::ItemTally items;
-  std::map<std::string, double> phase_s;        // Simulated seconds in each pick phase, over every attempt.
-  std::map<std::string, double> phase_bound_s;  // The arm's least time in each, over every attempt.
-  int saturated = 0;
-  double max_error = 0;
-  double slip_max_mm = 0, slip_sum_mm = 0, turn_max_deg = 0;
-  int carries = 0;
+  std::vector<simcell::ItemResult> items;
+  simcell::RunFigures run;
 
   void Add(const SweepRecord& record) {
     ++episodes;
@@ -42,125 +37,65 @@ struct Tally {
     }
     attempts += record.summary.grasp_attempts;
     grasps += record.summary.grasps;
-    sim_s += record.summary.run.sim_time_s;
-    wall_s += record.summary.run.wall_time_s;
-    for (const auto& item : record.items) items.Add(item);
-    const simcell::RunFigures& run = record.summary.run;
-    for (const auto& [phase, mean_s] : run.cycle_phases_s) phase_s[phase] += mean_s * record.summary.grasp_attempts;
-    for (const auto& [phase, mean_s] : run.cycle_phases_bound_s) {
-      phase_bound_s[phase] += mean_s * record.summary.grasp_attempts;
-    }
-    saturated += run.torque_saturated_samples;
-    max_error = std::max(max_error, run.tracking_max_error_rad);
-    slip_max_mm = std::max(slip_max_mm, run.carry_slip_max_mm);
-    slip_sum_mm += run.carry_slip_sum_mm;
-    turn_max_deg = std::max(turn_max_deg, run.carry_turn_max_deg);
-    carries += run.carries;
+    items.insert(items.end(), record.items.begin(), record.items.end());
+    simcell::PoolRunFigures(run, record.summary.run, record.summary.grasp_attempts);
   }
 };
 
-// A group's figures, as summary.json, summary.csv and summary.md show them.
+// A group's figures: its episodes summed up as one episode is (simcell::SummarizeEpisode), and what only
+// a group has.
 struct GroupFigures {
-  int episodes = 0, episodes_failed = 0, items = 0, sorted = 0, grasp_attempts = 0;
-  std::optional<double> correct_sort_rate, recognition_accuracy, grasp_success_rate, mean_cycle_time_s,
-      real_time_factor;
-  std::optional<double> picks_per_hour, mean_cycle_bound_s, cycle_to_bound;
-  std::map<std::string, double> cycle_phases_s;        // Mean simulated seconds per attempt in each phase.
-  std::map<std::string, double> cycle_phases_bound_s;  // The arm's least time per attempt in each phase.
-  int torque_saturated_samples = 0;
-  double tracking_max_error_rad = 0;
-  double carry_slip_max_mm = 0, carry_turn_max_deg = 0;
-  std::optional<double> carry_slip_mean_mm;
-  std::pair<double, double> ci95{0, 1};
-  simcell::OutcomeCounts outcomes;
-  double sim_time_s = 0, episode_wall_time_s = 0;
-  int unknown = 0, unknown_rejected = 0, unknown_in_category_bin = 0, known = 0, known_rejected = 0;
+  int episodes = 0, episodes_failed = 0;
+  simcell::EpisodeSummary summary;
+  std::pair<double, double> ci95{0, 1};  // Of the correct-sort rate.
+  simcell::ItemTally items;              // For the unknown objects and the rejections.
+
+  int sorted() const { return summary.outcomes.at(cell::ItemOutcome::kSorted); }
 };
 
-GroupFigures Figures(const Tally& t) {
-  GroupFigures f;
-  f.episodes = t.episodes;
-  f.episodes_failed = t.failed_episodes;
-  f.items = t.items.items;
-  f.sorted = t.items.Count(cell::ItemOutcome::kSorted);
-  f.correct_sort_rate = simcell::Ratio(f.sorted, f.items);
-  f.ci95 = WilsonInterval(f.sorted, f.items);
-  for (const auto outcome : cell::kItemOutcomes) f.outcomes[outcome] = t.items.Count(outcome);
-  f.recognition_accuracy = simcell::Ratio(t.items.recognised, t.items.classified);
-  f.grasp_success_rate = simcell::Ratio(t.grasps, t.attempts);
-  f.grasp_attempts = t.attempts;
-  f.mean_cycle_time_s = simcell::Ratio(t.items.cycle_s, t.items.completed);
-  f.mean_cycle_bound_s = t.items.MeanCycleBound();
-  f.cycle_to_bound = t.items.CycleToBound();
-  f.sim_time_s = t.sim_s;
-  f.episode_wall_time_s = t.wall_s;
-  if (t.wall_s > 0) f.real_time_factor = t.sim_s / t.wall_s;
-  f.picks_per_hour = simcell::PicksPerHour(f.sorted, t.sim_s);
-  if (t.attempts > 0) {
-    for (const auto& [phase, seconds] : t.phase_s) f.cycle_phases_s[phase] = seconds / t.attempts;
-    for (const auto& [phase, seconds] : t.phase_bound_s) f.cycle_phases_bound_s[phase] = seconds / t.attempts;
-  }
-  f.torque_saturated_samples = t.saturated;
-  f.tracking_max_error_rad = t.max_error;
-  f.carry_slip_max_mm = t.slip_max_mm;
-  f.carry_slip_mean_mm = simcell::Ratio(t.slip_sum_mm, t.carries);
-  f.carry_turn_max_deg = t.turn_max_deg;
-  f.unknown = t.items.unknown;
-  f.unknown_rejected = t.items.unknown_rejected;
-  f.unknown_in_category_bin = t.items.unknown_in_category_bin;
-  f.known = t.items.known;
-  f.known_rejected = t.items.known_rejected;
-  return f;
-}
-
-// Objects the model does not know (the sweep's unknown set) and the rejections of those it knows.
-nlohmann::json RejectionJson(const GroupFigures& f) {
-  return {{"unknown_objects", f.unknown},
-          {"unknown_rejected", f.unknown_rejected},
-          {"unknown_rejected_rate", files::OrNull(simcell::Ratio(f.unknown_rejected, f.unknown))},
-          {"unknown_in_category_bin", f.unknown_in_category_bin},
-          {"unknown_in_category_bin_rate", files::OrNull(simcell::Ratio(f.unknown_in_category_bin, f.unknown))},
-          {"known_objects", f.known},
-          {"known_rejected", f.known_rejected},
-          {"known_rejected_rate", files::OrNull(simcell::Ratio(f.known_rejected, f.known))}};
-}
-
-// summary.json's keys of a group (the outcome counts and the rejection figures beside them).
+// The keys a group has beside its summary's.
 struct GroupFiguresFields {
   template <typename Self, typename F>
   static void Visit(Self& f, F&& field) {
     field("episodes", f.episodes);
     field("episodes_failed", f.episodes_failed);
-    field("items", f.items);
-    field("correct_sort_rate", f.correct_sort_rate);
     field("correct_sort_rate_ci95", f.ci95);
-    field("recognition_accuracy", f.recognition_accuracy);
-    field("grasp_success_rate", f.grasp_success_rate);
-    field("grasp_attempts", f.grasp_attempts);
-    field("mean_cycle_time_s", f.mean_cycle_time_s);
-    field("mean_cycle_bound_s", f.mean_cycle_bound_s);
-    field("cycle_to_bound", f.cycle_to_bound);
-    field("picks_per_hour", f.picks_per_hour);
-    field("cycle_phases_s", f.cycle_phases_s);
-    field("cycle_phases_bound_s", f.cycle_phases_bound_s);
-    field("torque_saturated_samples", f.torque_saturated_samples);
-    field("tracking_max_error_rad", f.tracking_max_error_rad);
-    field("carry_slip_max_mm", f.carry_slip_max_mm);
-    field("carry_slip_mean_mm", f.carry_slip_mean_mm);
-    field("carry_turn_max_deg", f.carry_turn_max_deg);
-    field("sim_time_s", f.sim_time_s);
-    field("episode_wall_time_s", f.episode_wall_time_s);
-    field("real_time_factor", f.real_time_factor);
   }
 };
-// Defined, not only declared (as records elsewhere do): a function in an unnamed namespace must be.
+// Defined, not only declared as records elsewhere are: a function in an unnamed namespace must be (so
+// are the other field lists' below).
 [[maybe_unused]] GroupFiguresFields RecordFieldsOf(const GroupFigures*) { return {}; }
 
+GroupFigures Figures(const Tally& t) {
+  GroupFigures f;
+  f.episodes = t.episodes;
+  f.episodes_failed = t.failed_episodes;
+  simcell::RunFigures run = t.run;
+  simcell::FinishRunPool(run, t.attempts);
+  f.summary = simcell::SummarizeEpisode(t.items, t.attempts, t.grasps, run);
+  f.ci95 = WilsonInterval(f.sorted(), f.summary.items);
+  for (const auto& item : t.items) f.items.Add(item);
+  return f;
+}
+
+// Objects the model does not know (the sweep's unknown set) and the rejections of those it knows.
+nlohmann::json RejectionJson(const simcell::ItemTally& t) {
+  return {{"unknown_objects", t.unknown},
+          {"unknown_rejected", t.unknown_rejected},
+          {"unknown_rejected_rate", files::OrNull(simcell::Ratio(t.unknown_rejected, t.unknown))},
+          {"unknown_in_category_bin", t.unknown_in_category_bin},
+          {"unknown_in_category_bin_rate", files::OrNull(simcell::Ratio(t.unknown_in_category_bin, t.unknown))},
+          {"known_objects", t.known},
+          {"known_rejected", t.known_rejected},
+          {"known_rejected_rate", files::OrNull(simcell::Ratio(t.known_rejected, t.known))}};
+}
+
+// summary.json's figures of a group: the pooled summary's keys (metrics.json's), the group's own, and
+// the rejections.
 nlohmann::json FiguresJson(const GroupFigures& f) {
-  nlohmann::json j;
+  nlohmann::json j = simcell::SummaryJson(f.summary, /*pooled_run_only=*/true);
   files::WriteFields(j, f);
-  j["outcomes"] = simcell::OutcomeCountsJson(f.outcomes);
-  j["rejection"] = RejectionJson(f);
+  j["rejection"] = RejectionJson(f.items);
   return j;
 }
 
@@ -231,21 +166,53 @@ std::vector<AxisGroup> GroupByAxis(const SweepAxis& axis, const std::vector<Swee
 
 // ---- summary.csv ----
 
-std::string Number(double v) { return nlohmann::json(v).dump(); }
-
-std::string CsvHeader() {
-  std::string header = "axis,value,episodes,items,sorted,correct_sort_rate,ci95_low,ci95_high";
-  for (const auto o : Failures()) header += std::string(",") + cell::ToString(o);
-  return header + ",episodes_failed\n";
+// Every figure of a group's JSON as (column, cell): objects flattened with dots ("outcomes.sorted"),
+// lists by index ("correct_sort_rate_ci95.0"), null as an empty cell.
+void Flatten(const nlohmann::json& j, const std::string& column,
+             std::vector<std::pair<std::string, std::string>>& out) {
+  const auto inside = [&](const std::string& key) { return column.empty() ? key : column + "." + key; };
+  if (j.is_object()) {
+    for (const auto& [key, value] : j.items()) Flatten(value, inside(key), out);
+  } else if (j.is_array()) {
+    for (size_t i = 0; i < j.size(); ++i) Flatten(j[i], inside(std::to_string(i)), out);
+  } else {
+    out.emplace_back(column, j.is_null() ? "" : j.is_string() ? files::CsvField(j.get<std::string>()) : j.dump());
+  }
 }
 
-std::string CsvRow(const std::string& axis, const std::string& value, const GroupFigures& f) {
-  std::string row = fmt::format("{},{},{},{},{},{},{},{}", files::CsvField(axis), files::CsvField(value), f.episodes,
-                                f.items, f.sorted, f.correct_sort_rate ? Number(*f.correct_sort_rate) : "",
-                                Number(f.ci95.first), Number(f.ci95.second));
-  for (const auto o : Failures()) row += fmt::format(",{}", f.outcomes.at(o));
-  return row + fmt::format(",{}\n", f.episodes_failed);
-}
+// One row per group (axis, value, then every figure of summary.json's groups), the columns the union
+// of the rows' in the order first met, so that the columns follow from the records' field lists.
+class CsvTable {
+ public:
+  void Add(const std::string& axis, const std::string& value, const nlohmann::json& figures) {
+    std::vector<std::pair<std::string, std::string>> cells;
+    Flatten(figures, "", cells);
+    std::map<std::string, std::string> row{{"axis", files::CsvField(axis)}, {"value", files::CsvField(value)}};
+    for (auto& [column, cell] : cells) {
+      if (std::find(columns_.begin(), columns_.end(), column) == columns_.end()) columns_.push_back(column);
+      row[column] = std::move(cell);
+    }
+    rows_.push_back(std::move(row));
+  }
+
+  std::string Text() const {
+    std::string text;
+    for (size_t c = 0; c < columns_.size(); ++c) text += (c ? "," : "") + columns_[c];
+    text += "\n";
+    for (const auto& row : rows_) {
+      for (size_t c = 0; c < columns_.size(); ++c) {
+        const auto cell = row.find(columns_[c]);
+        text += (c ? "," : "") + (cell == row.end() ? std::string() : cell->second);
+      }
+      text += "\n";
+    }
+    return text;
+  }
+
+ private:
+  std::vector<std::string> columns_{"axis", "value"};
+  std::vector<std::map<std::string, std::string>> rows_;
+};
 
 // ---- summary.md ----
 
@@ -253,58 +220,61 @@ std::string Percent(const std::optional<double>& v) { return v ? fmt::format("{:
 
 // The pick cycle by phase, the phases that cost most first.
 std::string MarkdownPhases(const GroupFigures& all) {
-  if (all.cycle_phases_s.empty()) return "";
-  std::vector<std::pair<std::string, double>> phases(all.cycle_phases_s.begin(), all.cycle_phases_s.end());
+  const simcell::RunFigures& run = all.summary.run;
+  if (run.cycle_phases_s.empty()) return "";
+  std::vector<std::pair<std::string, double>> phases(run.cycle_phases_s.begin(), run.cycle_phases_s.end());
   std::stable_sort(phases.begin(), phases.end(), [](const auto& a, const auto& b) { return a.second > b.second; });
-  const bool bounded = !all.cycle_phases_bound_s.empty();
+  const bool bounded = !run.cycle_phases_bound_s.empty();
   std::string md = std::string("Cycle by phase, mean simulated seconds per attempt") +
                    (bounded ? " (in brackets the arm's least time over the same paths):" : ":");
   for (const auto& [phase, seconds] : phases) {
-    const auto bound = all.cycle_phases_bound_s.find(phase);
+    const auto bound = run.cycle_phases_bound_s.find(phase);
     md += fmt::format(" {} {:.2f}", phase, seconds) +
-          (bound != all.cycle_phases_bound_s.end() ? fmt::format(" ({:.2f}),", bound->second) : ",");
+          (bound != run.cycle_phases_bound_s.end() ? fmt::format(" ({:.2f}),", bound->second) : ",");
   }
   md.back() = '.';
   md += fmt::format(" Torque-saturated control periods {}, largest tracking error {:.4f} rad.",
-                    all.torque_saturated_samples, all.tracking_max_error_rad);
-  if (all.carry_slip_mean_mm) {
+                    run.torque_saturated_samples, run.tracking_max_error_rad);
+  if (run.carries > 0) {
     md += fmt::format(
         " Held objects slipped {:.2f} mm on average from grasp to bin (largest {:.1f} mm, largest turn"
         " {:.1f} deg).",
-        *all.carry_slip_mean_mm, all.carry_slip_max_mm, all.carry_turn_max_deg);
+        run.carry_slip_sum_mm / run.carries, run.carry_slip_max_mm, run.carry_turn_max_deg);
   }
   return md + "\n\n";
 }
 
 std::string MarkdownOverview(const SweepSpec& spec, const GroupFigures& all) {
-  std::string md =
-      fmt::format("# Sweep {}\n\n{} episodes ({} failed to run) of {} in the spec, {} items.\n\n",
-                  spec.source.filename().string(), all.episodes, all.episodes_failed, spec.EpisodeCount(), all.items);
+  std::string md = fmt::format("# Sweep {}\n\n{} episodes ({} failed to run) of {} in the spec, {} items.\n\n",
+                               spec.source.filename().string(), all.episodes, all.episodes_failed, spec.EpisodeCount(),
+                               all.summary.items);
   md +=
       "| items | correct-sort rate (95 % CI) | recognition accuracy | grasp success | mean cycle per item | "
       "the arm's least time (cycle / it) | picks per hour |\n"
       "|---|---|---|---|---|---|---|\n";
-  md += fmt::format("| {} | {} ({:.1f}-{:.1f} %) | {} | {} | {} | {} | {} |\n\n", all.items,
-                    Percent(all.correct_sort_rate), 100 * all.ci95.first, 100 * all.ci95.second,
-                    Percent(all.recognition_accuracy), Percent(all.grasp_success_rate),
-                    all.mean_cycle_time_s ? fmt::format("{:.1f} s", *all.mean_cycle_time_s) : "n/a",
-                    all.mean_cycle_bound_s && all.cycle_to_bound
-                        ? fmt::format("{:.1f} s (x{:.2f})", *all.mean_cycle_bound_s, *all.cycle_to_bound)
-                        : "n/a",
-                    all.picks_per_hour ? fmt::format("{:.0f}", *all.picks_per_hour) : "n/a");
+  md +=
+      fmt::format("| {} | {} ({:.1f}-{:.1f} %) | {} | {} | {} | {} | {} |\n\n", all.summary.items,
+                  Percent(all.summary.correct_sort_rate), 100 * all.ci95.first, 100 * all.ci95.second,
+                  Percent(all.summary.recognition_accuracy), Percent(all.summary.grasp_success_rate),
+                  all.summary.mean_cycle_time_s ? fmt::format("{:.1f} s", *all.summary.mean_cycle_time_s) : "n/a",
+                  all.summary.mean_cycle_bound_s && all.summary.cycle_to_bound
+                      ? fmt::format("{:.1f} s (x{:.2f})", *all.summary.mean_cycle_bound_s, *all.summary.cycle_to_bound)
+                      : "n/a",
+                  all.summary.picks_per_hour ? fmt::format("{:.0f}", *all.summary.picks_per_hour) : "n/a");
   md += MarkdownPhases(all);
-  if (all.unknown > 0 || all.known_rejected > 0) {
+  if (all.items.unknown > 0 || all.items.known_rejected > 0) {
     md += fmt::format(
         "Unknown objects: {} of {} rejected ({}), {} sorted into a category bin ({}); known objects wrongly "
         "rejected: {} of {} ({}).\n\n",
-        all.unknown_rejected, all.unknown, Percent(simcell::Ratio(all.unknown_rejected, all.unknown)),
-        all.unknown_in_category_bin, Percent(simcell::Ratio(all.unknown_in_category_bin, all.unknown)),
-        all.known_rejected, all.known, Percent(simcell::Ratio(all.known_rejected, all.known)));
+        all.items.unknown_rejected, all.items.unknown,
+        Percent(simcell::Ratio(all.items.unknown_rejected, all.items.unknown)), all.items.unknown_in_category_bin,
+        Percent(simcell::Ratio(all.items.unknown_in_category_bin, all.items.unknown)), all.items.known_rejected,
+        all.items.known, Percent(simcell::Ratio(all.items.known_rejected, all.items.known)));
   }
   md += "Outcomes: ";
   for (size_t i = 0; i < cell::kItemOutcomes.size(); ++i) {
     const auto o = cell::kItemOutcomes[i];
-    md += fmt::format("{} {}{}", cell::ToString(o), all.outcomes.at(o),
+    md += fmt::format("{} {}{}", cell::ToString(o), all.summary.outcomes.at(o),
                       i + 1 == cell::kItemOutcomes.size() ? ".\n" : ", ");
   }
   return md;
@@ -324,9 +294,9 @@ std::string MarkdownAxisTable(const std::string& axis, const std::vector<AxisGro
   for (const auto& g : groups) {
     const GroupFigures& f = g.figures;
     std::string counts;
-    for (const auto o : Failures()) counts += (counts.empty() ? "" : " / ") + std::to_string(f.outcomes.at(o));
-    md += fmt::format("| {} | {} | {} | {} | {:.1f}-{:.1f} % | {} |\n", g.label, f.episodes, f.items,
-                      Percent(f.correct_sort_rate), 100 * f.ci95.first, 100 * f.ci95.second, counts);
+    for (const auto o : Failures()) counts += (counts.empty() ? "" : " / ") + std::to_string(f.summary.outcomes.at(o));
+    md += fmt::format("| {} | {} | {} | {} | {:.1f}-{:.1f} % | {} |\n", g.label, f.episodes, f.summary.items,
+                      Percent(f.summary.correct_sort_rate), 100 * f.ci95.first, 100 * f.ci95.second, counts);
   }
   return md;
 }
@@ -339,10 +309,10 @@ void Plot(const std::filesystem::path& dir, const std::string& axis, const std::
   std::string rows;
   for (size_t i = 0; i < groups.size(); ++i) {
     const GroupFigures& f = groups[i].figures;
-    if (!f.correct_sort_rate) continue;
+    if (!f.summary.correct_sort_rate) continue;
     std::string label = groups[i].label;
     std::replace(label.begin(), label.end(), '"', '\'');
-    rows += fmt::format("{} \"{}\" {} {} {}\n", i, label, 100 * *f.correct_sort_rate, 100 * f.ci95.first,
+    rows += fmt::format("{} \"{}\" {} {} {}\n", i, label, 100 * *f.summary.correct_sort_rate, 100 * f.ci95.first,
                         100 * f.ci95.second);
   }
   files::WriteTextFile(data, rows);
@@ -372,6 +342,8 @@ std::pair<double, double> WilsonInterval(int successes, int n) {
   return {std::max(0.0, centre - half), std::min(1.0, centre + half)};
 }
 
+namespace {
+
 // The items grouped by object (the set's names), in name order: which objects fail, and how.
 std::vector<AxisGroup> GroupByObject(const std::vector<SweepRecord>& records) {
   std::map<std::string, Tally> tallies;
@@ -379,7 +351,7 @@ std::vector<AxisGroup> GroupByObject(const std::vector<SweepRecord>& records) {
     if (!r.ok()) continue;
     std::set<std::string> in_episode;
     for (const auto& item : r.items) {
-      tallies[item.name].items.Add(item);
+      tallies[item.name].items.push_back(item);
       if (in_episode.insert(item.name).second) ++tallies[item.name].episodes;
     }
   }
@@ -387,8 +359,6 @@ std::vector<AxisGroup> GroupByObject(const std::vector<SweepRecord>& records) {
   for (const auto& [name, tally] : tallies) groups.push_back({name, Figures(tally)});
   return groups;
 }
-
-namespace {
 
 // The categories whose recognition the sweep checked on one object only (every item of the category,
 // unknown objects aside, was the same object): a set with a single instance of a category, or a sweep
@@ -407,10 +377,6 @@ std::vector<std::string> SingleInstanceCategories(const std::vector<SweepRecord>
   return single;
 }
 
-}  // namespace
-
-// The episodes' hand-eye self-calibrations: how many succeeded, the camera error they left (median
-// and largest) against the nominal pose's, and what they cost. Null when no episode calibrated.
 // The upper median and the largest of values (not empty).
 double Median(std::vector<double> v) {
   std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
@@ -418,38 +384,63 @@ double Median(std::vector<double> v) {
 }
 double Largest(const std::vector<double>& v) { return *std::max_element(v.begin(), v.end()); }
 
-nlohmann::json CalibrationSummary(const std::vector<SweepRecord>& records) {
+// The episodes' hand-eye self-calibrations (summary.json's "calibration"): how many succeeded, the
+// camera error they left (median and largest) against the nominal pose's, and what they cost.
+struct CalibrationPool {
+  int episodes = 0, ok = 0;
+  double median_error_m = 0, max_error_m = 0, median_error_rad = 0, max_error_rad = 0;
+  double max_prior_error_m = 0, max_prior_error_rad = 0, mean_duration_s = 0;
+};
+struct CalibrationPoolFields {
+  template <typename Self, typename F>
+  static void Visit(Self& c, F&& field) {
+    field("episodes", c.episodes);
+    field("ok", c.ok);
+    field("median_error_m", c.median_error_m);
+    field("max_error_m", c.max_error_m);
+    field("median_error_rad", c.median_error_rad);
+    field("max_error_rad", c.max_error_rad);
+    field("max_prior_error_m", c.max_prior_error_m);
+    field("max_prior_error_rad", c.max_prior_error_rad);
+    field("mean_duration_s", c.mean_duration_s);
+  }
+};
+[[maybe_unused]] CalibrationPoolFields RecordFieldsOf(const CalibrationPool*) { return {}; }
+
+std::optional<CalibrationPool> PoolCalibrations(const std::vector<SweepRecord>& records) {
   std::vector<double> error_m, error_rad, prior_m, prior_rad, duration_s;
-  int ok = 0;
+  CalibrationPool pool;
   for (const auto& r : records) {
     if (!r.ok() || !r.summary.calibration) continue;
     const simcell::CalibrationFigures& c = *r.summary.calibration;
-    ok += c.status == "ok";
+    pool.ok += c.status == "ok";
     error_m.push_back(c.error_m), error_rad.push_back(c.error_rad);
     prior_m.push_back(c.prior_error_m), prior_rad.push_back(c.prior_error_rad);
     duration_s.push_back(c.duration_s);
   }
-  if (error_m.empty()) return nullptr;
-  return {{"episodes", error_m.size()},
-          {"ok", ok},
-          {"median_error_m", Median(error_m)},
-          {"max_error_m", Largest(error_m)},
-          {"median_error_rad", Median(error_rad)},
-          {"max_error_rad", Largest(error_rad)},
-          {"max_prior_error_m", Largest(prior_m)},
-          {"max_prior_error_rad", Largest(prior_rad)},
-          {"mean_duration_s", std::accumulate(duration_s.begin(), duration_s.end(), 0.0) / duration_s.size()}};
+  if (error_m.empty()) return std::nullopt;  // No episode calibrated: null.
+  pool.episodes = static_cast<int>(error_m.size());
+  pool.median_error_m = Median(error_m), pool.max_error_m = Largest(error_m);
+  pool.median_error_rad = Median(error_rad), pool.max_error_rad = Largest(error_rad);
+  pool.max_prior_error_m = Largest(prior_m), pool.max_prior_error_rad = Largest(prior_rad);
+  pool.mean_duration_s = std::accumulate(duration_s.begin(), duration_s.end(), 0.0) / duration_s.size();
+  return pool;
 }
 
-std::string MarkdownCalibration(const nlohmann::json& c) {
-  if (c.is_null()) return "";
+nlohmann::json CalibrationJson(const std::optional<CalibrationPool>& pool) {
+  if (!pool) return nullptr;
+  nlohmann::json j;
+  files::WriteFields(j, *pool);
+  return j;
+}
+
+std::string MarkdownCalibration(const std::optional<CalibrationPool>& c) {
+  if (!c) return "";
   return fmt::format(
       "\nSelf-calibration in {} episodes ({} ok): camera error median {:.2f} mm / {:.4f} rad, largest {:.2f} mm / "
       "{:.4f} rad (the nominal pose's largest: {:.1f} mm / {:.4f} rad); {:.1f} simulated s each.\n",
-      c["episodes"].get<int>(), c["ok"].get<int>(), 1000 * c["median_error_m"].get<double>(),
-      c["median_error_rad"].get<double>(), 1000 * c["max_error_m"].get<double>(), c["max_error_rad"].get<double>(),
-      1000 * c["max_prior_error_m"].get<double>(), c["max_prior_error_rad"].get<double>(),
-      c["mean_duration_s"].get<double>());
+      c->episodes, c->ok, 1000 * c->median_error_m, c->median_error_rad, 1000 * c->max_error_m, c->max_error_rad,
+      1000 * c->max_prior_error_m, c->max_prior_error_rad, c->mean_duration_s);
 }
 
 // How the workers ended (by status, with the episodes that did not end ok), and what they used.
@@ -467,38 +458,65 @@ nlohmann::json RunsSummary(const std::vector<SweepRecord>& records) {
   return runs;
 }
 
-// The machine's figures: peak memory per worker and wall time per episode (median and largest).
-nlohmann::json ResourcesSummary(const std::vector<SweepRecord>& records) {
+// The median and the largest of some figures.
+struct Spread {
+  double median = 0, max = 0;
+};
+struct SpreadFields {
+  template <typename Self, typename F>
+  static void Visit(Self& v, F&& field) {
+    field("median", v.median);
+    field("max", v.max);
+  }
+};
+[[maybe_unused]] SpreadFields RecordFieldsOf(const Spread*) { return {}; }
+
+std::optional<Spread> SpreadOf(const std::vector<double>& values) {
+  if (values.empty()) return std::nullopt;
+  return Spread{Median(values), Largest(values)};
+}
+
+// The machine's figures (summary.json's "resources"): peak memory per worker and wall time per episode.
+struct Resources {
+  std::optional<Spread> worker_peak_memory_mb, episode_wall_time_s;
+};
+
+Resources ResourcesOf(const std::vector<SweepRecord>& records) {
   std::vector<double> memory_mb, wall_s;
   for (const auto& r : records) {
     if (r.peak_memory_mb) memory_mb.push_back(*r.peak_memory_mb);
     wall_s.push_back(r.wall_time_s);
   }
-  nlohmann::json resources = nlohmann::json::object();
-  if (!memory_mb.empty()) {
-    resources["worker_peak_memory_mb"] = {{"median", Median(memory_mb)}, {"max", Largest(memory_mb)}};
-  }
-  if (!wall_s.empty()) {
-    resources["episode_wall_time_s"] = {{"median", Median(wall_s)}, {"max", Largest(wall_s)}};
-  }
-  return resources;
+  return {SpreadOf(memory_mb), SpreadOf(wall_s)};
 }
 
-std::string MarkdownRuns(const nlohmann::json& runs, const nlohmann::json& resources) {
-  std::string md = fmt::format("Worker runs: ok {}, crashed {}, timeout {}", runs["ok"].get<int>(),
-                               runs["crashed"].get<int>(), runs["timeout"].get<int>());
+nlohmann::json ResourcesJson(const Resources& r) {
+  nlohmann::json j = nlohmann::json::object();
+  // Keys only for what was measured (results from before the memory was recorded have none).
+  const auto put = [&](const char* key, const std::optional<Spread>& spread) {
+    if (spread) files::WriteFields(j[key], *spread);
+  };
+  put("worker_peak_memory_mb", r.worker_peak_memory_mb);
+  put("episode_wall_time_s", r.episode_wall_time_s);
+  return j;
+}
+
+std::string MarkdownRuns(const nlohmann::json& runs, const Resources& resources) {
+  std::string md = "Worker runs:";
+  for (const auto& [status, name] : kRunStatusNames) md += fmt::format(" {} {},", name, runs[name].get<int>());
+  md.pop_back();
   for (const auto& f : runs["not_ok"]) {
     md += fmt::format("; episode {} {} ({})", f["episode"].get<int>(), f["status"].get<std::string>(),
                       f["error"].get<std::string>());
   }
   md += ".";
-  if (resources.contains("worker_peak_memory_mb")) {
-    const auto& m = resources["worker_peak_memory_mb"];
-    md += fmt::format(" Peak memory per worker: median {:.0f} MiB, largest {:.0f} MiB.", m["median"].get<double>(),
-                      m["max"].get<double>());
+  if (const auto& m = resources.worker_peak_memory_mb) {
+    md += fmt::format(" Peak memory per worker: median {:.0f} MiB, largest {:.0f} MiB.", m->median, m->max);
   }
   return md + "\n\n";
 }
+
+}  // namespace
 
 nlohmann::json WriteSweepReport(const std::filesystem::path& dir, const SweepSpec& spec,
                                 const std::vector<SweepRecord>& in_any_order) {
@@ -510,16 +528,19 @@ nlohmann::json WriteSweepReport(const std::filesystem::path& dir, const SweepSpe
   for (const auto& r : records) tally.Add(r);
   const GroupFigures all = Figures(tally);
   nlohmann::json summary = FiguresJson(all);
+  CsvTable csv;
+  csv.Add("all", "all", summary);
   summary["spec"] = spec.source.string();
   summary["episodes_in_spec"] = spec.EpisodeCount();
   nlohmann::json by_axis = nlohmann::json::object();
-  std::string csv = CsvHeader() + CsvRow("all", "all", all);
   std::string md = MarkdownOverview(spec, all);
   summary["runs"] = RunsSummary(records);
-  summary["resources"] = ResourcesSummary(records);
-  md += MarkdownRuns(summary["runs"], summary["resources"]);
-  summary["calibration"] = CalibrationSummary(records);
-  md += MarkdownCalibration(summary["calibration"]);
+  const Resources resources = ResourcesOf(records);
+  summary["resources"] = ResourcesJson(resources);
+  md += MarkdownRuns(summary["runs"], resources);
+  const std::optional<CalibrationPool> calibration = PoolCalibrations(records);
+  summary["calibration"] = CalibrationJson(calibration);
+  md += MarkdownCalibration(calibration);
   summary["single_instance_categories"] = SingleInstanceCategories(records);
   if (!summary["single_instance_categories"].empty()) {
     std::string list;
@@ -532,8 +553,9 @@ nlohmann::json WriteSweepReport(const std::filesystem::path& dir, const SweepSpe
     const std::vector<AxisGroup> groups = GroupByAxis(axis, records);
     if (groups.size() < 2) continue;
     for (const auto& g : groups) {
-      by_axis[axis.name][g.label] = FiguresJson(g.figures);
-      csv += CsvRow(axis.name, g.label, g.figures);
+      const nlohmann::json figures = FiguresJson(g.figures);
+      by_axis[axis.name][g.label] = figures;
+      csv.Add(axis.name, g.label, figures);
     }
     md += MarkdownAxisTable(axis.name, groups);
     Plot(dir, axis.name, groups);
@@ -543,12 +565,13 @@ nlohmann::json WriteSweepReport(const std::filesystem::path& dir, const SweepSpe
   nlohmann::json by_object = nlohmann::json::object();
   const std::vector<AxisGroup> objects = GroupByObject(records);
   for (const auto& g : objects) {
-    by_object[g.label] = FiguresJson(g.figures);
-    csv += CsvRow("object", g.label, g.figures);
+    const nlohmann::json figures = FiguresJson(g.figures);
+    by_object[g.label] = figures;
+    csv.Add("object", g.label, figures);
   }
   if (!objects.empty()) md += MarkdownAxisTable("object", objects);
   summary["by_object"] = by_object;
-  files::WriteTextFile(dir / "summary.csv", csv);
+  files::WriteTextFile(dir / "summary.csv", csv.Text());
   files::WriteTextFile(dir / "summary.md", md);
   files::WriteJson(dir / "summary.json", summary);
   return summary;

@@ -30,9 +30,9 @@ SweepRecord Recorded(const std::filesystem::path& model) {
   cup.outcome = cell::ItemOutcome::kDropped;
   r.items = {cup};
   r.summary = simcell::SummarizeEpisode(r.items, 1, 1, simcell::RunFigures{});
-  r.worker_arguments = {"episode", "--seed", "9", "--model", model.string()};
-  r.build = files::FileDigest(SORTCELL_BINARY);
-  r.model_digest = files::FileDigest(model);
+  r.replay = ReplayRecipe{{"episode", "--seed", "9", "--model", model.string()},
+                          files::FileDigest(SORTCELL_BINARY),
+                          files::FileDigest(model)};
   return r;
 }
 
@@ -54,14 +54,15 @@ TEST(SweepReplay, TheReplayBlockRoundTrips) {
   std::ofstream(model) << "{}";
   const SweepRecord r = Recorded(model);
   const SweepRecord back = nlohmann::json(r).get<SweepRecord>();
-  EXPECT_EQ(back.worker_arguments, r.worker_arguments);
-  EXPECT_EQ(back.build, r.build);
-  EXPECT_EQ(back.model_digest, r.model_digest);
+  ASSERT_TRUE(back.replay);
+  EXPECT_EQ(back.replay->arguments, r.replay->arguments);
+  EXPECT_EQ(back.replay->build, r.replay->build);
+  EXPECT_EQ(back.replay->model_digest, r.replay->model_digest);
   nlohmann::json j = r;
   j["replay"].erase("build");
   EXPECT_THROW(j.get<SweepRecord>(), std::invalid_argument);
   j.erase("replay");
-  EXPECT_TRUE(j.get<SweepRecord>().worker_arguments.empty());  // Results from before replays still read.
+  EXPECT_FALSE(j.get<SweepRecord>().replay);  // Results from before replays still read.
 }
 
 TEST(SweepReplay, DifferencesAreNamedByPathAndMachineFiguresAreNone) {
@@ -95,11 +96,11 @@ TEST(SweepReplay, WhatWouldNotBeTheSameEpisodeIsRefusedWithTheReason) {
   sortcell_test::ExpectOneLineError(Replay(Folder(tmp.path() / "b", {crashed}), 2),
                                     "episode 2 crashed in the sweep: no record to compare with");
   SweepRecord old = good;
-  old.worker_arguments.clear();
+  old.replay.reset();
   sortcell_test::ExpectOneLineError(Replay(Folder(tmp.path() / "c", {old}), 2),
                                     "recorded before sweeps kept what a replay needs");
   SweepRecord other_build = good;
-  other_build.build = "0123456789abcdef";
+  other_build.replay->build = "0123456789abcdef";
   sortcell_test::ExpectOneLineError(Replay(Folder(tmp.path() / "d", {other_build}), 2),
                                     "episode 2 ran on another build (digest 0123456789abcdef");
   const auto dir = Folder(tmp.path() / "e", {good});

@@ -35,7 +35,9 @@ inline std::string ReadFile(const std::string& file) {
 /// A sweep's summary.json without what depends on the wall clock or the machine.
 inline nlohmann::json SummaryWithoutMachineFigures(nlohmann::json j) {
   if (j.is_object()) {
-    for (const char* key : {"episode_wall_time_s", "real_time_factor", "resources"}) j.erase(key);
+    for (const std::string& key : sortcell::files::FieldKeys<sortcell::simcell::RunFigures>(sortcell::files::kMachine))
+      j.erase(key);
+    j.erase("resources");
     for (auto& [key, value] : j.items()) value = SummaryWithoutMachineFigures(value);
   }
   return j;
