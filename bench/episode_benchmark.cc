@@ -68,6 +68,65 @@ double RawSteppingRealTimeFactor(const std::string& scene, double steps) {
   return steps * m->opt.timestep / wall;
 }
 
+// The two episodes side by side: simulated and wall time, real-time factor, perception, video frames.
+void PrintEpisodes(const nlohmann::json& headless, const nlohmann::json& video) {
+  std::printf("episode (seed 3, 6 paper objects), one process:\n");
+  std::printf("  %-9s %8s %8s %8s %14s %14s\n", "", "sim s", "wall s", "RTF", "perception ms", "video ms/frame");
+  std::printf("  %-9s %8.1f %8.1f %8.1f %14.1f %14s\n", "headless", headless["sim_time_s"].get<double>(),
+              headless["wall_time_s"].get<double>(), headless["real_time_factor"].get<double>(),
+              headless["perception_ms_per_frame"].get<double>(), "-");
+  std::printf("  %-9s %8.1f %8.1f %8.2f %14.1f %14.1f\n", "video", video["sim_time_s"].get<double>(),
+              video["wall_time_s"].get<double>(), video["real_time_factor"].get<double>(),
+              video["perception_ms_per_frame"].get<double>(),
+              1000 * video["video_render_wall_s"].get<double>() / std::max(1, video["video_frames"].get<int>()));
+  // Where the wall time goes, per stage (metrics.json "profile_wall_s"), headless and with video.
+  std::printf("wall-time profile (s, %% of the episode):\n  %-14s %16s %16s\n", "stage", "headless", "video");
+  for (const auto& [stage, seconds] : headless["profile_wall_s"].items()) {
+    const double v = video["profile_wall_s"][stage].get<double>();
+    std::printf("  %-14s %8.2f (%4.1f %%) %8.2f (%4.1f %%)\n", stage.c_str(), seconds.get<double>(),
+                100 * seconds.get<double>() / headless["wall_time_s"].get<double>(), v,
+                100 * v / video["wall_time_s"].get<double>());
+  }
+}
+
+// Inside the physics steps (MuJoCo's stage timers) and the load they work on, then the ceiling: raw
+// stepping of the same scene.
+void PrintPhysics(const nlohmann::json& headless, const std::string& scene) {
+  const auto& physics = headless["physics_profile"];
+  const double step_s = physics["step_s"].get<double>();
+  std::printf(
+      "physics steps, headless: %.0f steps, %.1f us per step, %.1f contacts and %.1f constraint rows per step\n",
+      physics["steps"].get<double>(), 1e6 * step_s / std::max(1.0, physics["steps"].get<double>()),
+      physics["contacts_per_step"].get<double>(), physics["constraint_rows_per_step"].get<double>());
+  for (const char* stage : {"collision_s", "constraint_s", "smooth_s"}) {
+    const double s = physics[stage].get<double>();
+    std::printf("  %-14s %8.2f s (%4.1f %% of the steps)\n", stage, s, 100 * s / std::max(1e-9, step_s));
+  }
+  const double ceiling = RawSteppingRealTimeFactor(scene, physics["steps"].get<double>());
+  std::printf(
+      "raw MuJoCo stepping of the same scene and objects, no controller (the ceiling): RTF %.1f; "
+      "the headless episode runs at %.0f %% of it\n",
+      ceiling, 100 * headless["real_time_factor"].get<double>() / ceiling);
+}
+
+// The pick cycle by phase, and the arm's least time over the same paths.
+void PrintCycle(const nlohmann::json& headless) {
+  std::printf("pick cycle: %.2f s per item; by phase, mean simulated s per attempt:",
+              headless["mean_cycle_time_s"].get<double>());
+  for (const auto& [phase, seconds] : headless["cycle_phases_s"].items())
+    std::printf(" %s %.2f", phase.c_str(), seconds.get<double>());
+  std::printf("; %.0f picks per hour\n", headless["picks_per_hour"].get<double>());
+  if (!headless["cycle_to_bound"].is_number()) return;
+  std::printf(
+      "the arm's least time over the same paths (speeds and torque budget): %.2f s per item, the cycle %.2f "
+      "times it; by phase:",
+      headless["mean_cycle_bound_s"].get<double>(), headless["cycle_to_bound"].get<double>());
+  for (const auto& [phase, seconds] : headless["cycle_phases_bound_s"].items()) {
+    std::printf(" %s %.2f", phase.c_str(), seconds.get<double>());
+  }
+  std::printf("\n");
+}
+
 int Run(int argc, char** argv) {
   std::filesystem::path model_path;
   int episodes = 6;
@@ -90,55 +149,10 @@ int Run(int argc, char** argv) {
   options.out = out / "video";
   options.video = out / "video" / "episode.mp4";
   const auto video = nlohmann::json(simcell::RunEpisode(options, {"episode_benchmark"}))["summary"];
+  PrintEpisodes(headless, video);
+  PrintPhysics(headless, options.scene.string());
+  PrintCycle(headless);
 
-  std::printf("episode (seed 3, 6 paper objects), one process:\n");
-  std::printf("  %-9s %8s %8s %8s %14s %14s\n", "", "sim s", "wall s", "RTF", "perception ms", "video ms/frame");
-  std::printf("  %-9s %8.1f %8.1f %8.1f %14.1f %14s\n", "headless", headless["sim_time_s"].get<double>(),
-              headless["wall_time_s"].get<double>(), headless["real_time_factor"].get<double>(),
-              headless["perception_ms_per_frame"].get<double>(), "-");
-  std::printf("  %-9s %8.1f %8.1f %8.2f %14.1f %14.1f\n", "video", video["sim_time_s"].get<double>(),
-              video["wall_time_s"].get<double>(), video["real_time_factor"].get<double>(),
-              video["perception_ms_per_frame"].get<double>(),
-              1000 * video["video_render_wall_s"].get<double>() / std::max(1, video["video_frames"].get<int>()));
-  // Where the wall time goes, per stage (metrics.json "profile_wall_s"), headless and with video.
-  std::printf("wall-time profile (s, %% of the episode):\n  %-14s %16s %16s\n", "stage", "headless", "video");
-  for (const auto& [stage, seconds] : headless["profile_wall_s"].items()) {
-    const double v = video["profile_wall_s"][stage].get<double>();
-    std::printf("  %-14s %8.2f (%4.1f %%) %8.2f (%4.1f %%)\n", stage.c_str(), seconds.get<double>(),
-                100 * seconds.get<double>() / headless["wall_time_s"].get<double>(), v,
-                100 * v / video["wall_time_s"].get<double>());
-  }
-  // Inside the physics steps (MuJoCo's stage timers) and the load they work on.
-  const auto& physics = headless["physics_profile"];
-  const double step_s = physics["step_s"].get<double>();
-  std::printf(
-      "physics steps, headless: %.0f steps, %.1f us per step, %.1f contacts and %.1f constraint rows per step\n",
-      physics["steps"].get<double>(), 1e6 * step_s / std::max(1.0, physics["steps"].get<double>()),
-      physics["contacts_per_step"].get<double>(), physics["constraint_rows_per_step"].get<double>());
-  for (const char* stage : {"collision_s", "constraint_s", "smooth_s"}) {
-    const double s = physics[stage].get<double>();
-    std::printf("  %-14s %8.2f s (%4.1f %% of the steps)\n", stage, s, 100 * s / std::max(1e-9, step_s));
-  }
-  const double ceiling = RawSteppingRealTimeFactor(options.scene.string(), physics["steps"].get<double>());
-  std::printf(
-      "raw MuJoCo stepping of the same scene and objects, no controller (the ceiling): RTF %.1f; "
-      "the headless episode runs at %.0f %% of it\n",
-      ceiling, 100 * headless["real_time_factor"].get<double>() / ceiling);
-  std::printf("pick cycle: %.2f s per item; by phase, mean simulated s per attempt:",
-              headless["mean_cycle_time_s"].get<double>());
-  for (const auto& [phase, seconds] : headless["cycle_phases_s"].items())
-    std::printf(" %s %.2f", phase.c_str(), seconds.get<double>());
-  std::printf("; %.0f picks per hour\n", headless["picks_per_hour"].get<double>());
-  if (headless["cycle_to_bound"].is_number()) {
-    std::printf(
-        "the arm's least time over the same paths (speeds and torque budget): %.2f s per item, the cycle %.2f "
-        "times it; by phase:",
-        headless["mean_cycle_bound_s"].get<double>(), headless["cycle_to_bound"].get<double>());
-    for (const auto& [phase, seconds] : headless["cycle_phases_bound_s"].items()) {
-      std::printf(" %s %.2f", phase.c_str(), seconds.get<double>());
-    }
-    std::printf("\n");
-  }
   std::printf("sweep of %d episodes (4-6 paper objects):\n", episodes);
   const double one = SweepEpisodesPerHour(model, episodes, 1);
   const double two = SweepEpisodesPerHour(model, episodes, 2);
