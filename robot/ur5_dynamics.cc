@@ -20,16 +20,16 @@ MassProperties Body(double mass, const Eigen::Vector3d& p_com, const Eigen::Vect
   return body;
 }
 
-// ur_description's UR5 links in their joint frames (models/ur5/ur5.urdf): the shoulder's and wrist 1's
-// centres of mass at d1 and d4 up their joints, the upper arm's and forearm's halfway along a2 and a3.
+// The UR5's moving links in their joint frames, as models/ur5/ur5.urdf gives them (ur5_urdf.h, generated
+// from it at build time).
 std::array<MassProperties, 6> Ur5Links() {
-  using namespace ur5_lengths;  // NOLINT(google-build-using-namespace): the D-H table's own names.
-  return {Body(3.7, {0, 0, d1}, {0.01027, 0.01027, 0.00666}),
-          Body(8.393, {a2 / 2, 0, 0.13585}, {0.0151, 0.1339, 0.1339}),
-          Body(2.275, {a3 / 2, 0, 0.01615}, {0.00284, 0.03059, 0.03059}),
-          Body(1.219, {0, 0, d4}, {0.00208, 0.00208, 0.00123}),
-          Body(1.219, {0, 0, 0.05}, {0.00208, 0.00208, 0.00123}),
-          Body(0.1879, {0, 0, 0.07}, {0.00008, 0.00008, 0.000132})};
+  std::array<MassProperties, 6> links;
+  for (size_t i = 0; i < links.size(); ++i) {
+    const auto& c = ur5_urdf::kLinkCom[i];
+    const auto& inertia = ur5_urdf::kLinkInertia[i];
+    links[i] = Body(ur5_urdf::kLinkMass[i], {c[0], c[1], c[2]}, {inertia[0], inertia[1], inertia[2]});
+  }
+  return links;
 }
 
 // The motors and gearboxes (models/ur5: the joints' armature, damping and frictionloss): reflected

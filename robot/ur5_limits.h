@@ -3,6 +3,7 @@
 /// The UR5's joint, speed and torque limits and URScript's default motion parameters.
 
 #include "robot/ur5_kinematics.h"
+#include "sortcell/ur5_urdf.h"
 
 namespace sortcell::robot {
 
@@ -12,18 +13,20 @@ struct JointLimits {
 };
 
 /// Joints +-2 pi; the elbow restricted to +-pi (as UR cells usually configure it, and as the MJCF
-/// model's elbow range is).
+/// model's elbow range is). From models/ur5/ur5.urdf, as the speed and torque limits below.
 inline JointLimits Ur5JointLimits() {
   JointLimits limits;
-  limits.upper.setConstant(2.0 * M_PI);
-  limits.upper[2] = M_PI;
-  limits.lower = -limits.upper;
+  for (int i = 0; i < 6; ++i) {
+    limits.lower[i] = ur5_urdf::kJointLower[i];
+    limits.upper[i] = ur5_urdf::kJointUpper[i];
+  }
   return limits;
 }
 
-inline constexpr double kUr5MaxJointSpeed = M_PI;  ///< rad/s, every joint
+inline constexpr double kUr5MaxJointSpeed = ur5_urdf::kJointVelocity[0];  ///< rad/s, every joint (pi)
+
 /// Joint torque limits (N m): 150 for joints 1-3, 28 for joints 4-6.
-inline Joints Ur5TorqueLimits() { return (Joints() << 150, 150, 150, 28, 28, 28).finished(); }
+inline Joints Ur5TorqueLimits() { return Joints(ur5_urdf::kJointEffort); }
 
 /// Joint accelerations (rad/s^2) that the torque limits allow anywhere in the cell's workspace with the
 /// gripper and a 0.5 kg payload, leaving a fifth of each limit to the controller's feedback: the

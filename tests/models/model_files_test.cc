@@ -169,8 +169,18 @@ TEST(ModelFiles, UrdfParsesAndAgreesWithTheMjcf) {
     EXPECT_NEAR(joint->limits->velocity, M_PI, 1e-12);
     const int id = mjcf.Id(mjOBJ_JOINT, kArmJoints[j]);
     EXPECT_NEAR(joint->limits->upper, mjcf->jnt_range[2 * id + 1], 1e-12);
+    // The inertials, field by field: mass, centre of mass and the inertia's diagonal, in the same frames.
     const auto link = urdf->getLink(kArmBodies[j]);
-    EXPECT_NEAR(link->inertial->mass, mjcf->body_mass[mjcf.Id(mjOBJ_BODY, kArmBodies[j])], 1e-12);
+    const int body = mjcf.Id(mjOBJ_BODY, kArmBodies[j]);
+    EXPECT_NEAR(link->inertial->mass, mjcf->body_mass[body], 1e-12);
+    const auto& com = link->inertial->origin.position;
+    EXPECT_NEAR(com.x, mjcf->body_ipos[3 * body], 1e-12);
+    EXPECT_NEAR(com.y, mjcf->body_ipos[3 * body + 1], 1e-12);
+    EXPECT_NEAR(com.z, mjcf->body_ipos[3 * body + 2], 1e-12);
+    EXPECT_NEAR(link->inertial->ixx, mjcf->body_inertia[3 * body], 1e-12);
+    EXPECT_NEAR(link->inertial->iyy, mjcf->body_inertia[3 * body + 1], 1e-12);
+    EXPECT_NEAR(link->inertial->izz, mjcf->body_inertia[3 * body + 2], 1e-12);
+    EXPECT_NEAR(mjcf->body_iquat[4 * body], 1.0, 1e-12);  // Not turned: the diagonal is the diagonal.
   }
   const auto flange = urdf->getJoint("flange_joint");
   ASSERT_TRUE(flange);
