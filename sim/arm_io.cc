@@ -66,8 +66,8 @@ void ArmIo::SetGripperPosition(Data& data, double half_gap) const {
   }
 }
 
-GripperReading ArmIo::ReadGripper(const Data& data) const {
-  GripperReading r;
+robot::GripperSensors ArmIo::ReadGripper(const Data& data) const {
+  robot::GripperSensors r;
   r.left_half_gap = data->qpos[finger_qpos_[0]];
   r.right_half_gap = data->qpos[finger_qpos_[1]];
   r.left_speed = data->qvel[finger_dof_[0]];

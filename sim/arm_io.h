@@ -9,21 +9,12 @@
 
 #include <Eigen/Core>
 
+#include "robot/gripper_control.h"
 #include "sim/model.h"
 
 namespace sortcell::sim {
 
 using Vector6 = Eigen::Matrix<double, 6, 1>;
-
-struct GripperReading {
-  double left_half_gap = 0, right_half_gap = 0;    ///< m
-  double left_speed = 0, right_speed = 0;          ///< m/s
-  double left_pad_force = 0, right_pad_force = 0;  ///< Sum of normal contact forces on the pads (N).
-  /// Sum of the contacts' tangential forces (N) and torsional moments about their normals (N m): what
-  /// the pads' friction carries.
-  double left_pad_shear = 0, right_pad_shear = 0;
-  double left_pad_twist = 0, right_pad_twist = 0;
-};
 
 class ArmIo {
  public:
@@ -41,7 +32,8 @@ class ArmIo {
   void SetGripperTarget(Data& data, double half_gap) const;
   /// Each finger servo to its own half-gap target (m).
   void SetFingerTargets(Data& data, double left_half_gap, double right_half_gap) const;
-  GripperReading ReadGripper(const Data& data) const;
+  /// The gripper's sensors, filled straight into the robot's own struct (no copy field by field).
+  robot::GripperSensors ReadGripper(const Data& data) const;
   /// Puts both fingers at this half-gap at rest, with the servos holding it.
   void SetGripperPosition(Data& data, double half_gap) const;
 

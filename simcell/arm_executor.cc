@@ -96,21 +96,7 @@ robot::Joints ArmExecutor::JointPositions() const {
   return q;
 }
 
-robot::GripperSensors ArmExecutor::Gripper() const {
-  const sim::GripperReading r = io_.ReadGripper(data_);
-  robot::GripperSensors s;
-  s.left_half_gap = r.left_half_gap;
-  s.right_half_gap = r.right_half_gap;
-  s.left_speed = r.left_speed;
-  s.right_speed = r.right_speed;
-  s.left_pad_force = r.left_pad_force;
-  s.right_pad_force = r.right_pad_force;
-  s.left_pad_shear = r.left_pad_shear;
-  s.right_pad_shear = r.right_pad_shear;
-  s.left_pad_twist = r.left_pad_twist;
-  s.right_pad_twist = r.right_pad_twist;
-  return s;
-}
+robot::GripperSensors ArmExecutor::Gripper() const { return io_.ReadGripper(data_); }
 
 void ArmExecutor::SetPhase(const std::string& phase) {
   if (video_) video_->SetCaption(phase);
