@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "robot/gripper_geometry.h"
-#include "robot/ur5_dh.h"
+#include "sortcell/ur5_urdf.h"
 
 namespace sortcell::cell {
 namespace {
@@ -35,23 +35,19 @@ std::vector<Eigen::Vector3d> BoxSurface(const Eigen::Vector3d& lo, const Eigen::
 
 }  // namespace
 
-// The arm's capsules at q (world frame). Link geometry in each D-H frame as models/ur5 draws it: the
-// upper arm lies 0.136 m along the joint axes from the D-H line, the forearm 0.016 m.
+// The arm's capsules at q (world frame): the URDF's collision envelope (models/ur5/ur5.urdf, in the
+// generated ur5_urdf.h), then the gripper around the flange's axis down to its finger tips.
 std::vector<Capsule> ArmCapsules(const robot::Joints& q, const std::optional<HeldObject>& held) {
   const robot::LinkFrames X = robot::ForwardKinematicsAll(q);
   auto at = [&](int frame, double x, double y, double z) {
     return Eigen::Vector3d(X[frame] * Eigen::Vector3d(x, y, z));
   };
-  std::vector<Capsule> capsules{
-      {at(0, 0, 0, 0), at(0, 0, 0, 0.12), 0.075},                                             // base and shoulder
-      {at(2, -robot::ur5_lengths::a2, 0, 0.136), at(2, 0, 0, 0.136), 0.06},                   // upper arm
-      {at(2, 0, 0, 0.02), at(2, 0, 0, 0.18), 0.06},                                           // elbow
-      {at(3, 0.392, 0, 0.016), at(3, 0, 0, 0.016), 0.045},                                    // forearm
-      {at(3, 0, 0, -0.03), at(4, 0, 0, 0), 0.045},                                            // wrist 1
-      {at(4, 0, 0, 0), at(5, 0, 0, 0), 0.045},                                                // wrist 2
-      {at(5, 0, 0, 0), at(6, 0, 0, 0), 0.045},                                                // wrist 3
-      {at(6, 0, 0, 0), at(6, 0, 0, robot::kTcpOffsetZ + robot::kFingerTipBeyondTcp), 0.075},  // gripper
-  };
+  std::vector<Capsule> capsules;
+  for (const auto& c : robot::ur5_urdf::kCollisionCapsules) {
+    capsules.push_back({at(c.frame, c.a[0], c.a[1], c.a[2]), at(c.frame, c.b[0], c.b[1], c.b[2]), c.radius});
+  }
+  capsules.push_back(
+      {at(6, 0, 0, 0), at(6, 0, 0, robot::kTcpOffsetZ + robot::kFingerTipBeyondTcp), robot::kGripperEnvelopeRadius});
   if (held) {
     capsules.push_back(
         {at(6, 0, 0, robot::kTcpOffsetZ), at(6, 0, 0, robot::kTcpOffsetZ + held->below_tcp), held->radius});

@@ -1,8 +1,8 @@
 #pragma once
 /// @file
 /// Whether the arm hides any of the workspace from the camera, decided from the robot's own
-/// kinematics and the camera's calibrated pose: the arm's links, the gripper and what it may hold are
-/// capsules along the D-H chain (sizes of models/ur5 and models/gripper, with a margin), and a capsule
+/// kinematics and the camera's calibrated pose: the arm's links (the URDF's collision envelope), the
+/// gripper and what it may hold are capsules along the D-H chain, with a margin, and a capsule
 /// hides the workspace when the shadow it casts from the camera (the cone of rays it blocks) reaches
 /// a point of the workspace box's surface (sampled closer than the thinnest capsule).
 

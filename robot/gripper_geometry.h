@@ -23,6 +23,9 @@ inline constexpr double kPalmHalfWidth = 0.018;
 /// axis, its lowest point this far before the TCP along z_F (m).
 inline constexpr double kHousingRadius = 0.042;
 inline constexpr double kHousingBeforeTcp = 0.113;
+/// The gripper as the cell's camera-occlusion check sees it: a capsule this wide around the flange's
+/// axis, from the flange to the finger tips (m).
+inline constexpr double kGripperEnvelopeRadius = 0.075;
 /// Each finger seen from above: from its pad's face it reaches this far outwards along the closing
 /// direction (the stem behind the pad) and this far to either side across it (m).
 inline constexpr double kFingerDepth = 0.030;

@@ -187,6 +187,51 @@ TEST(ModelFiles, UrdfParsesAndAgreesWithTheMjcf) {
   EXPECT_NEAR(flange->parent_to_joint_origin_transform.position.z, sortcell::robot::kUr5Dh[5].d, 1e-12);
 }
 
+// The URDF's <visual> elements are the MJCF arm's geoms, one by one in the same order: kind, radius,
+// length, centre and axis. URDF 1.0 has no capsule: a visual named *_capsule is the MJCF capsule around
+// that cylinder.
+TEST(ModelFiles, UrdfVisualsAreTheMjcfArmsGeoms) {
+  const auto urdf = urdf::parseURDFFile((kRoot / "models/ur5/ur5.urdf").string());
+  ASSERT_TRUE(urdf) << "urdfdom could not parse models/ur5/ur5.urdf";
+  const Model mjcf = Model::FromFile((kRoot / "models/ur5/ur5.xml").string());
+  std::vector<std::string> links = {"base_link"};
+  links.insert(links.end(), kArmBodies.begin(), kArmBodies.end() - 1);  // The flange has no geometry.
+  for (const std::string& name : links) {
+    SCOPED_TRACE(name);
+    const auto link = urdf->getLink(name);
+    ASSERT_TRUE(link);
+    const int body = mjcf.Id(mjOBJ_BODY, name);
+    std::vector<int> geoms;
+    for (int g = 0; g < mjcf->ngeom; ++g) {
+      if (mjcf->geom_bodyid[g] == body) geoms.push_back(g);
+    }
+    ASSERT_EQ(link->visual_array.size(), geoms.size());
+    for (size_t i = 0; i < geoms.size(); ++i) {
+      const int g = geoms[i];
+      const urdf::Visual& visual = *link->visual_array[i];
+      SCOPED_TRACE(visual.name);
+      ASSERT_EQ(visual.geometry->type, urdf::Geometry::CYLINDER);
+      const auto& cylinder = static_cast<const urdf::Cylinder&>(*visual.geometry);
+      const std::string suffix = "_capsule";
+      const bool capsule = visual.name.size() > suffix.size() &&
+                           visual.name.compare(visual.name.size() - suffix.size(), suffix.size(), suffix) == 0;
+      EXPECT_EQ(mjcf->geom_type[g], capsule ? mjGEOM_CAPSULE : mjGEOM_CYLINDER);
+      EXPECT_NEAR(cylinder.radius, mjcf->geom_size[3 * g], 1e-12);
+      EXPECT_NEAR(cylinder.length, 2 * mjcf->geom_size[3 * g + 1], 1e-12);
+      const auto& p = visual.origin.position;
+      EXPECT_NEAR(p.x, mjcf->geom_pos[3 * g], 1e-12);
+      EXPECT_NEAR(p.y, mjcf->geom_pos[3 * g + 1], 1e-12);
+      EXPECT_NEAR(p.z, mjcf->geom_pos[3 * g + 2], 1e-12);
+      const auto& r = visual.origin.rotation;
+      const Eigen::Vector3d axis_urdf = Eigen::Quaterniond(r.w, r.x, r.y, r.z) * Eigen::Vector3d::UnitZ();
+      const mjtNum* quat = mjcf->geom_quat + 4 * g;
+      const Eigen::Vector3d axis_mjcf =
+          Eigen::Quaterniond(quat[0], quat[1], quat[2], quat[3]) * Eigen::Vector3d::UnitZ();
+      EXPECT_NEAR(std::abs(axis_urdf.dot(axis_mjcf)), 1.0, 1e-12);
+    }
+  }
+}
+
 TEST(ModelFiles, DefaultCellHoldsThePaperObjectsBinsAndKinect) {
   const Model cell = Model::FromFile((kRoot / "scenes/cell.xml").string());
   EXPECT_EQ(sortcell::sim::FreeBodyNames(cell),
