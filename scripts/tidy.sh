@@ -4,9 +4,8 @@
 # sources and headers. Exit 1 on any finding.
 #   scripts/tidy.sh [--libraries] [BUILD_DIR]   default build/ (configured by scripts/setup.sh)
 #     (all)        every compiled file: the libraries, the app, the tests, the benchmarks, the fuzz targets
-#                  (about 470 CPU-seconds, 3 min 16 s on 2 cores)
-#     --libraries  the libraries and the app only (about 240 CPU-seconds): what scripts/test.sh (CI) runs,
-#                  to keep CI's time down; the tests, benchmarks and fuzz targets pass too (run without it)
+#                  (about 470 CPU-seconds, 3 min 16 s on 2 cores): what scripts/test.sh (CI) runs
+#     --libraries  the libraries and the app only (about 240 CPU-seconds), for a quicker check while working
 set -euo pipefail
 cd "$(dirname "$0")/.."
 only_libraries=0
