@@ -45,6 +45,8 @@ inline constexpr FieldFlags kDerived = 1u << 4;
 inline constexpr FieldFlags kMachine = 1u << 5;
 /// An optional key: written only when the member holds a value, read when present (never null).
 inline constexpr FieldFlags kIfSet = 1u << 6;
+/// One record's own: a pool of records (a sweep's group) leaves it out.
+inline constexpr FieldFlags kUnpooled = 1u << 7;
 /// The flags of the figures a pool has.
 inline constexpr FieldFlags kPooled = kSum | kMax | kWeightedMean | kDerived;
 
@@ -99,24 +101,36 @@ void ReadByRule(const nlohmann::json& j, const std::string& path, const char* ke
 template <typename Record>
 using RecordFields = decltype(RecordFieldsOf(static_cast<const Record*>(nullptr)));
 
-/// Writes every field of `v` into the object `j` (keys already in `j` are kept unless declared again).
-/// `Fields` is RecordFields<Record>, or another list of some of its fields (a group written only in some
-/// records, or a member struct's fields written flat beside the record's own).
-template <typename Record, typename Fields = RecordFields<Record>>
-void WriteFields(nlohmann::json& j, const Record& v, Fields = {}) {
+/// Writes the fields of `v` whose flags `keep(flags)` accepts into the object `j` (keys already in `j` are
+/// kept unless written again). `Fields` is RecordFields<Record>, or another list of some of its fields (a
+/// group written only in some records, or a member struct's fields written flat beside the record's own).
+template <typename Record, typename Keep, typename Fields = RecordFields<Record>>
+void WriteFieldsIf(nlohmann::json& j, const Record& v, Keep&& keep, Fields = {}) {
   if (!j.is_object()) j = nlohmann::json::object();
   Fields::Visit(v, [&](const char* key, const auto& member, FieldFlags flags = kRequired) {
-    if (Written(member, flags)) j[key] = FieldJson(member);
+    if (keep(flags) && Written(member, flags)) j[key] = FieldJson(member);
   });
+}
+
+/// Writes every field of `v` into the object `j`.
+template <typename Record, typename Fields = RecordFields<Record>>
+void WriteFields(nlohmann::json& j, const Record& v, Fields fields = {}) {
+  WriteFieldsIf(
+      j, v, [](FieldFlags) { return true; }, fields);
 }
 
 /// Writes the fields of `v` that have any of `any_of` (e.g. kPooled: a pool's figures).
 template <typename Record, typename Fields = RecordFields<Record>>
-void WriteFieldsWith(nlohmann::json& j, const Record& v, FieldFlags any_of, Fields = {}) {
-  if (!j.is_object()) j = nlohmann::json::object();
-  Fields::Visit(v, [&](const char* key, const auto& member, FieldFlags flags = kRequired) {
-    if ((flags & any_of) && Written(member, flags)) j[key] = FieldJson(member);
-  });
+void WriteFieldsWith(nlohmann::json& j, const Record& v, FieldFlags any_of, Fields fields = {}) {
+  WriteFieldsIf(
+      j, v, [any_of](FieldFlags flags) { return (flags & any_of) != 0; }, fields);
+}
+
+/// Writes the fields of `v` that have none of `none_of` (e.g. kUnpooled: what a pool of records has).
+template <typename Record, typename Fields = RecordFields<Record>>
+void WriteFieldsWithout(nlohmann::json& j, const Record& v, FieldFlags none_of, Fields fields = {}) {
+  WriteFieldsIf(
+      j, v, [none_of](FieldFlags flags) { return (flags & none_of) == 0; }, fields);
 }
 
 /// Reads every field of `v` from `j`; `path` is `j`'s place in the whole record for messages ("" at the top).

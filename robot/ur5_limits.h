@@ -23,7 +23,16 @@ inline JointLimits Ur5JointLimits() {
   return limits;
 }
 
-inline constexpr double kUr5MaxJointSpeed = ur5_urdf::kJointVelocity[0];  ///< rad/s, every joint (pi)
+/// Every joint's speed limit (rad/s, pi): the URDF gives all six the same, and the code relies on it.
+inline constexpr double kUr5MaxJointSpeed = ur5_urdf::kJointVelocity[0];
+constexpr bool EveryJointHasTheSameSpeedLimit() {
+  for (double speed : ur5_urdf::kJointVelocity) {
+    if (speed != kUr5MaxJointSpeed) return false;
+  }
+  return true;
+}
+static_assert(EveryJointHasTheSameSpeedLimit(),
+              "models/ur5/ur5.urdf: every joint's <limit velocity> must be the same (kUr5MaxJointSpeed)");
 
 /// Joint torque limits (N m): 150 for joints 1-3, 28 for joints 4-6.
 inline Joints Ur5TorqueLimits() { return Joints(ur5_urdf::kJointEffort); }

@@ -228,7 +228,7 @@ EpisodeMetrics EpisodeRun::Metrics(const cell::PolicyResult& result, double wall
   run.status = result.status;
   run.sim_time_s = rig_->cell().Now();
   run.wall_time_s = wall_s;
-  run.real_time_factor = rig_->cell().Now() / wall_s;
+  run.real_time_factor = RealTimeFactor(run.sim_time_s, wall_s);
   run.frames = rig_->cell().frames();
   run.perception_ms_per_frame = run.frames > 0 ? 1000 * recorder_->perception_wall_s() / run.frames : 0.0;
   run.render_ms_per_frame = run.frames > 0 ? 1000 * rig_->cell().render_wall_s() / run.frames : 0.0;

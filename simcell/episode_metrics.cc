@@ -54,6 +54,10 @@ std::optional<double> PicksPerHour(int sorted, double sim_time_s) {
 EpisodeSummary SummarizeEpisode(const std::vector<ItemResult>& items, int attempts, int grasps, const RunFigures& run) {
   ItemTally tally;
   for (const auto& item : items) tally.Add(item);
+  return SummarizeTally(tally, attempts, grasps, run);
+}
+
+EpisodeSummary SummarizeTally(const ItemTally& tally, int attempts, int grasps, const RunFigures& run) {
   EpisodeSummary s;
   s.items = tally.items;
   for (const auto outcome : cell::kItemOutcomes) s.outcomes[outcome] = tally.Count(outcome);
@@ -160,17 +164,18 @@ struct SummaryFields {
     field("mean_cycle_time_s", v.mean_cycle_time_s);
     field("mean_cycle_bound_s", v.mean_cycle_bound_s, files::kAdded);
     field("cycle_to_bound", v.cycle_to_bound, files::kAdded);
-    field("calibration", v.calibration, files::kAdded);
+    // A sweep sums its episodes' calibrations up apart.
+    field("calibration", v.calibration, files::kAdded | files::kUnpooled);
   }
 };
 
 nlohmann::json SummaryJson(const EpisodeSummary& s, bool pooled_run_only) {
   nlohmann::json j;
-  files::WriteFields(j, s, SummaryFields{});
   if (pooled_run_only) {
-    j.erase("calibration");  // A group's calibrations are summed up apart (the sweep's).
+    files::WriteFieldsWithout(j, s, files::kUnpooled, SummaryFields{});
     files::WriteFieldsWith(j, s.run, files::kPooled);
   } else {
+    files::WriteFields(j, s, SummaryFields{});
     files::WriteFields(j, s.run);
   }
   j["outcomes"] = OutcomeCountsJson(s.outcomes);
@@ -188,8 +193,10 @@ void PoolRunFigures(RunFigures& pooled, const RunFigures& run, int attempts) {
 
 void FinishRunPool(RunFigures& pooled, int attempts) {
   files::FinishPool(pooled, attempts);
-  pooled.real_time_factor = pooled.wall_time_s > 0 ? pooled.sim_time_s / pooled.wall_time_s : 0;
+  pooled.real_time_factor = RealTimeFactor(pooled.sim_time_s, pooled.wall_time_s);
 }
+
+double RealTimeFactor(double sim_time_s, double wall_time_s) { return wall_time_s > 0 ? sim_time_s / wall_time_s : 0; }
 
 void from_json(const nlohmann::json& j, EpisodeSummary& v) {
   const std::string path = "summary";

@@ -203,6 +203,10 @@ struct ItemTally {
 /// The episode summary over `items`: outcome counts, correct-sort rate, recognition accuracy (of the
 /// items classified), grasp success rate, mean cycle time of the items that reached a bin.
 EpisodeSummary SummarizeEpisode(const std::vector<ItemResult>& items, int attempts, int grasps, const RunFigures& run);
+/// The same over items already counted (a sweep's group, counted as its records are read).
+EpisodeSummary SummarizeTally(const ItemTally& tally, int attempts, int grasps, const RunFigures& run);
+/// The simulated seconds per wall-clock second, or 0 without wall-clock time.
+double RealTimeFactor(double sim_time_s, double wall_time_s);
 
 /// a / b, or null when b is 0.
 std::optional<double> Ratio(double a, int b);

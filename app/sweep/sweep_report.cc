@@ -26,7 +26,7 @@ namespace {
 // The episodes' items, attempts and run figures, pooled as metrics.json's field lists say.
 struct Tally {
   int episodes = 0, failed_episodes = 0, attempts = 0, grasps = 0;
-  std::vector<simcell::ItemResult> items;
+  simcell::ItemTally items;
   simcell::RunFigures run;
 
   void Add(const SweepRecord& record) {
@@ -37,7 +37,7 @@ struct Tally {
     }
     attempts += record.summary.grasp_attempts;
     grasps += record.summary.grasps;
-    items.insert(items.end(), record.items.begin(), record.items.end());
+    for (const auto& item : record.items) items.Add(item);
     simcell::PoolRunFigures(run, record.summary.run, record.summary.grasp_attempts);
   }
 };
@@ -72,9 +72,9 @@ GroupFigures Figures(const Tally& t) {
   f.episodes_failed = t.failed_episodes;
   simcell::RunFigures run = t.run;
   simcell::FinishRunPool(run, t.attempts);
-  f.summary = simcell::SummarizeEpisode(t.items, t.attempts, t.grasps, run);
+  f.summary = simcell::SummarizeTally(t.items, t.attempts, t.grasps, run);
   f.ci95 = WilsonInterval(f.sorted(), f.summary.items);
-  for (const auto& item : t.items) f.items.Add(item);
+  f.items = t.items;
   return f;
 }
 
@@ -351,7 +351,7 @@ std::vector<AxisGroup> GroupByObject(const std::vector<SweepRecord>& records) {
     if (!r.ok()) continue;
     std::set<std::string> in_episode;
     for (const auto& item : r.items) {
-      tallies[item.name].items.push_back(item);
+      tallies[item.name].items.Add(item);
       if (in_episode.insert(item.name).second) ++tallies[item.name].episodes;
     }
   }
