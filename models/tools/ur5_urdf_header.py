@@ -109,7 +109,8 @@ def collision_capsules(urdf, root, rows):
         for collision in find(urdf, root, "link", name).findall("collision"):
             cylinder = collision.find("geometry/cylinder")
             if cylinder is None:
-                fail(urdf, f"link {name}: <collision> must be a <cylinder> (it stands for the capsule around it)")
+                fail(urdf, f"link {name}: <collision> must be a <cylinder> "
+                           "(it stands for the capsule around it)")
             origin = collision.find("origin")
             xyz = numbers(urdf, origin, "xyz", 3, "0 0 0") if origin is not None else [0.0, 0.0, 0.0]
             rpy = numbers(urdf, origin, "rpy", 3, "0 0 0") if origin is not None else [0.0, 0.0, 0.0]

@@ -195,7 +195,8 @@ TEST(ModelFiles, UrdfVisualsAreTheMjcfArmsGeoms) {
   ASSERT_TRUE(urdf) << "urdfdom could not parse models/ur5/ur5.urdf";
   const Model mjcf = Model::FromFile((kRoot / "models/ur5/ur5.xml").string());
   std::vector<std::string> links = {"base_link"};
-  links.insert(links.end(), kArmBodies.begin(), kArmBodies.end() - 1);  // The flange has no geometry.
+  // Not the flange: its geom is the tool slot's plate (models/ur5/flange_tool.inc.xml), not the arm's.
+  links.insert(links.end(), kArmBodies.begin(), kArmBodies.end() - 1);
   for (const std::string& name : links) {
     SCOPED_TRACE(name);
     const auto link = urdf->getLink(name);

@@ -41,7 +41,11 @@ def check_shipped(folder):
     # The upper arm's capsule in D-H frame 2 (at the elbow): from the shoulder (x = -a2) to the elbow,
     # 0.136 m along the joint axes, as cell/arm_view.cc's hand-written list had it.
     expect(("2", "0.425, 0.0, 0.136", "0.0, 0.0, 0.136", "0.06") in rows, f"the upper arm's capsule: {rows}")
-    # The wrist-3 capsule runs from the flange (frame 6's origin) back to frame 5's origin, d6 = 0.0823.
+    # The wrist capsules, through the turns by alpha: wrist 1 from frame 4's origin back along z3 (= +y4)
+    # to 0.03 m before frame 3's origin (d4 + 0.03 = 0.13915); wrist 2 from frame 5's origin to frame
+    # 4's, d5 along z4 (= -y5); wrist 3 from the flange (frame 6's origin) back to frame 5's, d6.
+    expect(("4", "0.0, 0.0, 0.0", "0.0, -0.13915, 0.0", "0.045") in rows, f"the wrist-1 capsule: {rows}")
+    expect(("5", "0.0, 0.0, 0.0", "0.0, 0.09465, 0.0", "0.045") in rows, f"the wrist-2 capsule: {rows}")
     expect(("6", "0.0, 0.0, 0.0", "0.0, 0.0, -0.0823", "0.045") in rows, f"the wrist-3 capsule: {rows}")
 
 
@@ -54,19 +58,23 @@ def check_refused(folder, name, text, message):
 
 
 def main():
-    collision_box = URDF.replace('<collision name="wrist_3"><origin xyz="0 0 0.04115"/><geometry><cylinder radius="0.045" length="0.0823"/>',
-                                 '<collision name="wrist_3"><origin xyz="0 0 0.04115"/><geometry><box size="0.1 0.1 0.1"/>', 1)
+    collision_box = URDF.replace('<geometry><cylinder radius="0.045" length="0.0823"/>',
+                                 '<geometry><box size="0.1 0.1 0.1"/>', 1)
     assert collision_box != URDF, "the test's edit no longer matches models/ur5/ur5.urdf"
-    turned_joint = URDF.replace('<origin xyz="-0.425 0 0" rpy="0 0 0"/>', '<origin xyz="-0.425 0.01 0" rpy="0 0 0"/>', 1)
+    turned_joint = URDF.replace('<origin xyz="-0.425 0 0" rpy="0 0 0"/>',
+                                '<origin xyz="-0.425 0.01 0" rpy="0 0 0"/>', 1)
     assert turned_joint != URDF, "the test's edit no longer matches models/ur5/ur5.urdf"
     off_diagonal = URDF.replace('ixx="0.0151" ixy="0"', 'ixx="0.0151" ixy="0.001"', 1)
     assert off_diagonal != URDF, "the test's edit no longer matches models/ur5/ur5.urdf"
     with tempfile.TemporaryDirectory(prefix="ur5_urdf_header_test_") as tmp:
         folder = pathlib.Path(tmp)
         check_shipped(folder)
-        check_refused(folder, "a box collision", collision_box, "link wrist_3_link: <collision> must be a <cylinder>")
-        check_refused(folder, "a joint off the D-H line", turned_joint, "joint elbow_joint: origin is not in D-H form")
-        check_refused(folder, "an off-diagonal inertia", off_diagonal, "link upper_arm_link: the inertia must be diagonal")
+        check_refused(folder, "a box collision", collision_box,
+                      "link wrist_3_link: <collision> must be a <cylinder>")
+        check_refused(folder, "a joint off the D-H line", turned_joint,
+                      "joint elbow_joint: origin is not in D-H form")
+        check_refused(folder, "an off-diagonal inertia", off_diagonal,
+                      "link upper_arm_link: the inertia must be diagonal")
         check_refused(folder, "not XML", "<robot", "cannot read it as XML")
     for failure in failures:
         print("FAILED:", failure)
