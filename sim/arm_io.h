@@ -32,7 +32,7 @@ class ArmIo {
   void SetGripperTarget(Data& data, double half_gap) const;
   /// Each finger servo to its own half-gap target (m).
   void SetFingerTargets(Data& data, double left_half_gap, double right_half_gap) const;
-  /// The gripper's sensors, filled straight into the robot's own struct (no copy field by field).
+  /// The gripper's sensors: finger gaps and speeds, pad forces, shear and twist.
   robot::GripperSensors ReadGripper(const Data& data) const;
   /// Puts both fingers at this half-gap at rest, with the servos holding it.
   void SetGripperPosition(Data& data, double half_gap) const;

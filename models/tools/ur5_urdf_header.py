@@ -9,7 +9,8 @@ not the header.
 
 The URDF must be in D-H form (see its header comment): six revolute joints shoulder_pan .. wrist_3 and a
 fixed flange_joint, each joint i+1 at (a_i, 0, d_i) with rpy (alpha_i, 0, 0) in its parent link, and
-diagonal link inertias; its <collision> elements are cylinders. Anything else is refused with a message naming the URDF and the element, exit 1.
+diagonal link inertias; its <collision> elements are cylinders. Anything else is refused with a message
+naming the URDF and the element, exit 1.
 """
 import math
 import sys
