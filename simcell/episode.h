@@ -58,6 +58,7 @@ struct EpisodeOptions {
   // Variations (sweep axes).
   double light_intensity = 1.0;  ///< Scales the scene's lights (1 = as modelled).
   double noise_scale = 1.0;      ///< Scales the Kinect's depth noise (1 = the Kinect).
+  uint64_t noise_seed = 0;       ///< Which draw of the Kinect's noise (KinectNoiseRng); the scene stays.
   sim::SceneVariation variation;
   SelfCalibration self_calibrate = SelfCalibration::kAuto;
   // The policy's budget.

@@ -2,6 +2,7 @@
 
 #include <stdexcept>
 
+#include "common/seeding.h"
 #include "simcell/sim_layout.h"
 #include "sim/object_placement.h"
 #include "sim/physics_profile.h"
@@ -18,9 +19,14 @@ void CheckRigOptions(const EpisodeOptions& options) {
   }
 }
 
+std::mt19937_64 KinectNoiseRng(uint64_t seed, uint64_t noise_seed) {
+  constexpr uint64_t kKinectStreams = 0x4b1c0000'00000000ULL;  // Apart from the episodes' and the sweeps' streams.
+  return EpisodeRng(seed, kKinectStreams + noise_seed);
+}
+
 SimRig::SimRig(sim::Model& model, const cell::CellLayout& layout, const EpisodeOptions& options, std::mt19937_64& rng)
-    : model_(model), rng_(rng) {
-  sim::ApplyVariation(model_, options.variation, rng_);
+    : model_(model), noise_rng_(KinectNoiseRng(options.seed, options.noise_seed)) {
+  sim::ApplyVariation(model_, options.variation, rng);
   sim::EnablePhysicsTimers();
   data_ = std::make_unique<sim::Data>(model_);
   kinect_ = std::make_unique<sim::KinectCamera>(model_, "kinect");
@@ -35,11 +41,14 @@ SimRig::SimRig(sim::Model& model, const cell::CellLayout& layout, const EpisodeO
     if (options.video.has_parent_path()) std::filesystem::create_directories(options.video.parent_path());
     video_ = std::make_unique<sim::VideoRecorder>(model_, options.video, options.video_options);
   }
-  cell_ = std::make_unique<SimCell>(model_, *data_, kinect_.get(), &noise_, &rng_, video_.get(), layout.control_period);
+  cell_ = std::make_unique<SimCell>(model_, *data_, kinect_.get(), &noise_, &noise_rng_, video_.get(),
+                                    layout.control_period);
   cell_->Reset(layout.q_observe, layout.observe_half_gap);
 }
 
-perception::Cloud::Ptr SimRig::Capture() { return sim::ToOrganizedCloud(kinect_->Capture(*data_, &noise_, &rng_)); }
+perception::Cloud::Ptr SimRig::Capture() {
+  return sim::ToOrganizedCloud(kinect_->Capture(*data_, &noise_, &noise_rng_));
+}
 
 Eigen::Isometry3d SimRig::TrueCameraPose() const { return NominalCameraPose(model_, "kinect"); }
 

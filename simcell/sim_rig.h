@@ -23,10 +23,16 @@ namespace sortcell::simcell {
 /// @throws std::invalid_argument naming the option or the scene.
 void CheckRigOptions(const EpisodeOptions& options);
 
+/// The Kinect's noise stream of an episode: realisation `noise_seed` of the sensor's noise over the same
+/// scene (0 is the default one; a sweep's `noise_seed` axis draws others, to tell a change's effect
+/// from the spread between noise draws).
+std::mt19937_64 KinectNoiseRng(uint64_t seed, uint64_t noise_seed);
+
 class SimRig {
  public:
-  /// Applies options.variation to `model` (drawing from `rng`, which the rig keeps for the Kinect's
-  /// noise). `model` and `rng` must outlive the rig.
+  /// Applies options.variation to `model`, drawing from `rng`. The Kinect's noise draws from a stream of
+  /// its own (KinectNoiseRng), so the scene a seed sets does not depend on how the noise draws or on how
+  /// many captures came before. `model` must outlive the rig.
   SimRig(sim::Model& model, const cell::CellLayout& layout, const EpisodeOptions& options, std::mt19937_64& rng);
   SimRig(const SimRig&) = delete;
   SimRig& operator=(const SimRig&) = delete;
@@ -46,7 +52,7 @@ class SimRig {
 
  private:
   sim::Model& model_;
-  std::mt19937_64& rng_;
+  std::mt19937_64 noise_rng_;
   std::unique_ptr<sim::Data> data_;
   std::unique_ptr<sim::KinectCamera> kinect_;
   sim::KinectNoiseParams noise_;

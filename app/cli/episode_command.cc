@@ -105,6 +105,9 @@ void AddPlacementOptions(CLI::App& cmd, EpisodeCli& cli) {
 void AddSensorVariationOptions(CLI::App& cmd, simcell::EpisodeOptions& o) {
   cmd.add_option("--light-intensity", o.light_intensity, "Scale of the scene's lights")->capture_default_str();
   cmd.add_option("--noise-scale", o.noise_scale, "Scale of the Kinect's depth noise")->capture_default_str();
+  cmd.add_option("--noise-seed", o.noise_seed,
+                 "Another draw of the Kinect's noise over the same scene (0: the seed's own draw)")
+      ->capture_default_str();
   cmd.add_option("--camera-shift", o.variation.camera_shift_m,
                  "Move the Kinect this far (m) in a random direction; the robot is given the nominal pose")
       ->capture_default_str();

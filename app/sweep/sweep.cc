@@ -234,6 +234,7 @@ std::vector<std::string> EpisodeArguments(const SweepSetup& s, const Worker& w) 
   for (const auto& [axis, value] : w.axes.items()) {
     if (axis == "objects") args.insert(args.end(), {"--objects", std::to_string(value.get<int>())});
     if (axis == "unknown_objects") args.insert(args.end(), {"--unknown-objects", std::to_string(value.get<int>())});
+    if (axis == "noise_seed") args.insert(args.end(), {"--noise-seed", std::to_string(value.get<int>())});
     if (axis == "placement") args.insert(args.end(), {"--placement", value.get<std::string>()});
     if (axis == "self_calibrate") args.insert(args.end(), {"--self-calibrate", value.get<std::string>()});
     const auto option = kAxisOptions.find(axis);

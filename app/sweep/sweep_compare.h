@@ -53,7 +53,8 @@ double ExactMcNemarP(int b, int c);
 
 /// Compares the records of two sweeps.
 /// @throws std::invalid_argument "episode <n>: seed <s> in A, <t> in B: not the same episodes" (or
-///         the same for its axes) when an episode index means different episodes.
+///         the same for its axes) when an episode index means different episodes. Axis noise_seed may
+///         differ: other draws of the Kinect's noise over the same scenes.
 SweepComparison CompareSweepRecords(const std::vector<SweepRecord>& a, const std::vector<SweepRecord>& b);
 
 /// Reads `<dir>/results.jsonl` of both folders and compares them.

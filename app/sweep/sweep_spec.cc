@@ -154,7 +154,7 @@ std::string NamedAxisValue(const files::YamlReader& y, const EnumNames<E, N>& na
   return v.Scalar();
 }
 
-// One value of axis `name` (key `where` for messages): a model file, an object count, or a number
+// One value of axis `name` (key `where` for messages): a model file, an object count, a noise seed, or a number
 // (a scale > 0; a camera shift or turn >= 0).
 nlohmann::json AxisValue(const SpecReader& r, const std::string& name, const YAML::Node& v, const std::string& where) {
   const files::YamlReader& y = r.yaml();
@@ -165,7 +165,7 @@ nlohmann::json AxisValue(const SpecReader& r, const std::string& name, const YAM
   }
   if (name == "placement") return NamedAxisValue(y, sim::kPlacementModeNames, v, where);
   if (name == "self_calibrate") return NamedAxisValue(y, simcell::kSelfCalibrationNames, v, where);
-  if (name == "objects" || name == "unknown_objects") {
+  if (name == "objects" || name == "unknown_objects" || name == "noise_seed") {
     const long long k = y.Integer(v, where);
     if (name == "objects" && k < 1) y.Fail("key '" + where + "': expected at least 1 object");
     return k;
@@ -222,7 +222,7 @@ const std::vector<std::string>& SweepAxisNames() {
   static const std::vector<std::string> names{"objects",       "light_intensity", "camera_shift_m", "camera_turn_rad",
                                               "noise_scale",   "friction_scale",  "mass_scale",     "model",
                                               "reject_below",  "placement",       "lying_fraction", "self_calibrate",
-                                              "colour_jitter", "unknown_objects"};
+                                              "colour_jitter", "unknown_objects", "noise_seed"};
   return names;
 }
 
@@ -238,7 +238,7 @@ namespace {
 
 // A value drawn from a range axis.
 nlohmann::json DrawFromRange(const SweepAxis& axis, std::mt19937_64& rng) {
-  if (axis.name == "objects" || axis.name == "unknown_objects") {
+  if (axis.name == "objects" || axis.name == "unknown_objects" || axis.name == "noise_seed") {
     return std::uniform_int_distribution<int>(static_cast<int>(axis.min), static_cast<int>(axis.max))(rng);
   }
   return std::uniform_real_distribution<double>(axis.min, axis.max)(rng);

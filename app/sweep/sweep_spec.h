@@ -23,6 +23,7 @@
 ///     colour_jitter: {min: 0, max: 1}  # each object's colours varied (hue, saturation, brightness)
 ///     self_calibrate: [on, off]         # hand-eye calibration first (default auto: when the camera moves)
 ///     unknown_objects: [0, 1, 2]        # objects of unknown_set added (the rules send them to the reject bin)
+///     noise_seed: [1, 2]                # other draws of the Kinect's noise over the same scenes (integers >= 0)
 ///
 /// In grid mode a range axis is drawn per repeat: every grid cell sees the same draws.
 

@@ -125,6 +125,12 @@ TEST(SweepCompare, OtherEpisodesUnderOneIndexAreRefused) {
   EXPECT_NE(ErrorOf([&] { CompareSweepRecords(a, b); }).find("episode 1: axes"), std::string::npos);
 }
 
+TEST(SweepCompare, AnotherDrawOfTheNoiseIsTheSameEpisode) {
+  auto a = Sweep(3, 0), b = Sweep(3, 0);
+  for (auto& r : b) r.axes["noise_seed"] = 2;
+  EXPECT_EQ(CompareSweepRecords(a, b).episodes_paired, 3);
+}
+
 TEST(SweepCompare, TheCommandPrintsWritesThePageAndRefusesWhatIsNoSweep) {
   const TempDir tmp;
   const auto a = WriteSweep(tmp.path() / "a", Sweep(8, 4));

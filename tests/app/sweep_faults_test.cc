@@ -167,8 +167,9 @@ TEST(SweepFaults, AHungEpisodeIsRecordedAsATimeoutAndTheSweepGoesOn) {
 }
 
 // A scene whose simulation diverges (gravity of 1e11 m/s^2: MuJoCo resets the state at every step):
-// each episode ends at once with status sim_diverged and its objects left, recorded as such; the sweep
-// goes on. (Before MuJoCo's second reset was detected, this episode hung.)
+// each episode ends at once with status sim_diverged and no object in a bin, recorded as such; the sweep
+// goes on. (Before MuJoCo's second reset was detected, this episode hung.) Whether the first look finds
+// something to try first depends on the noise's draw: an item tried counts as a failed grasp.
 TEST(SweepFaults, ADivergingSimulationIsRecordedWithItsOutcomeAndTheSweepGoesOn) {
   const TempDir dir("diverge");
   // The cell scene with its relative includes intact: beside a link to the models.
@@ -195,7 +196,10 @@ TEST(SweepFaults, ADivergingSimulationIsRecordedWithItsOutcomeAndTheSweepGoesOn)
     EXPECT_EQ(record["status"], "ok") << "the worker ended normally: " << record.dump();
     EXPECT_EQ(record["summary"]["status"], "sim_diverged") << record.dump();
     EXPECT_LT(record["wall_time_s"].get<double>(), 60.0);
-    for (const auto& item : record["items"]) EXPECT_EQ(item["outcome"], "left_on_table") << item.dump();
+    for (const auto& item : record["items"]) {
+      EXPECT_TRUE(item["outcome"] == "left_on_table" || item["outcome"] == "grasp_failed") << item.dump();
+      EXPECT_EQ(item["bin"], "") << item.dump();
+    }
   }
 }
 

@@ -17,7 +17,8 @@ namespace {
 
 TEST(SweepReplay, AFailedEpisodeIsReviewedWithAClipAndReplayedExactly) {
   const TempDir tmp;
-  // A plate (wider than the gripper's stroke every way: never graspable) beside a cup.
+  // A plate (wider than the gripper's stroke every way: never graspable) beside a cup. Seed 0: of seeds 0-7, seed 3
+  // alone has the plate, called a cup, found unreachable before too wide.
   const std::string models = std::string(SORTCELL_SOURCE_DIR) + "/models/objects/";
   std::ofstream(tmp.path() / "set.yaml") << "name: plate_and_cup\nobjects:\n"
                                          << "  - {name: plate1, category: others, instance: plate1, model: " << models
@@ -26,7 +27,7 @@ TEST(SweepReplay, AFailedEpisodeIsReviewedWithAClipAndReplayedExactly) {
                                          << "cup.inc.xml}\n";
   std::ofstream(tmp.path() / "spec.yaml")
       << "scene: " << kSweepScene << "\nobject_set: " << (tmp.path() / "set.yaml").string()
-      << "\nmodel: " << SORTCELL_TEST_MODEL << "\nseed: 3\nepisodes: 1\naxes:\n  objects: [2]\n";
+      << "\nmodel: " << SORTCELL_TEST_MODEL << "\nseed: 0\nepisodes: 1\naxes:\n  objects: [2]\n";
   const std::filesystem::path sweep = tmp.path() / "sweep";
   const auto s = RunSortcell("sweep " + (tmp.path() / "spec.yaml").string() + " --review --out " + sweep.string());
   ASSERT_EQ(s.exit_code, 0) << s.err;

@@ -98,6 +98,15 @@ TEST(SweepSpec, SelfCalibrationIsAnAxisOfWords) {
   EXPECT_EQ(spec.Episode(1).second["self_calibrate"], "off");
 }
 
+TEST(SweepSpec, NoiseSeedsAreAnAxisOfWholeNumbers) {
+  const SweepSpec spec =
+      LoadSweepSpec(WriteSpec("noise_seed", "mode: grid\nepisodes: 1\naxes:\n  noise_seed: [0, 2]\n"));
+  ASSERT_EQ(spec.EpisodeCount(), 2);
+  EXPECT_EQ(spec.Episode(0).second["noise_seed"], 0);
+  EXPECT_EQ(spec.Episode(1).second["noise_seed"], 2);
+  EXPECT_EQ(spec.Episode(0).first, spec.Episode(1).first) << "the same scene seed under both draws of the noise";
+}
+
 TEST(SweepSpec, BadSpecsNameTheKey) {
   using sortcell_test::ErrorOf;
   const auto error = [](const std::string& name, const std::string& body) {
@@ -119,6 +128,11 @@ TEST(SweepSpec, BadSpecsNameTheKey) {
   EXPECT_NE(
       error("lying", "axes:\n  lying_fraction: [1.5]\n").find("key 'axes.lying_fraction[0]': expected a fraction"),
       std::string::npos);
+  EXPECT_NE(error("noise_seed", "axes:\n  noise_seed: [1, -2]\n")
+                .find("key 'axes.noise_seed[1]': expected a non-negative integer"),
+            std::string::npos);
+  EXPECT_NE(error("noise_seed_half", "axes:\n  noise_seed: [1.5]\n").find("key 'axes.noise_seed[0]'"),
+            std::string::npos);
   EXPECT_NE(error("mode", "mode: sometimes\n").find("key 'mode': expected random or grid"), std::string::npos);
   EXPECT_NE(error("model", "model: nowhere.json\n").find("key 'model': file"), std::string::npos);
   EXPECT_NE(error("negative", "axes:\n  mass_scale: [0]\n").find("expected a value > 0"), std::string::npos);

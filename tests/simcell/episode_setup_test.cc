@@ -9,6 +9,8 @@
 
 #include "files/output_dir.h"
 #include "simcell/episode.h"
+#include "simcell/sim_rig.h"
+#include "common/seeding.h"
 #include "error_of.h"
 #include "perception/recognition_model.h"
 #include "temp_dir.h"
@@ -149,6 +151,14 @@ TEST(EpisodeSetup, AModelClassTheRulesSendNowhereIsRefused) {
   EXPECT_EQ(ErrorOf([&] { RunEpisode(options, {}); }),
             "cell layout '" + options.cell.string() + "' with model '" + model.string() +
                 "': rules: the model's class 'plate' goes to no bin (no rule for it and no \"*\")");
+}
+
+TEST(KinectNoiseRng, EachNoiseSeedIsAStreamOfItsOwnApartFromTheScenes) {
+  const auto first = [](std::mt19937_64 rng) { return rng(); };
+  EXPECT_EQ(first(KinectNoiseRng(3, 0)), first(KinectNoiseRng(3, 0)));
+  EXPECT_NE(first(KinectNoiseRng(3, 0)), first(KinectNoiseRng(3, 1)));
+  EXPECT_NE(first(KinectNoiseRng(3, 0)), first(KinectNoiseRng(4, 0)));
+  EXPECT_NE(first(KinectNoiseRng(3, 0)), first(EpisodeRng(3, 0))) << "the scene's draws";
 }
 
 }  // namespace
