@@ -5,7 +5,6 @@
 #include <vector>
 
 #include "robot/gripper_geometry.h"
-#include "sortcell/ur5_urdf.h"
 
 namespace sortcell::cell {
 namespace {
@@ -37,12 +36,12 @@ std::vector<Eigen::Vector3d> BoxSurface(const Eigen::Vector3d& lo, const Eigen::
 
 // The arm's capsules at q (world frame): the URDF's collision envelope (models/ur5/ur5.urdf, in the
 // generated ur5_urdf.h), then the gripper around the flange's axis down to its finger tips.
-std::vector<Capsule> ArmCapsules(const robot::Joints& q, const std::optional<HeldObject>& held) {
+CapsuleList ArmCapsules(const robot::Joints& q, const std::optional<HeldObject>& held) {
   const robot::LinkFrames X = robot::ForwardKinematicsAll(q);
   auto at = [&](int frame, double x, double y, double z) {
     return Eigen::Vector3d(X[frame] * Eigen::Vector3d(x, y, z));
   };
-  std::vector<Capsule> capsules;
+  CapsuleList capsules;
   for (const auto& c : robot::ur5_urdf::kCollisionCapsules) {
     capsules.push_back({at(c.frame, c.a[0], c.a[1], c.a[2]), at(c.frame, c.b[0], c.b[1], c.b[2]), c.radius});
   }

@@ -26,7 +26,7 @@ double DistanceToSegment(const Vector& p, const Vector& a, const Vector& b) {
   return (p - (a + t * ab)).norm();
 }
 
-bool OnArm(const Eigen::Vector3d& p_W, const std::vector<Capsule>& arm) {
+bool OnArm(const Eigen::Vector3d& p_W, const CapsuleList& arm) {
   return std::any_of(arm.begin(), arm.end(),
                      [&](const Capsule& c) { return DistanceToSegment(p_W, c.a, c.b) < c.radius + kArmMargin; });
 }
@@ -47,7 +47,7 @@ Eigen::Vector2d BinFill::Map::CellCentre(int i, int j) const {
   return {-half.x() + (i + 0.5) * 2 * half.x() / nx, -half.y() + (j + 0.5) * 2 * half.y() / ny};
 }
 
-void BinFill::See(const perception::Cloud& cloud, const Eigen::Isometry3d& X_WC, const std::vector<Capsule>& arm) {
+void BinFill::See(const perception::Cloud& cloud, const Eigen::Isometry3d& X_WC, const CapsuleList& arm) {
   std::map<std::string, std::vector<std::vector<double>>> seen;  // Per bin, per cell: point heights.
   for (const auto& [name, map] : maps_) seen[name].resize(map.height.size());
   for (const perception::PointT& point : cloud.points) {

@@ -39,7 +39,7 @@ class BinFill {
   /// the height above the floor of its third-highest point inside the bin's walls (0 where it sees
   /// the floor), leaving out points of the arm (`arm`, from the encoders at the capture). A cell it
   /// does not see (behind a wall or the arm) keeps what the robot knew of it.
-  void See(const perception::Cloud& cloud, const Eigen::Isometry3d& X_WC, const std::vector<Capsule>& arm);
+  void See(const perception::Cloud& cloud, const Eigen::Isometry3d& X_WC, const CapsuleList& arm);
   /// An object of `height` (m) was let go at `release`: it rests on what is under its disc or band,
   /// and that is at least that much higher now.
   void Released(const std::string& bin, const BinRelease& release, double height);

@@ -89,7 +89,7 @@ TEST(BinFill, StrayPointsTheWallsAndTheArmAreNotContents) {
   AddBlock(cloud, {0.40, -0.53, 0.10}, {0.40, -0.525, 0.10});   // 2 points: stray pixels.
   AddBlock(cloud, {0.545, -0.58, 0.05}, {0.555, -0.38, 0.10});  // the near wall
   AddBlock(cloud, {0.38, -0.55, 0.20}, {0.52, -0.41, 0.25});    // the gripper above the bin
-  const std::vector<Capsule> arm{{{0.45, -0.48, 0.20}, {0.45, -0.48, 0.40}, 0.10}};
+  const CapsuleList arm{{{0.45, -0.48, 0.20}, {0.45, -0.48, 0.40}, 0.10}};
   bins.See(cloud, kIdentity, arm);
   EXPECT_DOUBLE_EQ(bins.Upright("others", 0, 0.035, 0.03).clearance, 0.03);
   BinRelease everywhere;

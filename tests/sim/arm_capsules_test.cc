@@ -77,7 +77,7 @@ TEST(ArmCapsules, CoverTheSimulatedArmsGeoms) {
     mj_resetData(model.get(), data.get());
     arm.SetArmPosition(data, q);
     mj_forward(model.get(), data.get());
-    const std::vector<cell::Capsule> capsules = cell::ArmCapsules(q, std::nullopt);
+    const cell::CapsuleList capsules = cell::ArmCapsules(q, std::nullopt);
     for (auto& [g, outside] : worst_outside) {
       for (const Eigen::Vector3d& p : SurfaceSamples(model, data, g)) {
         double nearest = 1e9;
