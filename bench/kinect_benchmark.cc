@@ -1,5 +1,6 @@
 // Per-stage cost of one synthetic Kinect frame of the default cell (640x480): colour + depth render,
-// segmentation render, depth conversion, noise model, organized cloud, and the whole capture.
+// segmentation render, depth conversion, noise model (with and without the correlation window, and the
+// window alone), organized cloud, and the whole capture.
 //   build/bench/kinect_benchmark
 #include <benchmark/benchmark.h>
 
@@ -59,11 +60,21 @@ void BM_KinectNoise(benchmark::State& state) {
   Cell& cell = TheCell();
   KinectCamera kinect(cell.model);
   const KinectFrame clean = kinect.Capture(cell.data, nullptr, nullptr);
-  const KinectNoiseParams params;
+  KinectNoiseParams params;
+  params.correlation_window_px = static_cast<int>(state.range(0));
   std::mt19937_64 rng(1);
   for (auto _ : state) benchmark::DoNotOptimize(ApplyKinectNoise(clean.depth, clean.intrinsics, params, rng));
 }
-BENCHMARK(BM_KinectNoise)->Unit(benchmark::kMillisecond);
+// The argument is the correlation window (px; 0: off, the default).
+BENCHMARK(BM_KinectNoise)->Arg(0)->Arg(9)->Unit(benchmark::kMillisecond);
+
+void BM_CorrelationWindow(benchmark::State& state) {
+  Cell& cell = TheCell();
+  KinectCamera kinect(cell.model);
+  const KinectFrame clean = kinect.Capture(cell.data, nullptr, nullptr);
+  for (auto _ : state) benchmark::DoNotOptimize(CorrelationWindowDepth(clean.depth, 9, 0.02));
+}
+BENCHMARK(BM_CorrelationWindow)->Unit(benchmark::kMillisecond);
 
 void BM_OrganizedCloud(benchmark::State& state) {
   Cell& cell = TheCell();

@@ -3,11 +3,13 @@
 #include <spdlog/fmt/fmt.h>
 
 #include <Eigen/Core>
+#include <opencv2/imgproc.hpp>
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <vector>
 
 namespace sortcell::sim {
 namespace {
@@ -18,28 +20,40 @@ Eigen::Vector3d BackProject(const CameraIntrinsics& k, int u, int v, double z) {
   return {(u - k.cx) * z / k.fx, (v - k.cy) * z / k.fy, z};
 }
 
+// Every pixel's point (camera frame, m), by row; NaN where the depth is not finite. Each pixel's normal
+// uses its four neighbours' points, so each is back-projected once here rather than up to seven times.
+std::vector<Eigen::Vector3d> BackProjectAll(const cv::Mat& depth, const CameraIntrinsics& k) {
+  std::vector<Eigen::Vector3d> points(depth.total(), Eigen::Vector3d::Constant(kNaN));
+  for (int v = 0; v < depth.rows; ++v) {
+    const float* z = depth.ptr<float>(v);
+    for (int u = 0; u < depth.cols; ++u) {
+      if (std::isfinite(z[u])) points[static_cast<size_t>(v) * depth.cols + u] = BackProject(k, u, v, z[u]);
+    }
+  }
+  return points;
+}
+
 // Neighbour offsets used for a tangent: the central difference when both sides lie on the same
 // surface, else the one-sided difference to the closer side, else none.
-bool Tangent(const cv::Mat& depth, const CameraIntrinsics& k, int u, int v, int du, int dv, Eigen::Vector3d& t) {
+bool Tangent(const cv::Mat& depth, const std::vector<Eigen::Vector3d>& points, int u, int v, int du, int dv,
+             Eigen::Vector3d& t) {
   const float z0 = depth.at<float>(v, u);
-  auto sample = [&](int s, Eigen::Vector3d& p) {
+  auto sample = [&](int s) -> const Eigen::Vector3d* {
     const int uu = u + s * du, vv = v + s * dv;
-    if (uu < 0 || vv < 0 || uu >= depth.cols || vv >= depth.rows) return false;
+    if (uu < 0 || vv < 0 || uu >= depth.cols || vv >= depth.rows) return nullptr;
     const float z = depth.at<float>(vv, uu);
     // A jump of more than 3 % of the depth between neighbours is an edge, not one surface.
-    if (!std::isfinite(z) || std::abs(z - z0) > 0.03f * z0) return false;
-    p = BackProject(k, uu, vv, z);
-    return true;
+    if (!std::isfinite(z) || std::abs(z - z0) > 0.03f * z0) return nullptr;
+    return &points[static_cast<size_t>(vv) * depth.cols + uu];
   };
-  Eigen::Vector3d plus = Eigen::Vector3d::Zero(), minus = Eigen::Vector3d::Zero();
-  const bool has_plus = sample(1, plus), has_minus = sample(-1, minus);
-  const Eigen::Vector3d centre = BackProject(k, u, v, z0);
-  if (has_plus && has_minus)
-    t = plus - minus;
-  else if (has_plus)
-    t = plus - centre;
-  else if (has_minus)
-    t = centre - minus;
+  const Eigen::Vector3d *plus = sample(1), *minus = sample(-1);
+  const Eigen::Vector3d& centre = points[static_cast<size_t>(v) * depth.cols + u];
+  if (plus && minus)
+    t = *plus - *minus;
+  else if (plus)
+    t = *plus - centre;
+  else if (minus)
+    t = centre - *minus;
   else
     return false;
   return true;
@@ -62,18 +76,20 @@ double QuantizationStep(const KinectNoiseParams& p, double z) {
 
 cv::Mat IncidenceAngles(const cv::Mat& depth, const CameraIntrinsics& k) {
   cv::Mat theta(depth.size(), CV_32FC1, cv::Scalar(kNaN));
+  const std::vector<Eigen::Vector3d> points = BackProjectAll(depth, k);
   for (int v = 0; v < depth.rows; ++v) {
     for (int u = 0; u < depth.cols; ++u) {
       const float z = depth.at<float>(v, u);
       if (!std::isfinite(z)) continue;
       Eigen::Vector3d tu, tv;
-      if (!Tangent(depth, k, u, v, 1, 0, tu) || !Tangent(depth, k, u, v, 0, 1, tv)) continue;
+      if (!Tangent(depth, points, u, v, 1, 0, tu) || !Tangent(depth, points, u, v, 0, 1, tv)) continue;
       const Eigen::Vector3d n = tu.cross(tv);
       const double norm = n.norm();
       if (norm <= 0) continue;
-      const Eigen::Vector3d ray = BackProject(k, u, v, z).normalized();
-      const double c = std::min(1.0, std::abs(n.dot(ray)) / norm);
-      theta.at<float>(v, u) = static_cast<float>(std::acos(c));
+      const Eigen::Vector3d ray = points[static_cast<size_t>(v) * depth.cols + u].normalized();
+      // In single precision, as it is kept: half the time of acos in double.
+      const float c = static_cast<float>(std::min(1.0, std::abs(n.dot(ray)) / norm));
+      theta.at<float>(v, u) = std::acos(c);
     }
   }
   return theta;
@@ -101,11 +117,33 @@ cv::Mat ProjectorShadowMask(const cv::Mat& depth, const CameraIntrinsics& k, dou
 std::string ToString(const KinectNoiseParams& p) {
   return fmt::format(
       "range {:g}-{:g} m, axial {:g} {:g} {:g}, steep {:g} {:g}, lateral {:g} {:g}, quantize {:d} {:g} {:g} {:g}, "
-      "grazing {:g}-{:g}, shadows {:d}, scale {:g}, window {} px {:g} m",
+      "grazing {:g}-{:g}, shadows {:d}, scale {:g}, window {} px {:g} m, draws {}",
       p.min_range_m, p.max_range_m, p.axial_a_m, p.axial_b_per_m, p.axial_c_m, p.steep_gain, p.steep_angle_rad,
       p.lateral_a_px, p.lateral_b_px, p.quantize, p.ir_focal_px, p.baseline_m, p.subpixel, p.grazing_start_rad,
-      p.grazing_end_rad, p.shadows, p.noise_scale, p.correlation_window_px, p.window_surface_m);
+      p.grazing_end_rad, p.shadows, p.noise_scale, p.correlation_window_px, p.window_surface_m, kKinectNoiseDraws);
 }
+
+namespace {
+
+// The window's mean at (u, v) tested neighbour by neighbour (`inverse`: each pixel's 1 / depth), for
+// pixels whose window spans a depth edge or a steep surface.
+float MeanOverSurface(const cv::Mat& depth, const cv::Mat& inverse, int u, int v, int half, float tolerance) {
+  const float z0 = depth.at<float>(v, u);
+  double disparity = 0;
+  int n = 0;
+  for (int y = std::max(0, v - half); y <= std::min(depth.rows - 1, v + half); ++y) {
+    const float* row = depth.ptr<float>(y);
+    const double* row_inverse = inverse.ptr<double>(y);
+    for (int x = std::max(0, u - half); x <= std::min(depth.cols - 1, u + half); ++x) {
+      const bool same_surface = std::abs(row[x] - z0) < tolerance;  // False for NaN.
+      disparity += same_surface ? row_inverse[x] : 0.0;
+      n += same_surface ? 1 : 0;
+    }
+  }
+  return static_cast<float>(n / disparity);
+}
+
+}  // namespace
 
 cv::Mat CorrelationWindowDepth(const cv::Mat& depth, int window, double surface_m) {
   if (window <= 1) return depth;
@@ -115,27 +153,38 @@ cv::Mat CorrelationWindowDepth(const cv::Mat& depth, int window, double surface_
         fmt::format("correlation window: expected an odd window and a surface tolerance > 0, got {} px and {} m",
                     window, surface_m));
   }
+  // No library filter keeps the mean to one surface. But where a window's nearest and farthest depths
+  // (erosion and dilation) lie within the tolerance of its centre, every neighbour passes the test, and
+  // the mean is box filters' sums of disparity over valid pixels; only windows across a depth edge are
+  // tested neighbour by neighbour.
+  cv::Mat valid;
+  cv::compare(depth, depth, valid, cv::CMP_EQ);  // NaN compares unequal.
+  cv::Mat nearest = depth.clone(), farthest = depth.clone(), disparity, count;
+  nearest.setTo(std::numeric_limits<float>::infinity(), ~valid);
+  farthest.setTo(-std::numeric_limits<float>::infinity(), ~valid);
+  const cv::Mat box = cv::Mat::ones(window, window, CV_8UC1);
+  cv::erode(nearest, nearest, box);  // Outside the image counts as nothing there, as below.
+  cv::dilate(farthest, farthest, box);
+  cv::Mat inverse(depth.size(), CV_64FC1, cv::Scalar(0));
+  cv::divide(1.0, depth, inverse, CV_64F);
+  inverse.setTo(0, ~valid);
+  const cv::Size size(window, window);
+  cv::boxFilter(inverse, disparity, CV_64F, size, cv::Point(-1, -1), false, cv::BORDER_CONSTANT);
+  valid.convertTo(count, CV_64F, 1.0 / 255);
+  cv::boxFilter(count, count, CV_64F, size, cv::Point(-1, -1), false, cv::BORDER_CONSTANT);
+
   const int half = window / 2;
   const float tolerance = static_cast<float>(surface_m);
   cv::Mat out = depth.clone();
-  // Written out (no library filter keeps the mean to one surface): about 25 M tests per 640x480 frame.
   for (int v = 0; v < depth.rows; ++v) {
+    const float* z = depth.ptr<float>(v);
+    const float *lo = nearest.ptr<float>(v), *hi = farthest.ptr<float>(v);
+    const double *sum = disparity.ptr<double>(v), *n = count.ptr<double>(v);
     float* row_out = out.ptr<float>(v);
     for (int u = 0; u < depth.cols; ++u) {
-      const float z0 = depth.at<float>(v, u);
-      if (!std::isfinite(z0)) continue;
-      double disparity = 0;
-      int n = 0;
-      for (int y = std::max(0, v - half); y <= std::min(depth.rows - 1, v + half); ++y) {
-        const float* row = depth.ptr<float>(y);
-        for (int x = std::max(0, u - half); x <= std::min(depth.cols - 1, u + half); ++x) {
-          if (std::abs(row[x] - z0) < tolerance) {  // False for NaN.
-            disparity += 1.0 / row[x];
-            ++n;
-          }
-        }
-      }
-      row_out[u] = static_cast<float>(n / disparity);
+      if (!std::isfinite(z[u])) continue;
+      row_out[u] = hi[u] - lo[u] < tolerance ? static_cast<float>(n[u] / sum[u])
+                                             : MeanOverSurface(depth, inverse, u, v, half, tolerance);
     }
   }
   return out;
@@ -151,16 +200,21 @@ cv::Mat ApplyKinectNoise(const cv::Mat& ideal, const CameraIntrinsics& k, const 
   const cv::Mat theta = IncidenceAngles(ideal, k);  // Dropouts follow the real surface.
   const cv::Mat shadow =
       p.shadows ? ProjectorShadowMask(ideal, k, p.baseline_m) : cv::Mat(windowed.size(), CV_8UC1, cv::Scalar(0));
-  std::normal_distribution<double> gauss(0.0, 1.0);
-  std::uniform_real_distribution<double> uniform(0.0, 1.0);
+  // Every pixel's draws at once (three normals, one uniform), by OpenCV's generator (Ziggurat normals, a
+  // quarter of the time std::normal_distribution takes), seeded from the frame's stream. Each pixel has
+  // its own draws, so its noise does not depend on what the rest of the image holds.
+  cv::RNG frame_rng(rng());
+  cv::Mat normals(windowed.rows, windowed.cols, CV_64FC3), uniforms(windowed.rows, windowed.cols, CV_64FC1);
+  frame_rng.fill(normals, cv::RNG::NORMAL, 0.0, 1.0);
+  frame_rng.fill(uniforms, cv::RNG::UNIFORM, 0.0, 1.0);
   const double disparity_scale = p.ir_focal_px * p.baseline_m;  // disparity (px) = scale / z
 
   cv::Mat out(windowed.size(), CV_32FC1, cv::Scalar(kNaN));
   for (int v = 0; v < windowed.rows; ++v) {
+    const cv::Vec3d* normal = normals.ptr<cv::Vec3d>(v);
+    const double* uniform = uniforms.ptr<double>(v);
     for (int u = 0; u < windowed.cols; ++u) {
-      // The same number of draws for every pixel keeps the noise of one pixel independent of
-      // what the rest of the image holds.
-      const double n_u = gauss(rng), n_v = gauss(rng), n_z = gauss(rng), drop = uniform(rng);
+      const double n_u = normal[u][0], n_v = normal[u][1], n_z = normal[u][2], drop = uniform[u];
       const float t0 = theta.at<float>(v, u);
       const double t_here = std::isfinite(t0) ? t0 : 0.0;
       const double sigma_l =

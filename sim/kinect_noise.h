@@ -45,14 +45,21 @@ struct KinectNoiseParams {
   /// round objects come out flatter towards the camera. Measured on real views of a 6 cm ball
   /// (../shared/real/rgbd-object, ball_2): the mean of CVFH's viewpoint block was bin 114.8 of 128,
   /// against 106 for simulated balls without the window and 113.5 with a 9 px one. 0 or 1 = off: off for
-  /// now (models trained with it in half of their captures lost three clutter_100 items to recognition).
+  /// now (the cell's captures and its models' training captures have to take it on together, judged on
+  /// several draws of the sweeps' noise).
   int correlation_window_px = 0;
   double window_surface_m = 0.02;
   /// The colour camera: exposure, white balance, saturation, blur and noise as measured on real views.
   KinectColourParams colour;
 };
 
-/// The parameters in one line, for records and digests of what a capture was rendered through.
+/// Which numbers the noise draws for given parameters and generator state: raised when that changes, so
+/// that a model trained on captures of another draw is trained again (its digest holds ToString's line).
+/// 2: every pixel's draws made at once by OpenCV's generator (1: std::normal_distribution pixel by pixel).
+inline constexpr int kKinectNoiseDraws = 2;
+
+/// The parameters in one line (with kKinectNoiseDraws), for records and digests of what a capture was rendered
+/// through.
 std::string ToString(const KinectNoiseParams& params);
 
 /// Axial standard deviation (m) at depth z (m) and incidence angle theta (rad).

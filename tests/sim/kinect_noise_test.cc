@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -194,6 +195,54 @@ TEST(KinectNoise, TheWindowKeepsToOneSurface) {
   const cv::Mat windowed = CorrelationWindowDepth(step, 9, 0.02);
   EXPECT_NEAR(windowed.at<float>(240, 319), 1.0, 1e-6);
   EXPECT_NEAR(windowed.at<float>(240, 320), 1.05, 1e-6);
+}
+
+// The window's definition, neighbour by neighbour, for every pixel: the reference of the fast filter.
+cv::Mat WindowByDefinition(const cv::Mat& depth, int window, float tolerance) {
+  cv::Mat out = depth.clone();
+  const int half = window / 2;
+  for (int v = 0; v < depth.rows; ++v) {
+    for (int u = 0; u < depth.cols; ++u) {
+      const float z0 = depth.at<float>(v, u);
+      if (!std::isfinite(z0)) continue;
+      double disparity = 0;
+      int n = 0;
+      for (int y = std::max(0, v - half); y <= std::min(depth.rows - 1, v + half); ++y) {
+        for (int x = std::max(0, u - half); x <= std::min(depth.cols - 1, u + half); ++x) {
+          const float z = depth.at<float>(y, x);
+          if (std::abs(z - z0) < tolerance) disparity += 1.0 / z, ++n;
+        }
+      }
+      out.at<float>(v, u) = static_cast<float>(n / disparity);
+    }
+  }
+  return out;
+}
+
+TEST(KinectNoise, TheFastWindowIsTheWindowsDefinition) {
+  // A tilted table, a ball on it, a box edge reaching the image's border, holes of no depth and a lone pixel.
+  cv::Mat depth = Tilted(1.0, 0.6);
+  const cv::Mat ball = Sphere(0.7, 0.03);
+  cv::Mat on_ball;
+  cv::compare(ball, ball, on_ball, cv::CMP_EQ);  // NaN compares unequal.
+  ball.copyTo(depth, on_ball);
+  depth(cv::Rect(0, 0, 200, 120)).setTo(0.9);
+  depth(cv::Rect(400, 300, 30, 12)).setTo(std::numeric_limits<float>::quiet_NaN());
+  depth.row(479).colRange(0, 300).setTo(std::numeric_limits<float>::quiet_NaN());
+  depth.at<float>(10, 630) = 1.5f;
+  for (int window : {3, 9}) {
+    const cv::Mat fast = CorrelationWindowDepth(depth, window, 0.02),
+                  reference = WindowByDefinition(depth, window, 0.02f);
+    EXPECT_EQ(cv::countNonZero(fast == fast), cv::countNonZero(reference == reference)) << window << " px";
+    cv::Mat difference;
+    cv::absdiff(fast, reference, difference);
+    cv::Mat no_depth;
+    cv::compare(reference, reference, no_depth, cv::CMP_NE);
+    difference.setTo(0, no_depth);
+    double worst = 0;
+    cv::minMaxLoc(difference, nullptr, &worst);
+    EXPECT_LT(worst, 1e-6) << window << " px";
+  }
 }
 
 TEST(KinectNoise, TheWindowRefusesAnEvenWindowAToleranceOfZeroAndAnotherImageType) {
