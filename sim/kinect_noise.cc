@@ -183,8 +183,9 @@ cv::Mat CorrelationWindowDepth(const cv::Mat& depth, int window, double surface_
     float* row_out = out.ptr<float>(v);
     for (int u = 0; u < depth.cols; ++u) {
       if (!std::isfinite(z[u])) continue;
-      row_out[u] = hi[u] - lo[u] < tolerance ? static_cast<float>(n[u] / sum[u])
-                                             : MeanOverSurface(depth, inverse, u, v, half, tolerance);
+      const bool one_surface = hi[u] - z[u] < tolerance && z[u] - lo[u] < tolerance;
+      row_out[u] =
+          one_surface ? static_cast<float>(n[u] / sum[u]) : MeanOverSurface(depth, inverse, u, v, half, tolerance);
     }
   }
   return out;
