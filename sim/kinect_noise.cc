@@ -165,7 +165,7 @@ cv::Mat CorrelationWindowDepth(const cv::Mat& depth, int window, double surface_
   const cv::Mat box = cv::Mat::ones(window, window, CV_8UC1);
   cv::erode(nearest, nearest, box);  // Outside the image counts as nothing there, as below.
   cv::dilate(farthest, farthest, box);
-  cv::Mat inverse(depth.size(), CV_64FC1, cv::Scalar(0));
+  cv::Mat inverse;
   cv::divide(1.0, depth, inverse, CV_64F);
   inverse.setTo(0, ~valid);
   const cv::Size size(window, window);

@@ -107,6 +107,7 @@ void AddSensorVariationOptions(CLI::App& cmd, simcell::EpisodeOptions& o) {
   cmd.add_option("--noise-scale", o.noise_scale, "Scale of the Kinect's depth noise")->capture_default_str();
   cmd.add_option("--noise-seed", o.noise_seed,
                  "Another draw of the Kinect's noise over the same scene (0: the seed's own draw)")
+      ->check(kUnsignedInteger)
       ->capture_default_str();
   cmd.add_option("--camera-shift", o.variation.camera_shift_m,
                  "Move the Kinect this far (m) in a random direction; the robot is given the nominal pose")

@@ -60,6 +60,8 @@ TEST(EpisodeCli, BadSceneCountAndPlacement) {
   ExpectOneLineError(RunSortcell("episode --scene " + kCell + " --place bottle1=0.5 --model x --out " + TempPath("e")),
                      "--place: expected NAME=x,y[,yaw[,lying]]");
   ExpectOneLineError(RunSortcell("episode --scene " + kCell + " --seed -1 --out " + TempPath("f")), "--seed");
+  ExpectOneLineError(RunSortcell("episode --scene " + kCell + " --noise-seed -1 --out " + TempPath("f2")),
+                     "--noise-seed");
 }
 
 TEST(EpisodeCli, BadVideoSize) {
