@@ -44,10 +44,9 @@ struct KinectNoiseParams {
   /// window's mean disparity over the same surface (neighbours within window_surface_m in depth): small
   /// round objects come out flatter towards the camera. Measured on real views of a 6 cm ball
   /// (../shared/real/rgbd-object, ball_2): the mean of CVFH's viewpoint block was bin 114.8 of 128,
-  /// against 106 for simulated balls without the window and 113.5 with a 9 px one. 0 or 1 = off: off for
-  /// now (the cell's captures and its models' training captures have to take it on together, judged on
-  /// several draws of the sweeps' noise).
-  int correlation_window_px = 0;
+  /// against 106 for simulated balls without the window and 113.5 with a 9 px one. On in the cell's captures
+  /// and in its models' training captures alike (docs/cell.md: what it did to the sweeps). 0 or 1 = off.
+  int correlation_window_px = 9;
   double window_surface_m = 0.02;
   /// The colour camera: exposure, white balance, saturation, blur and noise as measured on real views.
   KinectColourParams colour;

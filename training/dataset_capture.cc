@@ -103,7 +103,8 @@ class CaptureRig {
   // Captures the current state and labels each segment from the ground-truth label image. A capture
   // that cannot be segmented (no table or no depth in view) has no segments; `failure` says why.
   std::vector<LabelledSegment> CaptureSegments(const std::string& camera, std::mt19937_64& rng, std::string* failure,
-                                               const perception::SegmentationParams& params = {}) {
+                                               const perception::SegmentationParams& params = {},
+                                               double noise_scale = 1) {
     mj_forward(model_.get(), data_.get());
     sim::KinectCamera& kinect = Camera(camera);
     kinect.SetLighting(RandomLighting(rng));
@@ -111,6 +112,7 @@ class CaptureRig {
     // learn one exact exposure, and a test set is seen through varied cameras too.
     sim::KinectNoiseParams noise;
     noise.colour = sim::JitterColour(noise.colour, rng);
+    noise.noise_scale = noise_scale;
     sim::FrameTruth shown;  // Training labels: the true camera pose and label image.
     const sim::KinectFrame frame = kinect.Capture(data_, &noise, &rng, &shown);
     const auto cloud = sim::ToOrganizedCloud(frame);
@@ -380,6 +382,13 @@ void AddSceneSamples(const CaptureRig& rig, const files::ObjectSet& set, const s
   for (int o : placed) tally.missed += !found[LabelOf(rig, set.objects[o].name)];
 }
 
+// Scene `scene`'s depth noise factor, from a stream of its own (the scene is what it is at any factor).
+double DepthNoiseScale(const SceneOptions& options, int scene) {
+  if (options.depth_noise_max <= 1) return 1;
+  std::mt19937_64 rng = EpisodeRng(options.seed, 0xD0100000ull + static_cast<uint64_t>(scene));
+  return std::uniform_real_distribution<double>(1.0, options.depth_noise_max)(rng);
+}
+
 }  // namespace
 
 Dataset CaptureScenes(const files::ObjectSet& set, const SceneOptions& options, const std::filesystem::path& dir) {
@@ -413,8 +422,9 @@ Dataset CaptureScenes(const files::ObjectSet& set, const SceneOptions& options, 
     }
     perception::SegmentationParams segmentation;
     segmentation.clustering = options.clustering;
-    AddSceneSamples(rig, set, rig.CaptureSegments("kinect", rng, nullptr, segmentation), placed, scene, dir, dataset,
-                    tally);
+    AddSceneSamples(rig, set,
+                    rig.CaptureSegments("kinect", rng, nullptr, segmentation, DepthNoiseScale(options, scene)), placed,
+                    scene, dir, dataset, tally);
     progress.Advance();
   }
   progress.Finish();
@@ -428,7 +438,8 @@ Dataset CaptureScenes(const files::ObjectSet& set, const SceneOptions& options, 
                      {"objects_per_scene", {options.min_objects, options.max_objects}},
                      {"placement", PlacementModesText(options.modes)},
                      {"lying_fraction", options.placement.lying_fraction},
-                     {"colour_jitter", options.colour_jitter}};
+                     {"colour_jitter", options.colour_jitter},
+                     {"depth_noise_max", options.depth_noise_max}};
   return dataset;
 }
 

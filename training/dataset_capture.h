@@ -51,6 +51,9 @@ struct SceneOptions {
   /// Each scene's objects' colours varied as the episodes' colour_jitter axis varies them, at a level
   /// drawn per scene from [0, colour_jitter] (0: the objects' own colours).
   double colour_jitter = 0;
+  /// Each scene's depth noise (both sigmas) scaled by a factor drawn per scene from [1, depth_noise_max]
+  /// (1: the Kinect's own), so that a model also knows the noisier depth of other sensors and rooms.
+  double depth_noise_max = 1;
   /// How scenes are segmented: as the cell segments them, so touching objects come apart.
   perception::SegmentationParams::Clustering clustering = perception::SegmentationParams::Clustering::kConvex;
 };

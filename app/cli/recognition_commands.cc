@@ -28,6 +28,7 @@ struct DatasetOptions {
   std::vector<std::string> placement{"sparse"};
   double lying_fraction = 0;
   double colour_jitter = 0;
+  double depth_noise_max = 1;
 };
 
 struct TrainOptions {
@@ -162,6 +163,7 @@ training::Dataset CaptureSimulated(const DatasetOptions& o, const files::ObjectS
     for (const auto& mode : o.placement) options.modes.push_back(*sim::ParsePlacementMode(mode));  // Checked.
     options.placement.lying_fraction = o.lying_fraction;
     options.colour_jitter = o.colour_jitter;
+    options.depth_noise_max = o.depth_noise_max;
     return training::CaptureScenes(set, options, o.out);
   }
   training::TurntableOptions options;
@@ -244,8 +246,14 @@ void AddDatasetCommand(CLI::App& app, std::function<int()>& run, const std::vect
                                         "the episodes' colour_jitter varies them (0-1)")
                             ->check(CLI::Range(0.0, 1.0))
                             ->capture_default_str();
-  for (CLI::Option* scene_only : {placement, lying, jitter}) scene_only->needs(scenes);
-  for (CLI::Option* simulated : {views, scenes, seed, occluded, placement, lying, jitter}) rgbd->excludes(simulated);
+  CLI::Option* depth_noise =
+      cmd->add_option("--depth-noise-max", o->depth_noise_max,
+                      "Scenes: each scene's Kinect depth noise scaled by a factor drawn from [1, M] (1: the Kinect's)")
+          ->check(CLI::Range(1.0, 5.0))
+          ->capture_default_str();
+  for (CLI::Option* scene_only : {placement, lying, jitter, depth_noise}) scene_only->needs(scenes);
+  for (CLI::Option* simulated : {views, scenes, seed, occluded, placement, lying, jitter, depth_noise})
+    rgbd->excludes(simulated);
   cmd->callback([&run, o, command_line] { run = [o, command_line] { return RunDatasetCommand(*o, command_line); }; });
 }
 

@@ -179,10 +179,11 @@ TEST(EpisodeScenario, AHeavyLowFrictionObjectIsCarriedWithoutDropping) {
   }
 }
 
-// A bottle five times its mass: the lift's acceleration takes more than 60 % of the pads' friction, the
-// grip is firmed at once (squeezed_harder_in), and it is carried to its bin.
+// A bottle seven times its mass: the lift's acceleration takes more than 60 % of the pads' friction, the
+// grip is firmed at once (squeezed_harder_in), and it is carried to its bin. (Five times took 0.54 once the
+// Kinect's correlation window smoothed the depth the grasp is planned on, and was not firmed; six 0.62.)
 TEST(EpisodeScenario, ASlipIsDetectedAndTheGripFirmed) {
-  const auto m = Episode("slip", "--seed 4 --objects 1 --mass-scale 5 --place bottle3=0.50,0.05");
+  const auto m = Episode("slip", "--seed 4 --objects 1 --mass-scale 7 --place bottle3=0.50,0.05");
   ASSERT_EQ(m["items"].size(), 1u);
   EXPECT_EQ(m["items"][0]["outcome"], "sorted") << m["items"][0].dump();
   ASSERT_FALSE(m["attempts"].empty());

@@ -122,8 +122,9 @@ TEST_F(TouchingBoxes, OffsetBoxesComeApartAtTheCreaseInMostDrawsOfTheNoise) {
 // The red cup touching the red box and the red bottle, placed as dense scenes place them (the pair's
 // placement drawn from the seed): arrangements in which LCCP alone merges the pair, because supervoxels
 // straddle the contact (each of them fails with ConvexClusteringParams::split_at_creases off). Split at
-// the contact's crease, each comes out as two segments. Of seeds 0-39, LCCP alone gets 9 cup-and-box
-// and 4 bottle-and-cup arrangements wrong; the split mends these 3 and 2 (the others stay wrong).
+// the contact's crease, each comes out as two segments. Of seeds 0-39, LCCP alone gets 11 cup-and-box
+// and 6 bottle-and-cup arrangements wrong; the split mends these 2 and 1 (the others stay wrong). Before
+// the Kinect's correlation window (2026-12-06), which blurs the depth across a contact, 9 and 4, mended 3 and 2.
 TEST(TouchingPaperObjects, ReddishPairsComeApartAtTheirContact) {
   const sim::Model model = sim::Model::FromFile((kRoot / "scenes/cell.xml").string());
   sim::Data data(model);
@@ -146,11 +147,7 @@ TEST(TouchingPaperObjects, ReddishPairsComeApartAtTheirContact) {
     std::string a, b;
     uint64_t seed;
   };
-  for (const Arrangement& arrangement : {Arrangement{"cup", "box", 2},
-                                         {"cup", "box", 15},
-                                         {"cup", "box", 38},
-                                         {"bottle1", "cup", 15},
-                                         {"bottle1", "cup", 25}}) {
+  for (const Arrangement& arrangement : {Arrangement{"cup", "box", 14}, {"cup", "box", 17}, {"bottle1", "cup", 19}}) {
     const std::vector<int> bodies{model.Id(mjOBJ_BODY, arrangement.a), model.Id(mjOBJ_BODY, arrangement.b)};
     const std::vector<sim::ObjectShape> shapes{sim::ObjectShapeOf(model, bodies[0]),
                                                sim::ObjectShapeOf(model, bodies[1])};

@@ -1,6 +1,7 @@
-// Training scenes with the objects' colours jittered (`dataset --scenes N --colour-jitter J`, what the
-// default recipe trains on): the same seed gives the same samples, the colours differ from the
-// unjittered scenes', and bad values are refused.
+// Training scenes varied as the default recipe varies them: the objects' colours jittered (`dataset
+// --scenes N --colour-jitter J`) and the Kinect's depth noise scaled per scene (`--depth-noise-max M`). The
+// same seed gives the same samples, the objects and their places are those of the plain scenes, what
+// is varied differs from the plain scenes', and bad values are refused.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -67,6 +68,46 @@ TEST(ColourJitterCapture, BadValuesAreRefused) {
       "--colour-jitter");
   ExpectOneLineError(RunSortcell("dataset --objects " + set + " --colour-jitter 0.5 --out " + TempPath("j2")),
                      "--colour-jitter");
+}
+
+// CVFH histograms by (scene, instance).
+std::map<std::pair<int, std::string>, Eigen::VectorXf> Shapes(const sortcell::training::Dataset& d) {
+  std::map<std::pair<int, std::string>, Eigen::VectorXf> shapes;
+  for (const auto& s : d.samples) shapes[{s.scene, s.instance}] = s.parts.cvfh;
+  return shapes;
+}
+
+TEST(DepthNoiseCapture, SameSeedSameScenesSeenThroughOtherNoise) {
+  const auto plain = Scenes("noise_one", "");
+  const auto noisy = Scenes("noise_three", " --depth-noise-max 3");
+  const auto again = Scenes("noise_again", " --depth-noise-max 3");
+  EXPECT_EQ(noisy.capture["depth_noise_max"].get<double>(), 3.0);
+  EXPECT_EQ(plain.capture["depth_noise_max"].get<double>(), 1.0);
+  ASSERT_EQ(noisy.samples.size(), again.samples.size());
+  for (size_t i = 0; i < noisy.samples.size(); ++i) {
+    EXPECT_EQ(noisy.samples[i].instance, again.samples[i].instance);
+    EXPECT_TRUE(noisy.samples[i].parts.cvfh.isApprox(again.samples[i].parts.cvfh));
+  }
+  // The same objects in the same scenes (the factor draws from a stream of its own), other shapes seen.
+  const auto a = Shapes(plain), b = Shapes(noisy);
+  int compared = 0, differ = 0;
+  for (const auto& [key, shape] : a) {
+    const auto other = b.find(key);
+    if (other == b.end()) continue;
+    ++compared;
+    differ += !shape.isApprox(other->second, 1e-3F);
+  }
+  EXPECT_GE(compared, 6);
+  EXPECT_GE(differ, compared / 2) << differ << " of " << compared;
+}
+
+TEST(DepthNoiseCapture, BadValuesAreRefused) {
+  const std::string set = kSource + "/scenes/objects/paper.yaml";
+  ExpectOneLineError(
+      RunSortcell("dataset --objects " + set + " --scenes 1 --depth-noise-max 0.5 --out " + TempPath("n1")),
+      "--depth-noise-max");
+  ExpectOneLineError(RunSortcell("dataset --objects " + set + " --depth-noise-max 2 --out " + TempPath("n2")),
+                     "--depth-noise-max");
 }
 
 }  // namespace
