@@ -30,11 +30,24 @@ sortcell::training::Dataset Scenes(const std::string& name, const std::string& e
   return sortcell::training::LoadDataset(out);
 }
 
-// Hue histograms by (scene, instance).
-std::map<std::pair<int, std::string>, Eigen::VectorXf> Hues(const sortcell::training::Dataset& d) {
-  std::map<std::pair<int, std::string>, Eigen::VectorXf> hues;
-  for (const auto& s : d.samples) hues[{s.scene, s.instance}] = s.parts.hsv.head(90);
-  return hues;
+using Part = Eigen::VectorXf (*)(const sortcell::training::Sample&);
+Eigen::VectorXf Hue(const sortcell::training::Sample& s) { return s.parts.hsv.head(90); }
+Eigen::VectorXf Shape(const sortcell::training::Sample& s) { return s.parts.cvfh; }
+
+// Of the objects both captures hold (by scene and instance): how many, and how many `differ` tells apart.
+template <class Differ>
+std::pair<int, int> CompareObjects(const sortcell::training::Dataset& a, const sortcell::training::Dataset& b,
+                                   Part part, Differ differ) {
+  std::map<std::pair<int, std::string>, Eigen::VectorXf> in_a;
+  for (const auto& s : a.samples) in_a[{s.scene, s.instance}] = part(s);
+  int compared = 0, differing = 0;
+  for (const auto& s : b.samples) {
+    const auto other = in_a.find({s.scene, s.instance});
+    if (other == in_a.end()) continue;
+    ++compared;
+    differing += differ(other->second, part(s)) ? 1 : 0;
+  }
+  return {compared, differing};
 }
 
 TEST(ColourJitterCapture, SameSeedSameColoursOtherThanTheObjectsOwn) {
@@ -49,14 +62,9 @@ TEST(ColourJitterCapture, SameSeedSameColoursOtherThanTheObjectsOwn) {
     EXPECT_TRUE(jittered.samples[i].parts.hsv.isApprox(again.samples[i].parts.hsv));
   }
   // The same objects in the same scenes (the jitter draws from a stream of its own), in other colours.
-  const auto a = Hues(plain), b = Hues(jittered);
-  int compared = 0, differ = 0;
-  for (const auto& [key, hue] : a) {
-    const auto other = b.find(key);
-    if (other == b.end()) continue;
-    ++compared;
-    differ += (hue - other->second).cwiseAbs().sum() > 0.05 * hue.sum();
-  }
+  const auto [compared, differ] = CompareObjects(plain, jittered, Hue, [](const auto& hue, const auto& other) {
+    return (hue - other).cwiseAbs().sum() > 0.05 * hue.sum();
+  });
   EXPECT_GE(compared, 6);
   EXPECT_GE(differ, compared / 2) << differ << " of " << compared;
 }
@@ -68,13 +76,6 @@ TEST(ColourJitterCapture, BadValuesAreRefused) {
       "--colour-jitter");
   ExpectOneLineError(RunSortcell("dataset --objects " + set + " --colour-jitter 0.5 --out " + TempPath("j2")),
                      "--colour-jitter");
-}
-
-// CVFH histograms by (scene, instance).
-std::map<std::pair<int, std::string>, Eigen::VectorXf> Shapes(const sortcell::training::Dataset& d) {
-  std::map<std::pair<int, std::string>, Eigen::VectorXf> shapes;
-  for (const auto& s : d.samples) shapes[{s.scene, s.instance}] = s.parts.cvfh;
-  return shapes;
 }
 
 TEST(DepthNoiseCapture, SameSeedSameScenesSeenThroughOtherNoise) {
@@ -89,14 +90,8 @@ TEST(DepthNoiseCapture, SameSeedSameScenesSeenThroughOtherNoise) {
     EXPECT_TRUE(noisy.samples[i].parts.cvfh.isApprox(again.samples[i].parts.cvfh));
   }
   // The same objects in the same scenes (the factor draws from a stream of its own), other shapes seen.
-  const auto a = Shapes(plain), b = Shapes(noisy);
-  int compared = 0, differ = 0;
-  for (const auto& [key, shape] : a) {
-    const auto other = b.find(key);
-    if (other == b.end()) continue;
-    ++compared;
-    differ += !shape.isApprox(other->second, 1e-3F);
-  }
+  const auto [compared, differ] = CompareObjects(
+      plain, noisy, Shape, [](const auto& shape, const auto& other) { return !shape.isApprox(other, 1e-3F); });
   EXPECT_GE(compared, 6);
   EXPECT_GE(differ, compared / 2) << differ << " of " << compared;
 }
