@@ -68,9 +68,10 @@ struct RecipeGroup {
 
 // The recipe of `set`: 150 scenes of its own objects; with a training variety, the variety placed among the
 // set's own objects in groups of at most kVarietyGroup (each group the set's objects and a share of the
-// variety), with as many scenes per object as the set's own objects have. Among the set's objects rather than
-// apart: a variety of balls seen only beside other balls taught the ycb_dev model little about balls on a table
-// of mixed objects (real ball_2 called ball in 1.7 % of its views, against 44.6 % in the same scenes).
+// variety), with as many scenes per object as the set's own objects have (so with two groups or more the set's
+// own objects are seen in each). Among the set's objects rather than apart: the ycb_dev model with a variety
+// captured apart called real ball_2 ball in 1.7 % of its views, with the generated balls among its own
+// objects 44.6 % (tried; the first variety also held our printed objects, so placement is not the only difference).
 std::vector<RecipeGroup> Recipe(const files::ObjectSet& set) {
   constexpr int kScenes = 150;
   const size_t own = set.objects.size(), n = set.training_variety.size();
