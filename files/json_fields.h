@@ -20,6 +20,8 @@ template <typename T>
 const char* JsonExpectedType() {
   if constexpr (std::is_same_v<T, std::string>)
     return "a string";
+  else if constexpr (std::is_same_v<T, bool>)
+    return "true or false";
   else if constexpr (std::is_unsigned_v<T>)
     return "a non-negative integer";
   else if constexpr (std::is_integral_v<T>)
@@ -34,6 +36,8 @@ template <typename T>
 bool JsonHolds(const nlohmann::json& value) {
   if constexpr (std::is_same_v<T, std::string>) {
     return value.is_string();
+  } else if constexpr (std::is_same_v<T, bool>) {
+    return value.is_boolean();
   } else if constexpr (std::is_integral_v<T>) {
     if (value.is_number_unsigned()) {
       return value.get<uint64_t>() <= static_cast<uint64_t>(std::numeric_limits<T>::max());

@@ -44,6 +44,17 @@ DescriptorKind ParseDescriptorKind(const std::string& name) {
 
 int DescriptorSize(DescriptorKind kind) { return kind == DescriptorKind::kCvfh ? kCvfhBins : kHsvBins + kCvfhBins; }
 
+std::vector<FeatureBlock> DescriptorBlocks(DescriptorKind kind) {
+  std::vector<FeatureBlock> blocks;
+  int colour = 0;
+  if (kind != DescriptorKind::kCvfh) {
+    blocks = {{0, kHueBins}, {kHueBins, kSaturationBins}, {kHueBins + kSaturationBins, kValueBins}};
+    colour = kHsvBins;
+  }
+  for (const auto& [first, size] : kCvfhBlocks) blocks.push_back({colour + first, size});
+  return blocks;
+}
+
 bool SameDescriptorParams(const DescriptorParams& a, const DescriptorParams& b) {
   std::vector<double> values_a, values_b;
   VisitDescriptorParams(a, [&](const char*, auto value) { values_a.push_back(value); });

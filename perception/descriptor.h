@@ -14,9 +14,11 @@
 
 #include <string>
 #include <type_traits>
+#include <vector>
 
 #include "perception/cloud.h"
 #include "perception/cvfh_descriptor.h"
+#include "perception/feature_scaling.h"
 #include "perception/hsv_histogram.h"
 
 namespace sortcell::perception {
@@ -31,6 +33,10 @@ std::string DescriptorTitle(DescriptorKind kind);
 DescriptorKind ParseDescriptorKind(const std::string& name);
 /// 308 or 500.
 int DescriptorSize(DescriptorKind kind);
+
+/// The histograms a descriptor of `kind` is made of, in order: [hue | saturation | value] for the colour
+/// kinds, then CVFH's five blocks (kCvfhBlocks). What the classifier's scaling scales as one.
+std::vector<FeatureBlock> DescriptorBlocks(DescriptorKind kind);
 
 struct DescriptorParams {
   HsvParams hsv;

@@ -33,11 +33,24 @@ std::vector<int> Spread(int n, int limit) {
   return rows;
 }
 
-Eigen::MatrixXf SquareRooted(const Eigen::MatrixXf& raw) {
+// The rows the distance compares: the colour counts re-expressed per 5 mm voxel of the object (the HSV
+// block times the CVFH f1 block's sum over its point count), then square-rooted. CVFH counts downsampled
+// points, a measure of the object's surface that does not change with the sensor's distance; HSV counts
+// every point, about 1/distance^2 of them. In raw points a real apple seen from 0.8 m held three times the
+// points of our apples seen by the cell's Kinect, and every view of it was unfamiliar.
+Eigen::MatrixXf ComparedRows(const Eigen::MatrixXf& raw, bool colour_per_voxel) {
   if (!raw.allFinite() || (raw.size() > 0 && raw.minCoeff() < 0)) {
     throw std::invalid_argument("familiarity: raw descriptor parts hold a negative or non-finite count");
   }
-  return raw.array().sqrt().matrix();
+  Eigen::MatrixXf rows = raw;
+  if (!colour_per_voxel) return rows.array().sqrt().matrix();
+  const auto [f1_start, f1_size] = kCvfhBlocks[0];
+  for (Eigen::Index r = 0; r < rows.rows(); ++r) {
+    const float points = raw.row(r).segment(kHueBins, kSaturationBins).sum();
+    const float voxels = raw.row(r).segment(kHsvBins + f1_start, f1_size).sum();
+    if (points > 0) rows.row(r).head(kHsvBins) *= voxels / points;
+  }
+  return rows.array().sqrt().matrix();
 }
 
 // Squared distances of each row of `a` to each row of `b` in one block. Brute force through one
@@ -72,10 +85,10 @@ Familiarity Familiarity::Fit(const Eigen::MatrixXf& raw_parts, const std::vector
   if (n == 0 || std::all_of(groups.begin(), groups.end(), [&](int g) { return g == groups.front(); })) {
     throw std::invalid_argument("familiarity: needs training views of at least two groups");
   }
-  const Eigen::MatrixXf rooted = SquareRooted(raw_parts);
+  Familiarity f;
+  const Eigen::MatrixXf rooted = ComparedRows(raw_parts, f.colour_per_voxel);
   const std::vector<int> reference_rows = Spread(n, kMaxReference);
   std::vector<int> calibration_rows = Spread(n, kMaxCalibration);
-  Familiarity f;
   f.reference = rooted(reference_rows, Eigen::all);
   // A calibration view is used where the reference holds a view of another group (with more than
   // kMaxReference views, a small group may be left out of the reference and another may have no rival).
@@ -124,7 +137,7 @@ double Familiarity::Of(const Eigen::VectorXf& raw_parts) const {
                                 std::to_string(raw_parts.size()));
   }
   if (empty()) return 1.0;
-  const Eigen::MatrixXf view = SquareRooted(raw_parts.transpose());
+  const Eigen::MatrixXf view = ComparedRows(raw_parts.transpose(), colour_per_voxel);
   float score = 0;
   for (size_t b = 0; b < kBlocks.size(); ++b) {
     const float nearest = std::sqrt(SquaredDistances(view, reference, kBlocks[b]).minCoeff());

@@ -8,7 +8,8 @@
 /// simulated lemons 'bottle' at 0.99+). A distance to the training set can. The score of a view is its
 /// distance to the nearest training view in each of three blocks of the raw descriptor parts (hue;
 /// saturation and value; CVFH shape), on square-rooted counts (a Hellinger-like distance that keeps
-/// the object's size in points), each block divided by its typical held-out distance, the largest of
+/// the object's size) with the colour counted per 5 mm voxel rather than per point (so the size does
+/// not change with the sensor's distance), each block divided by its typical held-out distance, the largest of
 /// the three. Familiarity is the share of held-out training views whose score is at least as large (a
 /// conformal p-value): it is about uniform on (0, 1] for views like the training ones, so rejecting
 /// below 0.05 rejects about 5 % of them, and small for views unlike any.
@@ -25,8 +26,12 @@ namespace sortcell::perception {
 
 struct Familiarity {
   /// The model's training views kept for the distance (square-rooted raw parts [HSV | CVFH], one per
-  /// row): at most kMaxReference, evenly spaced over the training rows.
+  /// row, the HSV counts per voxel when colour_per_voxel): at most kMaxReference, evenly spaced over the
+  /// training rows.
   Eigen::MatrixXf reference;
+  /// Whether the colour counts are per voxel (every fit since 2026-12-06) or per point (model files of
+  /// before, whose reference was kept that way; read as they were fitted).
+  bool colour_per_voxel = true;
   Eigen::VectorXf block_scale;  ///< Per block: the 95th percentile of the held-out distances.
   std::vector<float> held_out;  ///< The calibration views' scores, ascending.
 

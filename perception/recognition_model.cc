@@ -194,7 +194,7 @@ void WriteFamiliarity(cv::FileStorage& fs, const Familiarity& f) {
   fs << "familiarity"
      << "{"
      << "reference" << reference << "block_scale" << scale << "held_out" << cv::Mat(f.held_out, true).reshape(1, 1)
-     << "}";
+     << "colour_per_voxel" << static_cast<int>(f.colour_per_voxel) << "}";
 }
 
 // Optional: a model file of before has none (every view is then familiar).
@@ -209,6 +209,14 @@ Familiarity ReadFamiliarity(const Reader& r) {
   cv::cv2eigen(reference, f.reference);
   cv::cv2eigen(scale, f.block_scale);
   f.held_out = r.Row<float>(node, "held_out", CV_32F);
+  // Absent in a model file of before: its colour was counted per point.
+  const cv::FileNode per_voxel = node["colour_per_voxel"];
+  f.colour_per_voxel = false;
+  if (!per_voxel.empty() && !per_voxel.isNone()) {
+    const int value = r.Integer(node, "colour_per_voxel");
+    if (value != 0 && value != 1) r.Fail("key 'colour_per_voxel' is not 0 or 1");
+    f.colour_per_voxel = value == 1;
+  }
   try {
     f.Check();
   } catch (const std::invalid_argument& e) {

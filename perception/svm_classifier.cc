@@ -218,14 +218,15 @@ SvmClassifier::~SvmClassifier() = default;
 int LinkedLibsvmVersion() { return libsvm_version; }
 
 SvmClassifier SvmClassifier::Train(const Eigen::MatrixXf& samples, const std::vector<int>& labels,
-                                   const std::vector<int>& groups, int classes, const SvmGrid& grid) {
+                                   const std::vector<int>& groups, int classes, const SvmGrid& grid,
+                                   const std::vector<FeatureBlock>& scaling_blocks) {
   CheckTrainingInput(samples, labels, groups, classes, grid);
   const size_t n = static_cast<size_t>(samples.rows());
   svm_set_print_string_function(&Quiet);
 
   SvmClassifier result;
   result.classes_ = classes;
-  result.scaling_ = FeatureScaling::Fit(samples);
+  result.scaling_ = FeatureScaling::Fit(samples, scaling_blocks);
   Eigen::MatrixXd scaled(samples.rows(), samples.cols());
   for (Eigen::Index r = 0; r < samples.rows(); ++r) {
     scaled.row(r) = result.scaling_.Apply(samples.row(r).transpose()).cast<double>().transpose();

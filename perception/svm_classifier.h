@@ -44,12 +44,14 @@ struct Prediction {
 class SvmClassifier {
  public:
   /// Trains on the rows of `samples` (raw descriptors) with class indices `labels` in [0, classes)
-  /// and `groups` for the cross-validation (same group, same fold). Fits the scaling, grid-searches
+  /// and `groups` for the cross-validation (same group, same fold). Fits the scaling (by `scaling_blocks`,
+  /// see FeatureScaling::Fit; empty: feature by feature), grid-searches
   /// (C, gamma), then trains the final model with probabilities on all rows. Deterministic.
   /// @throws std::invalid_argument for mismatched sizes, fewer than two classes present, a label out
   ///         of range, or fewer groups than folds.
   static SvmClassifier Train(const Eigen::MatrixXf& samples, const std::vector<int>& labels,
-                             const std::vector<int>& groups, int classes, const SvmGrid& grid = {});
+                             const std::vector<int>& groups, int classes, const SvmGrid& grid = {},
+                             const std::vector<FeatureBlock>& scaling_blocks = {});
 
   /// @throws std::invalid_argument if x has the wrong size; std::logic_error if untrained.
   Prediction Predict(const Eigen::VectorXf& x) const;

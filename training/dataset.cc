@@ -68,6 +68,7 @@ Sample SampleFromJson(const nlohmann::json& j, const std::string& where) {
   s.purity = Get<double>(j, "purity", where);
   s.iou = Get<double>(j, "iou", where);
   s.parts.cvfh_regions = Get<int>(j, "cvfh_regions", where);
+  if (j.contains("fits_familiarity")) s.fits_familiarity = Get<bool>(j, "fits_familiarity", where);
   return s;
 }
 
@@ -193,7 +194,8 @@ void SaveDataset(const std::filesystem::path& dir, const Dataset& d) {
                        {"points", s.points},
                        {"purity", s.purity},
                        {"iou", s.iou},
-                       {"cvfh_regions", s.parts.cvfh_regions}});
+                       {"cvfh_regions", s.parts.cvfh_regions},
+                       {"fits_familiarity", s.fits_familiarity}});
   }
   files::WriteJson(dir / "manifest.json", {{"format", kFormat},
                                            {"version", kDatasetFormatVersion},

@@ -32,6 +32,9 @@ struct Sample {
   int points = 0;
   double purity = 0;  ///< Fraction of the segment's pixels that belong to the labelled object.
   double iou = 0;     ///< Segment vs the object's ground-truth mask.
+  /// Whether the view fits the model's familiarity as well as its classifier (SceneOptions); a manifest
+  /// of before has no such key: true.
+  bool fits_familiarity = true;
   perception::DescriptorParts parts;
 };
 

@@ -428,6 +428,7 @@ Dataset CaptureScenes(const files::ObjectSet& set, const SceneOptions& options, 
     progress.Advance();
   }
   progress.Finish();
+  for (Sample& s : dataset.samples) s.fits_familiarity = options.fits_familiarity;
   dataset.capture = {{"kind", "scenes"},
                      {"scenes", options.scenes},
                      {"objects_placed", tally.placed},
@@ -439,7 +440,8 @@ Dataset CaptureScenes(const files::ObjectSet& set, const SceneOptions& options, 
                      {"placement", PlacementModesText(options.modes)},
                      {"lying_fraction", options.placement.lying_fraction},
                      {"colour_jitter", options.colour_jitter},
-                     {"depth_noise_max", options.depth_noise_max}};
+                     {"depth_noise_max", options.depth_noise_max},
+                     {"fits_familiarity", options.fits_familiarity}};
   return dataset;
 }
 

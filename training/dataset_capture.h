@@ -54,6 +54,10 @@ struct SceneOptions {
   /// Each scene's depth noise (both sigmas) scaled by a factor drawn per scene from [1, depth_noise_max]
   /// (1: the Kinect's own), so that a model also knows the noisier depth of other sensors and rooms.
   double depth_noise_max = 1;
+  /// Whether these views also fit the model's familiarity (TrainModel). False: they widen what the
+  /// classifier knows (noisier depth, other colours) without teaching the familiarity to take in
+  /// unknown objects that look like such views.
+  bool fits_familiarity = true;
   /// How scenes are segmented: as the cell segments them, so touching objects come apart.
   perception::SegmentationParams::Clustering clustering = perception::SegmentationParams::Clustering::kConvex;
 };

@@ -27,16 +27,21 @@ std::string DefaultModelHint(const files::ObjectSet& set);
 /// and the current Kinect colour model (the digest beside it says so; a model without one was put there
 /// by hand, with sortcell train, and counts as current).
 bool DefaultModelIsCurrent(const files::ObjectSet& set);
+/// Whether `model` exists and its digest (<model>.trained_on, RecordTrainedOn) says it was made by the
+/// default recipe from `set`'s current objects through the current sensor models (false without one).
+bool TrainedOnIsCurrent(const files::ObjectSet& set, const std::filesystem::path& model);
 
 /// The default recipe, the one every default model is made with: random cell scenes of `set` (150; seed
-/// 0; sparse, dense and clustered in turns; 30 % of the bottles and boxes lying), and of its training
-/// variety apart (as many scenes per object, in groups of at most 60 objects: MuJoCo 2.2 draws at most
-/// 100 textures in one scene), captured into `dataset_dir` (kept there), and Color-CVFH (normalization)
-/// trained on them all.
+/// 0; sparse, dense and clustered in turns; 30 % of the bottles and boxes lying), its training variety
+/// among its own objects (as many scenes per object, in groups of at most 60 objects: MuJoCo 2.2 draws at
+/// most 100 textures in one scene), and for each group a twin of other scenes through a widened sensor
+/// (colours jittered, depth noisier) that trains the classifier but not the familiarity; captured into
+/// `dataset_dir` (kept there), and Color-CVFH (normalization) trained on them all.
 perception::RecognitionModel TrainDefaultRecipe(const files::ObjectSet& set, const std::filesystem::path& dataset_dir);
 
 /// The recipe in words, e.g. "150 random cell scenes, more in proportion for a training variety
-/// (sparse,dense,clustered; 30 % lying; seed 0), Color-CVFH (normalization)".
+/// (sparse,dense,clustered; 30 % lying; ...; seed 0), and as many other scenes through a widened sensor
+/// for the classifier only (...), Color-CVFH (normalization)".
 std::string DefaultRecipeTitle();
 
 /// Writes beside `model` (<model>.trained_on) what a model of `set` made with TrainDefaultRecipe was

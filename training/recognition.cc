@@ -187,6 +187,22 @@ std::string MetricsCsvRows(const Evaluation& e) {
   return csv.str();
 }
 
+// The familiarity of the rows whose samples fit it (Sample::fits_familiarity), of all when every one does.
+perception::Familiarity FitFamiliarity(const Dataset& dataset, const std::vector<int>& rows,
+                                       const Eigen::MatrixXf& raw_parts, const std::vector<int>& groups) {
+  std::vector<int> fitting;
+  std::vector<int> fitting_groups;
+  for (size_t i = 0; i < rows.size(); ++i) {
+    if (!dataset.samples.at(rows[i]).fits_familiarity) continue;
+    fitting.push_back(static_cast<int>(i));
+    fitting_groups.push_back(groups[i]);
+  }
+  if (fitting.empty()) {
+    throw std::invalid_argument("training: no sample fits the familiarity (every one was captured classifier-only)");
+  }
+  return perception::Familiarity::Fit(raw_parts(fitting, Eigen::all), fitting_groups);
+}
+
 }  // namespace
 
 constexpr EnumNames<Grouping, 2> kGroupingNames{{{Grouping::kSequence, "sequence"}, {Grouping::kInstance, "instance"}}};
@@ -228,9 +244,9 @@ perception::RecognitionModel TrainModel(const Dataset& dataset, std::vector<int>
     labels.push_back(ClassIndex(model.classes, Dataset::Label(s, request.label_kind)));
     groups.push_back(group_ids.emplace(GroupKey(s, request.group_by, dataset.views), group_ids.size()).first->second);
   }
-  model.classifier =
-      perception::SvmClassifier::Train(samples, labels, groups, static_cast<int>(model.classes.size()), request.grid);
-  model.familiarity = perception::Familiarity::Fit(raw_parts, groups);
+  model.classifier = perception::SvmClassifier::Train(samples, labels, groups, static_cast<int>(model.classes.size()),
+                                                      request.grid, perception::DescriptorBlocks(request.descriptor));
+  model.familiarity = FitFamiliarity(dataset, rows, raw_parts, groups);
   model.train_samples = static_cast<int>(rows.size());
   for (const auto& score : model.classifier.cv_scores())
     model.cv_accuracy = std::max(model.cv_accuracy, score.accuracy);

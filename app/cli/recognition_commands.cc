@@ -29,6 +29,7 @@ struct DatasetOptions {
   double lying_fraction = 0;
   double colour_jitter = 0;
   double depth_noise_max = 1;
+  bool classifier_only = false;
 };
 
 struct TrainOptions {
@@ -36,6 +37,7 @@ struct TrainOptions {
   std::string descriptor = perception::DescriptorName(perception::DescriptorKind::kColorCvfhNorm);
   std::string label = perception::ToString(perception::LabelKind::kCategory);
   std::string group_by = ToString(training::Grouping::kSequence);
+  bool if_stale = false;
 };
 
 struct EvalOptions {
@@ -118,6 +120,11 @@ int EvalCommand(const perception::RecognitionModel& model, const training::Datas
 // scenes kept beside the model.
 int TrainFromSetCommand(const TrainOptions& o, const std::vector<std::string>& command_line) {
   const files::ObjectSet set = files::LoadObjectSet(o.objects);
+  if (o.if_stale && training::TrainedOnIsCurrent(set, o.out)) {
+    std::cout << "The model " << o.out.string() << " is current (" << o.out.string()
+              << ".trained_on: the same objects, sensor models and recipe): not trained again\n";
+    return 0;
+  }
   if (o.out.has_parent_path()) files::PrepareOutputDir(o.out.parent_path());
   const std::filesystem::path scenes = o.out.string() + ".scenes";
   const auto start = WallClock::now();
@@ -164,6 +171,7 @@ training::Dataset CaptureSimulated(const DatasetOptions& o, const files::ObjectS
     options.placement.lying_fraction = o.lying_fraction;
     options.colour_jitter = o.colour_jitter;
     options.depth_noise_max = o.depth_noise_max;
+    options.fits_familiarity = !o.classifier_only;
     return training::CaptureScenes(set, options, o.out);
   }
   training::TurntableOptions options;
@@ -251,8 +259,12 @@ void AddDatasetCommand(CLI::App& app, std::function<int()>& run, const std::vect
                       "Scenes: each scene's Kinect depth noise scaled by a factor drawn from [1, M] (1: the Kinect's)")
           ->check(CLI::Range(1.0, 5.0))
           ->capture_default_str();
-  for (CLI::Option* scene_only : {placement, lying, jitter, depth_noise}) scene_only->needs(scenes);
-  for (CLI::Option* simulated : {views, scenes, seed, occluded, placement, lying, jitter, depth_noise})
+  CLI::Option* classifier_only =
+      cmd->add_flag("--classifier-only", o->classifier_only,
+                    "Scenes: the views train a model's classifier but not its familiarity (for views through a widened "
+                    "sensor: jittered colours, noisier depth)");
+  for (CLI::Option* scene_only : {placement, lying, jitter, depth_noise, classifier_only}) scene_only->needs(scenes);
+  for (CLI::Option* simulated : {views, scenes, seed, occluded, placement, lying, jitter, depth_noise, classifier_only})
     rgbd->excludes(simulated);
   cmd->callback([&run, o, command_line] { run = [o, command_line] { return RunDatasetCommand(*o, command_line); }; });
 }
@@ -262,9 +274,11 @@ void AddTrainCommand(CLI::App& app, std::function<int()>& run, const std::vector
   CLI::App* cmd = app.add_subcommand(
       "train",
       "Train a multi-class RBF SVM (libsvm) on a dataset with one descriptor. Features are scaled to [0, 1] "
-      "per feature on the training data; (C, gamma) come from a grid searched with grouped 3-fold "
+      "histogram by histogram (hue, saturation, value, CVFH's five blocks: each by its range over the training "
+      "data); (C, gamma) come from a grid searched with grouped 3-fold "
       "cross-validation (groups: contiguous thirds of each turntable revolution, or whole instances). The "
-      "model file holds the descriptor, its parameters, the classes, the scaling and a format version. With "
+      "model file holds the descriptor, its parameters, the classes, the scaling, the familiarity (fitted on the "
+      "samples not captured --classifier-only) and a format version. With "
       "--objects SET instead of --dataset: the default recipe for that set, the one episodes and sweeps train "
       "on first use (" +
           training::DefaultRecipeTitle() + "), its scenes kept in MODEL.scenes/.");
@@ -278,6 +292,10 @@ void AddTrainCommand(CLI::App& app, std::function<int()>& run, const std::vector
       cmd->add_option("--label", o->label, "What to recognise: category | instance")->capture_default_str();
   CLI::Option* group =
       cmd->add_option("--group-by", o->group_by, "Cross-validation groups: sequence | instance")->capture_default_str();
+  cmd->add_flag("--if-stale", o->if_stale,
+                "With --objects: train only if MODEL is missing or its MODEL.trained_on names other objects, sensor "
+                "models or another recipe")
+      ->needs(objects);
   for (CLI::Option* recipe_fixed : {descriptor, label, group}) objects->excludes(recipe_fixed);
   cmd->callback([&run, o, command_line] {
     run = [o, command_line] {

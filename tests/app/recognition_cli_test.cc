@@ -102,6 +102,9 @@ TEST(RecognitionCli, TrainFromASetRejectsAMissingSetAndRecipeOptions) {
       "--descriptor");
   ExpectOneLineError(RunSortcell("train --objects a.yaml --dataset " + Dir() + " --out " + Dir() + "/m.json"),
                      "--dataset");
+  ExpectOneLineError(RunSortcell("train --dataset " + Dir() + " --if-stale --out " + Dir() + "/m.json"), "--if-stale");
+  ExpectOneLineError(RunSortcell("dataset --objects a.yaml --classifier-only --out " + Dir() + "/d"),
+                     "--classifier-only");
 }
 
 TEST(RecognitionCli, ExperimentAndDatasetRejectBadValues) {

@@ -80,7 +80,7 @@ TEST(RecognitionE2e, DatasetTrainEvalOnTwoColoursOfOneShape) {
 // `train --objects`: the default recipe (random cell scenes of the set) on a tiny set of two bottles of
 // one shape and a training variety of one more: the model knows the set's two categories, tells them
 // apart in its own cross-validation, and its scenes are kept beside it, the variety placed among the set's
-// own objects.
+// own objects, a widened twin of them for the classifier only; trained again only when stale (--if-stale).
 TEST(RecognitionE2e, TrainFromATinySetWithTheDefaultRecipe) {
   const std::string set = Dir("tiny_set.yaml"), variety = Dir("tiny_variety.yaml");
   std::ofstream(variety) << "name: tiny_variety\nobjects:\n"
@@ -102,8 +102,20 @@ TEST(RecognitionE2e, TrainFromATinySetWithTheDefaultRecipe) {
   EXPECT_EQ(classes, (std::vector<std::string>{"blue", "green"}));
   EXPECT_GE(m["training"]["cv_accuracy"].get<double>(), 0.95);
   const nlohmann::json scenes = ReadJson(model + ".scenes/manifest.json");
-  EXPECT_EQ(scenes["capture"]["scenes"], 225) << "75 scenes per object, the variety's among the set's own";
-  EXPECT_EQ(scenes["capture"]["depth_noise_max"], 1) << "the Kinect's own depth noise";
+  // The recipe's groups: the set's scenes seen by the Kinect as modelled, then their widened twin.
+  const nlohmann::json& groups = scenes["capture"]["groups"];
+  ASSERT_EQ(groups.size(), 2u) << scenes["capture"];
+  EXPECT_EQ(groups[0]["scenes"], 225) << "75 scenes per object, the variety's among the set's own";
+  EXPECT_EQ(groups[0]["depth_noise_max"], 1) << "the Kinect's own depth noise";
+  EXPECT_EQ(groups[0]["colour_jitter"], 0);
+  EXPECT_EQ(groups[0]["fits_familiarity"], true);
+  EXPECT_EQ(groups[1]["scenes"], 225);
+  EXPECT_GT(groups[1]["depth_noise_max"].get<double>(), 1) << "noisier depth";
+  EXPECT_GT(groups[1]["colour_jitter"].get<double>(), 0) << "other colours";
+  EXPECT_EQ(groups[1]["fits_familiarity"], false) << "for the classifier only";
+  int fitting = 0;
+  for (const auto& s : scenes["samples"]) fitting += s["fits_familiarity"].get<bool>();
+  EXPECT_EQ(m["familiarity"]["held_out"]["cols"], fitting) << "the familiarity is fitted on the first group only";
   // One dataset: ids in order, every cloud where its path says, the variety seen beside the set's own.
   std::map<int, std::set<std::string>> seen;  // Scene -> instances.
   for (size_t i = 0; i < scenes["samples"].size(); ++i) {
@@ -120,6 +132,10 @@ TEST(RecognitionE2e, TrainFromATinySetWithTheDefaultRecipe) {
   EXPECT_GE(variety_scenes, 100);
   EXPECT_GE(shared_scenes, 50) << "the variety stands among the set's own objects";
   EXPECT_TRUE(std::filesystem::exists(model + ".trained_on")) << "trained like the cache's, it counts as current there";
+  // Current: --if-stale leaves it as it is.
+  const auto again = RunSortcell("train --if-stale --objects " + set + " --out " + model);
+  ASSERT_EQ(again.exit_code, 0) << again.err;
+  EXPECT_NE(again.out.find("is current"), std::string::npos) << again.out;
 }
 
 }  // namespace

@@ -9,6 +9,9 @@
 #include "temp_dir.h"
 
 #include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
 #include <random>
 
 namespace sortcell::perception {
@@ -86,6 +89,18 @@ TEST(Familiarity, AViewOfAnotherColourOrShapeIsUnfamiliar) {
   EXPECT_DOUBLE_EQ(f.Of(other_shape), 1.0 / (1 + f.held_out.size()));  // The smallest it can be.
 }
 
+TEST(Familiarity, AnObjectSeenFromNearerIsAsFamiliar) {
+  const Familiarity f = Fitted();
+  ASSERT_TRUE(f.colour_per_voxel);
+  std::mt19937_64 rng(7);
+  const Eigen::VectorXf far = View(1, rng);
+  // Seen from 0.58 times the distance: three times the points, the same 5 mm voxels (CVFH's counts).
+  Eigen::VectorXf near = far;
+  near.head(kHsvBins) *= 3;
+  EXPECT_GT(f.Of(far), 0.05);
+  EXPECT_NEAR(f.Of(near), f.Of(far), 1e-9);
+}
+
 TEST(Familiarity, RefusesBadInput) {
   std::vector<int> groups;
   const Eigen::MatrixXf x = Views(10, 4, &groups);
@@ -132,6 +147,25 @@ TEST(Familiarity, IsKeptInTheModelFileAndPartOfTheConfidence) {
   ASSERT_FALSE(loaded.familiarity.empty());
   EXPECT_EQ(loaded.familiarity.held_out, m.familiarity.held_out);
   EXPECT_TRUE(loaded.familiarity.reference.isApprox(m.familiarity.reference));
+  EXPECT_TRUE(loaded.familiarity.colour_per_voxel);
+  // A model file of before has no colour_per_voxel: its reference holds colour per point and is read so.
+  std::string text;
+  {
+    std::ifstream in(file);
+    text.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  }
+  const std::string key = "\"colour_per_voxel\": 1";
+  ASSERT_NE(text.find(key), std::string::npos);
+  auto load_with = [&](const std::string& replacement) {
+    std::string edited = text;
+    edited.replace(edited.find(key), key.size(), replacement);
+    std::ofstream(file) << edited;
+    return LoadModel(file);
+  };
+  EXPECT_FALSE(load_with("\"old_key\": 1").familiarity.colour_per_voxel);
+  EXPECT_NE(ErrorOf([&] { load_with("\"colour_per_voxel\": 2"); }).find("'colour_per_voxel' is not 0 or 1"),
+            std::string::npos);
+  SaveModel(file, m);
 
   std::mt19937_64 rng(6);
   DescriptorParts parts;

@@ -78,6 +78,47 @@ TEST(FeatureScaling, ValuesBeyondTheTrainingRangeAreClipped) {
   EXPECT_TRUE(s.Apply(Eigen::Vector2f(4, 5)).isApprox(Eigen::Vector2f(1, 0)));
 }
 
+// Scaled block by block, a histogram's bins keep their proportions: a bin that training views seldom fill
+// stays small beside the busy ones (per feature, it would weigh as much as any).
+TEST(FeatureScaling, ABlockIsScaledAsOne) {
+  Eigen::MatrixXf samples(2, 4);
+  samples << 0, 1, 5, 0,  //
+      8, 3, 10, 2;
+  const FeatureScaling s = FeatureScaling::Fit(samples, {{0, 2}, {2, 2}});
+  EXPECT_TRUE(s.Apply(Eigen::Vector4f(4, 1, 5, 1)).isApprox(Eigen::Vector4f(0.5f, 0.125f, 0.5f, 0.1f)));
+  const FeatureScaling per_feature = FeatureScaling::Fit(samples);
+  EXPECT_TRUE(per_feature.Apply(Eigen::Vector4f(4, 1, 5, 1)).isApprox(Eigen::Vector4f(0.5f, 0, 0, 0.5f)));
+  // The blocks must cover the features once, in order.
+  EXPECT_NE(ErrorOf([&] {
+              FeatureScaling::Fit(samples, {{0, 2}, {3, 1}});
+            }).find("does not follow on at 2"),
+            std::string::npos);
+  EXPECT_NE(ErrorOf([&] {
+              FeatureScaling::Fit(samples, {{0, 2}, {1, 3}});
+            }).find("does not follow on"),
+            std::string::npos);
+  EXPECT_NE(ErrorOf([&] { FeatureScaling::Fit(samples, {{0, 3}}); }).find("cover 3 of 4 features"), std::string::npos);
+  EXPECT_NE(ErrorOf([&] {
+              FeatureScaling::Fit(samples, {{0, 0}, {0, 4}});
+            }).find("does not follow on"),
+            std::string::npos);
+}
+
+TEST(DescriptorBlocks, EachKindsHistogramsCoverItOnce) {
+  for (DescriptorKind kind : {DescriptorKind::kCvfh, DescriptorKind::kColorCvfh, DescriptorKind::kColorCvfhNorm}) {
+    const std::vector<FeatureBlock> blocks = DescriptorBlocks(kind);
+    int next = 0;
+    for (const FeatureBlock& b : blocks) {
+      EXPECT_EQ(b.start, next) << DescriptorName(kind);
+      next += b.size;
+    }
+    EXPECT_EQ(next, DescriptorSize(kind)) << DescriptorName(kind);
+    EXPECT_EQ(blocks.size(), kind == DescriptorKind::kCvfh ? 5u : 8u);
+  }
+  EXPECT_EQ(DescriptorBlocks(DescriptorKind::kColorCvfhNorm)[0].size, kHueBins);
+  EXPECT_EQ(DescriptorBlocks(DescriptorKind::kColorCvfhNorm)[3].start, kHsvBins);
+}
+
 // A real sensor's view can fill one histogram bin far beyond anything seen in training; the rest of the
 // view still says what it is.
 TEST(SvmClassifier, OneFeatureFarOutsideTheTrainingRangeDoesNotDecide) {

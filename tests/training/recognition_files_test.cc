@@ -41,6 +41,7 @@ Dataset SmallDataset() {
     s.parts.hsv = Eigen::VectorXf::LinSpaced(perception::kHsvBins, 0.125f * i, 1.0f + i);
     s.parts.cvfh = Eigen::VectorXf::LinSpaced(perception::kCvfhBins, 1.0f / 3, 2.0f + i);
     s.parts.cvfh_regions = 1 + i;
+    s.fits_familiarity = i != 1;
     d.samples.push_back(s);
   }
   return d;
@@ -93,6 +94,7 @@ TEST_F(DatasetFiles, RoundTripKeepsSamplesPartsAndParameters) {
     EXPECT_EQ(b.cloud, a.cloud);
     EXPECT_DOUBLE_EQ(b.purity, a.purity);
     EXPECT_EQ(b.parts.cvfh_regions, a.parts.cvfh_regions);
+    EXPECT_EQ(b.fits_familiarity, a.fits_familiarity);
     EXPECT_EQ(b.parts.hsv, a.parts.hsv) << "9 digits round-trip a float";
     EXPECT_EQ(b.parts.cvfh, a.parts.cvfh);
   }
@@ -165,6 +167,16 @@ TEST_F(DatasetFiles, RejectsDamagedSamplesInTheManifest) {
   m["samples"][2].erase("iou");
   WriteManifest(m);
   EXPECT_EQ(Load(), Where() + ": manifest.json samples[2]: missing key 'iou'");
+
+  m = good;
+  m["samples"][0]["fits_familiarity"] = 1;
+  WriteManifest(m);
+  EXPECT_EQ(Load(), Where() + ": manifest.json samples[0]: key 'fits_familiarity' is 1, expected true or false");
+
+  m = good;
+  m["samples"][1].erase("fits_familiarity");  // A manifest of before: every view fits the familiarity.
+  WriteManifest(m);
+  EXPECT_TRUE(LoadDataset(dir_.path()).samples[1].fits_familiarity);
 
   m = good;
   m["samples"][2]["id"] = m["samples"][0]["id"];
@@ -302,6 +314,50 @@ TEST(RecognitionReport, AFailedWriteIsAnErrorNamingTheFile) {
               std::string::npos)
         << e.what();
   }
+}
+
+// Scene views of two colours in eight scenes; the views of scenes 4-7 (`widened` of them) are
+// classifier-only and far brighter than the rest.
+Dataset WidenedScenes(bool widened) {
+  Dataset d;
+  d.capture = {{"kind", "scenes"}};
+  for (int i = 0; i < 32; ++i) {
+    Sample s;
+    s.id = i;
+    s.scene = i / 4;
+    s.category = i % 2 == 0 ? "red" : "blue";
+    s.instance = s.category + "1";
+    s.source = "scene";
+    const bool bright = s.scene >= 4;
+    s.fits_familiarity = !(bright && widened);
+    s.parts.hsv = Eigen::VectorXf::Constant(perception::kHsvBins, 1.0f + 0.01f * static_cast<float>(i));
+    s.parts.hsv.segment(i % 2 == 0 ? 0 : 40, 10).setConstant(bright ? 400.0f : 40.0f);
+    s.parts.cvfh = Eigen::VectorXf::Constant(perception::kCvfhBins, 5.0f + 0.01f * static_cast<float>(i % 5));
+    d.samples.push_back(s);
+  }
+  return d;
+}
+
+TEST(TrainModel, OnlyTheViewsThatFitTheFamiliarityFitIt) {
+  TrainRequest request;
+  request.grid.C = {4};
+  request.grid.gamma = {1.0 / 8};
+  request.grid.threads = 1;
+  const perception::RecognitionModel all = TrainModel(WidenedScenes(false), {}, request);
+  const perception::RecognitionModel some = TrainModel(WidenedScenes(true), {}, request);
+  EXPECT_EQ(all.train_samples, 32);
+  EXPECT_EQ(some.train_samples, 32) << "the classifier learns from every view";
+  EXPECT_EQ(all.familiarity.held_out.size(), 32u);
+  EXPECT_EQ(some.familiarity.held_out.size(), 16u);
+  // A bright view is familiar where bright views fitted the familiarity, unfamiliar where they did not.
+  const Dataset widened = WidenedScenes(true);
+  const Sample& bright = widened.samples[20];
+  EXPECT_GT(all.familiarity.Of(perception::RawParts(bright.parts)), 0.05);
+  EXPECT_LT(some.familiarity.Of(perception::RawParts(bright.parts)), 0.07);
+  Dataset none = widened;
+  for (Sample& s : none.samples) s.fits_familiarity = false;
+  EXPECT_EQ(ErrorOf([&] { TrainModel(none, {}, request); }),
+            "training: no sample fits the familiarity (every one was captured classifier-only)");
 }
 
 TEST(RecognitionSpellings, GroupingAndSplitRoundTripAndUnknownOnesAreClearErrors) {
