@@ -10,7 +10,10 @@ namespace {
 void CheckBlocks(const std::vector<FeatureBlock>& blocks, Eigen::Index features) {
   Eigen::Index next = 0;
   for (const FeatureBlock& b : blocks) {
-    if (b.start != next || b.size <= 0) {
+    if (b.size <= 0) {
+      throw std::invalid_argument("feature scaling: the block at " + std::to_string(b.start) + " has no features");
+    }
+    if (b.start != next) {
       throw std::invalid_argument("feature scaling: block at " + std::to_string(b.start) + " of " +
                                   std::to_string(b.size) + " features does not follow on at " + std::to_string(next));
     }

@@ -15,14 +15,16 @@ struct FeatureBlock {
 };
 
 struct FeatureScaling {
-  Eigen::VectorXf min;    ///< Per feature, over the training rows.
-  Eigen::VectorXf scale;  ///< 1 / (max - min); 0 for a constant column (it carries nothing).
+  /// Per feature: the least training value of the feature, or of its block when fitted by blocks.
+  Eigen::VectorXf min;
+  /// Per feature: 1 / (max - min) of the feature or its block; 0 where that range is empty (it carries nothing).
+  Eigen::VectorXf scale;
 
   /// Fits on the rows of `samples` (one sample per row). Without blocks, every feature by its own range.
   /// With blocks (which must cover every feature once, in order), every feature of a block by the block's
   /// range (its least and largest value over all its features): a histogram stays a histogram, and a bin
   /// that training views seldom fill is not stretched to the weight of the busiest one (per feature, the
-  /// real sensor's small differences in such bins decided; see TrainModel).
+  /// real sensor's small differences in such bins decided; measured in docs/recognition.md, "Real views").
   /// @throws std::invalid_argument for no rows, non-finite values, or blocks that do not cover the
   ///         features once, in order.
   static FeatureScaling Fit(const Eigen::MatrixXf& samples, const std::vector<FeatureBlock>& blocks = {});

@@ -123,9 +123,9 @@ void CheckFormat(const Reader& r) {
     r.Fail(std::string("not a SortCell recognition model (expected \"format\": \"") + kFormat + "\")");
   }
   const double version = r.Number(r.root, "version");
-  if (version != kModelFormatVersion) {
+  if (version != kModelFormatVersion && version != 1) {
     std::ostringstream message;
-    message << "format version " << version << ", this build reads version " << kModelFormatVersion;
+    message << "format version " << version << ", this build reads versions 1 to " << kModelFormatVersion;
     r.Fail(message.str());
   }
 }

@@ -15,7 +15,9 @@
 
 namespace sortcell::perception {
 
-inline constexpr int kModelFormatVersion = 1;
+/// Version 2 (2026-12-06): the familiarity counts colour per voxel (`colour_per_voxel`). A build reads
+/// versions 1 and 2 (a version 1 file's familiarity counts colour per point); builds of before refuse 2.
+inline constexpr int kModelFormatVersion = 2;
 
 /// What a model's classes are: object categories ("bottle") or instances ("bottle1").
 enum class LabelKind { kCategory, kInstance };

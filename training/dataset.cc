@@ -47,8 +47,8 @@ nlohmann::json ReadManifest(const std::filesystem::path& dir, const std::string&
     throw std::invalid_argument(mwhere + " is not a SortCell dataset manifest");
   }
   const int version = Get<int>(m, "version", mwhere);
-  if (version != kDatasetFormatVersion) {
-    throw std::invalid_argument(mwhere + ": format version " + std::to_string(version) + ", this build reads " +
+  if (version != kDatasetFormatVersion && version != 1) {
+    throw std::invalid_argument(mwhere + ": format version " + std::to_string(version) + ", this build reads 1 to " +
                                 std::to_string(kDatasetFormatVersion));
   }
   return m;

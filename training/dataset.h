@@ -19,7 +19,9 @@
 
 namespace sortcell::training {
 
-inline constexpr int kDatasetFormatVersion = 1;
+/// Version 2 (2026-12-06): samples say `fits_familiarity`. A build reads versions 1 and 2 (in version 1
+/// every sample fits the familiarity); builds of before refuse 2, so none fits it on classifier-only views.
+inline constexpr int kDatasetFormatVersion = 2;
 
 struct Sample {
   int id = 0;

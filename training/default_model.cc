@@ -124,7 +124,7 @@ std::vector<RecipeGroup> SensorRecipe(const files::ObjectSet& set) {
 
 // The whole recipe: the groups of SensorRecipe, seen through the Kinect as we model it (they fit the
 // classifier and the familiarity), each followed by a twin of other scenes seen through a widened sensor
-// (WidenedScenes), for the classifier only.
+// (WidenScenes), for the classifier only.
 std::vector<RecipeGroup> Recipe(const files::ObjectSet& set) {
   std::vector<RecipeGroup> recipe;
   for (RecipeGroup& group : SensorRecipe(set)) {
@@ -218,6 +218,12 @@ bool DefaultModelIsCurrent(const files::ObjectSet& set) {
   const std::filesystem::path path = DefaultModelPath(set);
   // A model without a digest beside it was put there by hand (sortcell train): it is the user's.
   return std::filesystem::exists(path) && (!std::filesystem::exists(DigestPath(path)) || TrainedOnIsCurrent(set, path));
+}
+
+void ForgetTrainedOn(const std::filesystem::path& model) {
+  std::error_code error;
+  std::filesystem::remove(DigestPath(model), error);
+  if (error) throw std::runtime_error("cannot remove '" + DigestPath(model).string() + "': " + error.message());
 }
 
 bool TrainedOnIsCurrent(const files::ObjectSet& set, const std::filesystem::path& model) {

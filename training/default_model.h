@@ -30,6 +30,9 @@ bool DefaultModelIsCurrent(const files::ObjectSet& set);
 /// Whether `model` exists and its digest (<model>.trained_on, RecordTrainedOn) says it was made by the
 /// default recipe from `set`'s current objects through the current sensor models (false without one).
 bool TrainedOnIsCurrent(const files::ObjectSet& set, const std::filesystem::path& model);
+/// Removes <model>.trained_on if there is one (a model written by other means is not the recipe's).
+/// @throws std::runtime_error if it cannot.
+void ForgetTrainedOn(const std::filesystem::path& model);
 
 /// The default recipe, the one every default model is made with: random cell scenes of `set` (150; seed
 /// 0; sparse, dense and clustered in turns; 30 % of the bottles and boxes lying), its training variety

@@ -198,7 +198,9 @@ perception::Familiarity FitFamiliarity(const Dataset& dataset, const std::vector
     fitting_groups.push_back(groups[i]);
   }
   if (fitting.empty()) {
-    throw std::invalid_argument("training: no sample fits the familiarity (every one was captured classifier-only)");
+    throw std::invalid_argument("training: none of the " + std::to_string(rows.size()) +
+                                " samples trained on fits the familiarity (all were captured with --classifier-only): "
+                                "train them together with views captured without it");
   }
   return perception::Familiarity::Fit(raw_parts(fitting, Eigen::all), fitting_groups);
 }

@@ -150,6 +150,7 @@ int TrainFromDatasetCommand(const TrainOptions& o) {
   const auto start = WallClock::now();
   const perception::RecognitionModel model = training::TrainModel(d, {}, request);
   perception::SaveModel(o.out, model);
+  training::ForgetTrainedOn(o.out);  // Written over a recipe's model, it is that model no more.
   std::cout << "Trained " << perception::DescriptorTitle(model.descriptor) << " on " << d.samples.size() << " samples, "
             << model.classes.size() << " " << ToString(model.label_kind) << " classes: C " << model.classifier.C()
             << ", gamma " << model.classifier.gamma() << ", grouped-CV accuracy " << model.cv_accuracy << ", "
@@ -293,8 +294,8 @@ void AddTrainCommand(CLI::App& app, std::function<int()>& run, const std::vector
   CLI::Option* group =
       cmd->add_option("--group-by", o->group_by, "Cross-validation groups: sequence | instance")->capture_default_str();
   cmd->add_flag("--if-stale", o->if_stale,
-                "With --objects: train only if MODEL is missing or its MODEL.trained_on names other objects, sensor "
-                "models or another recipe")
+                "With --objects: train only if MODEL is missing, has no MODEL.trained_on (the digest train --objects "
+                "writes), or its MODEL.trained_on names other objects, sensor models or another recipe")
       ->needs(objects);
   for (CLI::Option* recipe_fixed : {descriptor, label, group}) objects->excludes(recipe_fixed);
   cmd->callback([&run, o, command_line] {

@@ -10,9 +10,12 @@
 #include <string>
 #include <vector>
 
+#include "files/object_set.h"
 #include "training/dataset.h"
+#include "training/default_model.h"
 #include "training/recognition.h"
 #include "error_of.h"
+#include "source_tree.h"
 #include "temp_dir.h"
 
 namespace sortcell::training {
@@ -118,9 +121,12 @@ TEST_F(DatasetFiles, RejectsAForeignManifestAndAnotherVersion) {
   EXPECT_EQ(Load(), Where() + ": manifest.json is not a SortCell dataset manifest");
   m = Manifest();
   m["format"] = "sortcell-dataset";
-  m["version"] = 2;
+  m["version"] = 3;
   WriteManifest(m);
-  EXPECT_EQ(Load(), Where() + ": manifest.json: format version 2, this build reads 1");
+  EXPECT_EQ(Load(), Where() + ": manifest.json: format version 3, this build reads 1 to 2");
+  m["version"] = 1;  // A manifest of before is read.
+  WriteManifest(m);
+  EXPECT_EQ(LoadDataset(dir_.path()).samples.size(), 3u);
 }
 
 TEST_F(DatasetFiles, RejectsMissingAndMistypedManifestKeys) {
@@ -349,15 +355,40 @@ TEST(TrainModel, OnlyTheViewsThatFitTheFamiliarityFitIt) {
   EXPECT_EQ(some.train_samples, 32) << "the classifier learns from every view";
   EXPECT_EQ(all.familiarity.held_out.size(), 32u);
   EXPECT_EQ(some.familiarity.held_out.size(), 16u);
-  // A bright view is familiar where bright views fitted the familiarity, unfamiliar where they did not.
+  // A bright view like those of scenes 4-7 (not one of them) is familiar where they fitted the familiarity,
+  // unfamiliar where they did not.
   const Dataset widened = WidenedScenes(true);
-  const Sample& bright = widened.samples[20];
+  Sample bright = widened.samples[20];
+  bright.parts.hsv.array() += 0.005f;
+  bright.parts.cvfh.array() += 0.02f;
   EXPECT_GT(all.familiarity.Of(perception::RawParts(bright.parts)), 0.05);
   EXPECT_LT(some.familiarity.Of(perception::RawParts(bright.parts)), 0.07);
   Dataset none = widened;
   for (Sample& s : none.samples) s.fits_familiarity = false;
   EXPECT_EQ(ErrorOf([&] { TrainModel(none, {}, request); }),
-            "training: no sample fits the familiarity (every one was captured classifier-only)");
+            "training: none of the 32 samples trained on fits the familiarity (all were captured with "
+            "--classifier-only): train them together with views captured without it");
+}
+
+// `train --if-stale` and the model cache judge a recipe's model by its digest: current only beside the
+// digest of the same set and recipe; a model without one (or with another) is stale, and a model written
+// by other means forgets it.
+TEST(DefaultModelDigest, OnlyTheSameSetsDigestIsCurrent) {
+  const TempDir dir("model_digest");
+  const files::ObjectSet paper = files::LoadObjectSet(sortcell_test::kRoot / "scenes/objects/paper.yaml");
+  const files::ObjectSet produce = files::LoadObjectSet(sortcell_test::kRoot / "scenes/objects/produce.yaml");
+  const std::filesystem::path model = dir / "paper.model.json";
+  EXPECT_FALSE(TrainedOnIsCurrent(paper, model)) << "no model";
+  std::ofstream(model) << "{}";
+  EXPECT_FALSE(TrainedOnIsCurrent(paper, model)) << "no digest";
+  RecordTrainedOn(paper, model);
+  EXPECT_TRUE(TrainedOnIsCurrent(paper, model));
+  EXPECT_FALSE(TrainedOnIsCurrent(produce, model)) << "another set's digest";
+  std::ofstream(model.string() + ".trained_on") << "model of an older recipe\n";
+  EXPECT_FALSE(TrainedOnIsCurrent(paper, model));
+  ForgetTrainedOn(model);
+  EXPECT_FALSE(std::filesystem::exists(model.string() + ".trained_on"));
+  ForgetTrainedOn(model);  // Nothing to forget: no error.
 }
 
 TEST(RecognitionSpellings, GroupingAndSplitRoundTripAndUnknownOnesAreClearErrors) {
