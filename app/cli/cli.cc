@@ -25,6 +25,7 @@
 #include "app/cli/report_command.h"
 #include "app/cli/segment_command.h"
 #include "app/cli/sweep_command.h"
+#include "app/cli/views_command.h"
 
 namespace sortcell::app {
 namespace {
@@ -55,6 +56,7 @@ void AddCommands(CLI::App& app, std::function<int()>& run, const std::vector<std
   AddKinematicsCommands(app, run);
   AddObjectsCommand(app, run, command_line);
   AddCellCommand(app, run, command_line);
+  AddViewsCommand(app, run);
 }
 
 // CLI11's refusal in one line; an unknown first word is named with the commands there are.

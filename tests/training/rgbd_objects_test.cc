@@ -322,3 +322,27 @@ TEST(RgbdObjects, ReadsTheRealSample) {
 }
 
 }  // namespace
+
+TEST(RgbdObjects, ViewsDrawsRowsOfADatasetAndRefusesBadRows) {
+  const fs::path root = WriteSmallDataset("rgbd_views");
+  const fs::path out = fs::path(sortcell_test::TestTempDir()) / "rgbd_views_out";
+  ASSERT_EQ(
+      sortcell_test::RunSortcell("dataset --from-rgbd-objects " + root.string() + " --out " + (out / "data").string())
+          .exit_code,
+      0);
+  const std::string data = (out / "data").string(), png = (out / "sheet" / "views.png").string();
+  const auto r = sortcell_test::RunSortcell("views --row " + data + ":ball --row " + data +
+                                            ":can_2 --per-row 3 --tile 32 --out " + png);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const cv::Mat sheet = assets::ReadImage(png, assets::PixelFormat::kBgr8);
+  ASSERT_EQ(sheet.rows, 2 * 32);
+  const int first = sheet.cols - 3 * 32;  // After the titles: the first view of each row.
+  EXPECT_EQ(sheet.at<cv::Vec3b>(16, first + 16), cv::Vec3b(20, 30, 190));  // The red ball.
+  EXPECT_EQ(sheet.at<cv::Vec3b>(48, first + 16), cv::Vec3b(30, 180, 40));  // The green can.
+  const std::string views = "views --per-row 3 --out " + png + " --row ";
+  sortcell_test::ExpectOneLineError(sortcell_test::RunSortcell(views + data + ":banana"),
+                                    "no sample is labelled 'banana'");
+  sortcell_test::ExpectOneLineError(sortcell_test::RunSortcell(views + data), "expected DATASET:LABEL");
+  sortcell_test::ExpectOneLineError(sortcell_test::RunSortcell(views + "/nonexistent:ball"), "/nonexistent");
+  sortcell_test::ExpectOneLineError(sortcell_test::RunSortcell(views + data + ":ball --tile 8"), "--tile");
+}
