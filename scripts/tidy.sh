@@ -27,7 +27,7 @@ if sys.argv[2] == "1":
     files = [f for f in files if re.search(r"/CMakeFiles/sortcell(_[a-z]+)?\.dir/", f)]
 print("\n".join(files))' "$build_dir/compile_commands.json" "$only_libraries")
 # The project's files, also as the sensor side's include root shows them (cmake/sensor_side.cmake).
-filter="^($root|$(realpath "$build_dir")/sensor_side_include)/(app|assets|bench|cell|common|fuzz|models|perception|robot|sim|tests)/"
+filter="^($root|$(realpath "$build_dir")/sensor_side_include)/(app|assets|bench|cell|common|files|fuzz|models|perception|robot|sim|simcell|tests|training)/"
 # Every finding is an error (.clang-tidy's WarningsAsErrors): xargs exits non-zero, and so does the pipe.
 # The count of the libraries' own warnings that clang-tidy leaves out is not printed.
 printf '%s\n' "$files" | xargs -P "$(nproc)" -n 1 clang-tidy -p "$build_dir" --quiet --header-filter="$filter" 2>&1 |
