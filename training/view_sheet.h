@@ -21,14 +21,16 @@ struct ViewSheetRow {
 };
 
 /// The indices of `count` samples of `d` whose category or instance is `label`, spread evenly over
-/// them in manifest order (all of them when fewer).
+/// them in manifest order (all of them when fewer, or when `count` is 0 or less). Only samples through
+/// the sensor as modelled (`fits_familiarity`) when the label has any: not a recipe's widened twin.
 /// @throws std::invalid_argument "<where>: no sample is labelled '<label>' ..." when none is.
 std::vector<int> SpreadSamples(const Dataset& d, const std::string& label, int count, const std::string& where);
 
-/// Draws the rows: a title column, then one square tile of `tile_px` per view. Each view is projected
-/// through a pinhole at the camera's origin, fitted to its tile, nearest point in front, every point as
-/// large as the view's point spacing so that a sparse view reads as a surface. Views hold finite points;
-/// an empty one leaves its tile blank.
+/// Draws the rows: a title column as wide as the longest title, then one square tile of `tile_px` per
+/// view. Each view is projected through a pinhole at the camera's origin, fitted to its tile, nearest
+/// point in front, every point as large as the view's point spacing so that a sparse view reads as a
+/// surface. Points that are not finite or nearer than 1 cm are left out; a view left with none (or a
+/// null one) leaves its tile blank, and one with no extent (one point) is a dot in its middle.
 /// @throws std::invalid_argument for no rows or a tile smaller than 16 px.
 cv::Mat DrawViewSheet(const std::vector<ViewSheetRow>& rows, int tile_px);
 

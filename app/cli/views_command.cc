@@ -25,34 +25,39 @@ struct ViewsOptions {
   std::filesystem::path out;
 };
 
-// A row's title: what the views are and where they come from (a real capture or the simulator).
+// A row's title: what the views are and where they come from (a real capture, or the simulator through
+// the Kinect as modelled or through a recipe's widened sensor).
 std::string RowTitle(const training::Sample& first, const std::string& label, size_t views) {
-  const std::string kind = first.source == "rgbd-objects" ? "real Kinect" : "simulated, " + first.source;
+  std::string kind = first.source == "rgbd-objects" ? "real Kinect" : "simulated, " + first.source;
+  if (!first.fits_familiarity) kind += ", widened sensor";
   return fmt::format("{} ({}), {} views", label, kind, views);
 }
 
-training::ViewSheetRow LoadRow(const std::string& spec, std::map<std::string, training::Dataset>& datasets,
+training::ViewSheetRow LoadRow(const std::string& spec, std::map<std::filesystem::path, training::Dataset>& datasets,
                                int per_row) {
+  const std::string where = "--row '" + spec + "'";
   const size_t colon = spec.rfind(':');
   if (colon == std::string::npos || colon == 0 || colon + 1 == spec.size()) {
-    throw std::invalid_argument("--row '" + spec +
-                                "': expected DATASET:LABEL (a dataset folder and a category or "
-                                "instance of it)");
+    throw std::invalid_argument(where + ": expected DATASET:LABEL (a dataset folder and a category or instance of it)");
   }
-  const std::string dir = spec.substr(0, colon), label = spec.substr(colon + 1);
-  auto [it, fresh] = datasets.try_emplace(dir);
-  if (fresh) it->second = training::LoadDataset(dir);
-  const training::Dataset& d = it->second;
-  const std::vector<int> picked = training::SpreadSamples(d, label, per_row, "--row '" + spec + "'");
-  training::ViewSheetRow row{RowTitle(d.samples[picked.front()], label, picked.size()), {}};
-  for (int i : picked) {
-    row.views_C.push_back(perception::LoadCloud(std::filesystem::path(dir) / d.samples[i].cloud, false));
+  const std::filesystem::path dir = spec.substr(0, colon);
+  const std::string label = spec.substr(colon + 1);
+  try {
+    auto [it, fresh] = datasets.try_emplace(std::filesystem::weakly_canonical(dir));
+    if (fresh) it->second = training::LoadDataset(dir);
+    const training::Dataset& d = it->second;
+    const std::vector<int> picked = training::SpreadSamples(d, label, per_row, where);
+    training::ViewSheetRow row{RowTitle(d.samples[picked.front()], label, picked.size()), {}};
+    for (int i : picked) row.views_C.push_back(perception::LoadCloud(dir / d.samples[i].cloud, false));
+    return row;
+  } catch (const std::invalid_argument& e) {  // Named by its row, as the row's own refusals are.
+    const std::string what = e.what();
+    throw std::invalid_argument(what.rfind(where, 0) == 0 ? what : where + ": " + what);
   }
-  return row;
 }
 
 int ViewsCommand(const ViewsOptions& o) {
-  std::map<std::string, training::Dataset> datasets;
+  std::map<std::filesystem::path, training::Dataset> datasets;
   std::vector<training::ViewSheetRow> rows;
   for (const std::string& spec : o.rows) rows.push_back(LoadRow(spec, datasets, o.per_row));
   const cv::Mat sheet = training::DrawViewSheet(rows, o.tile_px);

@@ -345,4 +345,11 @@ TEST(RgbdObjects, ViewsDrawsRowsOfADatasetAndRefusesBadRows) {
   sortcell_test::ExpectOneLineError(sortcell_test::RunSortcell(views + data), "expected DATASET:LABEL");
   sortcell_test::ExpectOneLineError(sortcell_test::RunSortcell(views + "/nonexistent:ball"), "/nonexistent");
   sortcell_test::ExpectOneLineError(sortcell_test::RunSortcell(views + data + ":ball --tile 8"), "--tile");
+  // A cloud the manifest names that is gone: the row and the file named.
+  const training::Dataset d = training::LoadDataset(data);
+  const fs::path gone = fs::path(data) / d.samples.front().cloud;
+  fs::remove(gone);
+  sortcell_test::ExpectOneLineError(
+      sortcell_test::RunSortcell("views --per-row 40 --out " + png + " --row " + data + ":ball"),
+      "--row '" + data + ":ball': PCD '" + gone.string() + "'");
 }

@@ -1,6 +1,8 @@
 // The view sheet (training/view_sheet.h): which samples a row shows, and how a view is drawn.
 #include <gtest/gtest.h>
 
+#include <limits>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -54,9 +56,9 @@ TEST(ViewSheet, ARowsViewsAreSpreadOverItsLabelsSamples) {
 TEST(ViewSheet, EachViewFillsItsTileNearestPointInFront) {
   const int tile = 40;
   // Row 0: a red square with a smaller green one nearer the camera in front of it (the green is seen
-  // at its middle), then an empty view. Row 1: a blue square.
-  perception::Cloud::Ptr both = Square(0.1, 1.0, 200, 0, 0);
-  *both += *Square(0.02, 0.5, 0, 200, 0);
+  // at its middle, though drawn first), then an empty view. Row 1: a blue square.
+  perception::Cloud::Ptr both = Square(0.02, 0.5, 0, 200, 0);
+  *both += *Square(0.1, 1.0, 200, 0, 0);
   const cv::Mat sheet = training::DrawViewSheet(
       {{"red behind green", {both, std::make_shared<perception::Cloud>()}}, {"blue", {Square(0.1, 1.0, 0, 0, 200)}}},
       tile);
@@ -68,8 +70,9 @@ TEST(ViewSheet, EachViewFillsItsTileNearestPointInFront) {
   };
   EXPECT_EQ(at(0, 0, tile / 2, tile / 2), cv::Vec3b(0, 200, 0));  // The nearer green in front.
   EXPECT_EQ(at(0, 0, 6, 6), cv::Vec3b(0, 0, 200));                // The red square fills the tile.
-  EXPECT_EQ(at(0, 1, tile / 2, tile / 2), at(0, 1, 1, 1));        // The empty view: background.
-  EXPECT_NE(at(0, 1, tile / 2, tile / 2), cv::Vec3b(0, 0, 200));
+  const cv::Vec3b background = sheet.at<cv::Vec3b>(0, first - 1);
+  EXPECT_EQ(background, cv::Vec3b(235, 235, 235));
+  EXPECT_EQ(at(0, 1, tile / 2, tile / 2), background);            // The empty view.
   EXPECT_EQ(at(1, 0, tile / 2, tile / 2), cv::Vec3b(200, 0, 0));  // Blue (BGR).
   // A 20x20 grid drawn 32 px wide: every pixel of the square covered, no gaps between the points.
   for (int y = 8; y < tile - 8; ++y) {
@@ -83,4 +86,38 @@ TEST(ViewSheet, NoRowsOrTinyTilesAreRefused) {
               training::DrawViewSheet({{"x", {}}}, 8);
             }),
             "view sheet: tiles of 8 px (16 or more)");
+}
+
+TEST(ViewSheet, ADegenerateViewIsADotOrNothing) {
+  const int tile = 32;
+  auto one = std::make_shared<perception::Cloud>();
+  perception::PointT p;
+  p.x = 0.1f, p.y = -0.05f, p.z = 1.0f, p.r = 200, p.g = 0, p.b = 0;
+  one->push_back(p);
+  // Points behind the camera, at it, not finite, or absurdly near (x/z would overflow) are left out.
+  auto none = std::make_shared<perception::Cloud>();
+  for (const float z : {-1.0f, 0.0f, std::numeric_limits<float>::quiet_NaN(), 1e-30f}) {
+    perception::PointT q = p;
+    q.z = z;
+    none->push_back(q);
+    one->push_back(q);
+  }
+  const cv::Mat sheet = training::DrawViewSheet({{"degenerate", {one, none, nullptr}}}, tile);
+  const int first = sheet.cols - 3 * tile;
+  const cv::Vec3b background(235, 235, 235);
+  // The one point: a dot in the middle of its tile, and nothing else drawn.
+  EXPECT_EQ(sheet.at<cv::Vec3b>(tile / 2, first + tile / 2), cv::Vec3b(0, 0, 200));
+  int drawn = 0;
+  for (int y = 0; y < tile; ++y) {
+    for (int x = 0; x < 3 * tile; ++x) drawn += sheet.at<cv::Vec3b>(y, first + x) != background;
+  }
+  EXPECT_EQ(drawn, 1);
+}
+
+TEST(ViewSheet, ARowShowsTheViewsThroughTheSensorAsModelledWhenItHasAny) {
+  training::Dataset d = Labelled({"apple_1", "apple_1", "apple_1", "pear_1"});
+  d.samples[0].fits_familiarity = false;  // A widened twin's view.
+  EXPECT_EQ(training::SpreadSamples(d, "apple", 5, "row"), (std::vector<int>{1, 2}));
+  d.samples[3].fits_familiarity = false;  // Only widened views: those, rather than none.
+  EXPECT_EQ(training::SpreadSamples(d, "pear", 5, "row"), (std::vector<int>{3}));
 }
