@@ -17,7 +17,7 @@ packages=(
   ffmpeg gnuplot-nox python3-yaml
   libjs-chart.js chromium python3-websocket
   parallel slurm-wlm munge
-  clang clang-format clang-tidy valgrind
+  clang lld clang-format clang-tidy valgrind
 )
 
 missing=()
