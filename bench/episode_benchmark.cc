@@ -1,13 +1,18 @@
 // Episode and sweep throughput, printed as figures (not a timed test):
 //   real-time factor of a headless episode and of one with video (same seed, so the same motions);
-//   episodes per hour of a sweep with 1 and with 2 worker processes.
+//   episodes per hour of a sweep with 1 and with 2 worker processes; what starting a worker process costs.
 // Usage: episode_benchmark [MODEL] [EPISODES]   (default: the cached default model, 6 episodes)
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/wait.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -38,6 +43,31 @@ double SweepEpisodesPerHour(const std::string& model, int episodes, int jobs) {
   }
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return episodes * 3600.0 / wall;
+}
+
+// A sweep starts a `sortcell` process per episode: the wall time of starting one that exits at once
+// (`sortcell --version`, spawned as a sweep spawns its workers, output to /dev/null: loading the executable
+// and its shared libraries), median of `runs`.
+double ProcessStartSeconds(int runs) {
+  posix_spawn_file_actions_t quiet;
+  posix_spawn_file_actions_init(&quiet);
+  posix_spawn_file_actions_addopen(&quiet, 1, "/dev/null", O_WRONLY, 0);
+  std::string binary = SORTCELL_BINARY, flag = "--version";
+  char* argv[] = {binary.data(), flag.data(), nullptr};
+  std::vector<double> walls;
+  for (int i = 0; i < runs; ++i) {
+    const auto start = std::chrono::steady_clock::now();
+    pid_t pid = 0;
+    int status = 0;
+    if (posix_spawn(&pid, binary.c_str(), &quiet, nullptr, argv, environ) != 0 || waitpid(pid, &status, 0) != pid ||
+        !WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+      throw std::runtime_error("cannot run '" + binary + " --version'");
+    }
+    walls.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+  }
+  posix_spawn_file_actions_destroy(&quiet);
+  std::nth_element(walls.begin(), walls.begin() + runs / 2, walls.end());
+  return walls[runs / 2];
 }
 
 // The ceiling: MuJoCo stepping the episode's scene with its six objects standing in the workspace and
@@ -153,6 +183,8 @@ int Run(int argc, char** argv) {
   PrintPhysics(headless, options.scene.string());
   PrintCycle(headless);
 
+  std::printf("process start (a sweep's worker: `sortcell --version`, spawned): %.0f ms, median of 21\n",
+              1000 * ProcessStartSeconds(21));
   std::printf("sweep of %d episodes (4-6 paper objects):\n", episodes);
   const double one = SweepEpisodesPerHour(model, episodes, 1);
   const double two = SweepEpisodesPerHour(model, episodes, 2);

@@ -81,6 +81,7 @@ int RunCli(int argc, char** argv) {
       "SortCell: a simulated robotic sorting cell (UR5, parallel gripper, Kinect v1, Color-CVFH + SVM).\n"
       "World frame = UR Base frame (D-H frame 0), z up, table top at z = 0."};
   app.require_subcommand(1);
+  app.set_version_flag("--version", std::string("sortcell ") + SORTCELL_VERSION, "Print the version and exit");
   std::function<int()> run;
   AddCommands(app, run, command_line);
 
@@ -101,7 +102,7 @@ int RunCli(int argc, char** argv) {
   try {
     app.parse(static_cast<int>(arg_pointers.size()), arg_pointers.data());
   } catch (const CLI::Success& e) {
-    return app.exit(e);  // --help
+    return app.exit(e);  // --help, --version
   } catch (const CLI::ParseError& e) {
     std::cerr << "sortcell: error: " << ParseErrorMessage(app, e, argc, argv) << " (see sortcell --help)\n";
     return 2;

@@ -18,6 +18,12 @@ TEST(Cli, HelpExitsZeroAndNamesCapture) {
   EXPECT_EQ(RunSortcell("capture --help").exit_code, 0);
 }
 
+TEST(Cli, VersionExitsZeroAndNamesTheProjectsVersion) {
+  const auto version = RunSortcell("--version");
+  EXPECT_EQ(version.exit_code, 0);
+  EXPECT_EQ(version.out, "sortcell " SORTCELL_VERSION "\n");
+}
+
 TEST(Cli, BadArgumentsExitTwoWithOneLine) {
   ExpectOneLineError(RunSortcell(""), "subcommand");
   ExpectOneLineError(RunSortcell("teleport"), "teleport");
