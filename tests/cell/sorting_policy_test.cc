@@ -5,12 +5,16 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdlib>
+#include <filesystem>
 #include <memory>
 
 #include "cell/cell_layout.h"
 #include "error_of.h"
 #include "fake_cell.h"
 #include "perception/descriptor.h"
+#include "perception/recognition_model.h"
+#include "perception/segmentation.h"
 #include "robot/ur5_kinematics.h"
 #include "synthetic_scene.h"
 
@@ -77,9 +81,36 @@ perception::RecognitionModel TrainModel() {
   return m;
 }
 
+// Under CTest the model is trained once per run, by the fixture test below (sorting_policy_model,
+// tests/CMakeLists.txt: it took about 4 s of each of some 20 test processes under the sanitizers) and read
+// from the file it wrote; run by hand, each process trains its own.
+constexpr const char* kSharedModelVariable = "SORTCELL_TEST_POLICY_MODEL";
+
 const perception::RecognitionModel& Model() {
-  static const perception::RecognitionModel model = TrainModel();
+  static const perception::RecognitionModel model = [] {
+    const char* shared = std::getenv(kSharedModelVariable);
+    return shared ? perception::LoadModel(shared) : TrainModel();
+  }();
   return model;
+}
+
+// The fixture: disabled, so that only the fixture's own command (--gtest_also_run_disabled_tests) runs it.
+TEST(SortingPolicyModel, DISABLED_TrainedOnceForTheOtherTests) {
+  const char* shared = std::getenv(kSharedModelVariable);
+  ASSERT_NE(shared, nullptr) << kSharedModelVariable << " names the file to write";
+  const perception::RecognitionModel trained = TrainModel();
+  std::filesystem::create_directories(std::filesystem::path(shared).parent_path());
+  perception::SaveModel(shared, trained);
+  // What the other tests read classifies as the model they would have trained themselves.
+  const perception::RecognitionModel read = perception::LoadModel(shared);
+  ASSERT_EQ(read.classes, trained.classes);
+  const auto cloud = sortcell_test::RenderTable({kCup}, sortcell_test::KinectPose());
+  const CameraCalibration calibration = Calibration();
+  const auto segmented = perception::SegmentObjects(*cloud, calibration.X_WC, calibration.background.get(), {});
+  ASSERT_FALSE(segmented.segments.empty());
+  const auto parts = perception::ComputeDescriptorParts(*segmented.segments[0].cloud_C);
+  EXPECT_EQ(read.Classify(parts).name, "cup");
+  EXPECT_EQ(read.Classify(parts).probability, trained.Classify(parts).probability);
 }
 
 // Records what the policy reports.
