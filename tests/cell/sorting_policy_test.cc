@@ -8,6 +8,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <memory>
+#include <optional>
 
 #include "cell/cell_layout.h"
 #include "error_of.h"
@@ -42,12 +43,22 @@ CameraCalibration Calibration() {
   return c;
 }
 
-// A two-class model (bottle, cup) trained on the synthetic objects at six table positions (few: every
-// test process trains it again, and under the sanitizers a render and its descriptor take a third of a
-// second).
+// The descriptor of one object alone on the table, as the cell sees it; none when nothing is segmented or
+// the segment is too small to describe.
+std::optional<perception::DescriptorParts> DescribeAlone(const Cylinder& object, const CameraCalibration& calibration) {
+  const auto cloud = sortcell_test::RenderTable({object}, calibration.X_WC);
+  const auto segmented = perception::SegmentObjects(*cloud, calibration.X_WC, calibration.background.get(), {});
+  if (segmented.segments.empty()) return std::nullopt;
+  auto parts = perception::ComputeDescriptorParts(*segmented.segments[0].cloud_C);
+  if (parts.status != perception::DescriptorStatus::kOk) return std::nullopt;
+  return parts;
+}
+
+// A two-class model (bottle, cup) trained on the synthetic objects at six table positions (few: run outside
+// CTest every test process trains it again, and under the sanitizers a render and its descriptor take a
+// third of a second).
 perception::RecognitionModel TrainModel() {
   const CameraCalibration calibration = Calibration();
-  perception::SegmentationParams params;
   std::vector<Eigen::VectorXf> rows;
   std::vector<int> labels, groups;
   int group = 0;
@@ -56,13 +67,9 @@ perception::RecognitionModel TrainModel() {
       for (int c = 0; c < 2; ++c) {
         Cylinder object = c == 0 ? kBottle : kCup;
         object.xy = {x, y};
-        const auto cloud = sortcell_test::RenderTable({object}, calibration.X_WC);
-        const auto segmented =
-            perception::SegmentObjects(*cloud, calibration.X_WC, calibration.background.get(), params);
-        if (segmented.segments.empty()) continue;
-        const auto parts = perception::ComputeDescriptorParts(*segmented.segments[0].cloud_C);
-        if (parts.status != perception::DescriptorStatus::kOk) continue;
-        rows.push_back(perception::AssembleDescriptor(parts, perception::DescriptorKind::kColorCvfhNorm));
+        const auto parts = DescribeAlone(object, calibration);
+        if (!parts) continue;
+        rows.push_back(perception::AssembleDescriptor(*parts, perception::DescriptorKind::kColorCvfhNorm));
         labels.push_back(c);
         groups.push_back(group++ % 6);
       }
@@ -104,13 +111,10 @@ TEST(SortingPolicyModel, DISABLED_TrainedOnceForTheOtherTests) {
   // What the other tests read classifies as the model they would have trained themselves.
   const perception::RecognitionModel read = perception::LoadModel(shared);
   ASSERT_EQ(read.classes, trained.classes);
-  const auto cloud = sortcell_test::RenderTable({kCup}, sortcell_test::KinectPose());
-  const CameraCalibration calibration = Calibration();
-  const auto segmented = perception::SegmentObjects(*cloud, calibration.X_WC, calibration.background.get(), {});
-  ASSERT_FALSE(segmented.segments.empty());
-  const auto parts = perception::ComputeDescriptorParts(*segmented.segments[0].cloud_C);
-  EXPECT_EQ(read.Classify(parts).name, "cup");
-  EXPECT_EQ(read.Classify(parts).probability, trained.Classify(parts).probability);
+  const auto parts = DescribeAlone(kCup, Calibration());
+  ASSERT_TRUE(parts);
+  EXPECT_EQ(read.Classify(*parts).name, "cup");
+  EXPECT_EQ(read.Classify(*parts).probability, trained.Classify(*parts).probability);
 }
 
 // Records what the policy reports.
