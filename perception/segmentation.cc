@@ -1,12 +1,12 @@
 #include "perception/segmentation.h"
 
-#include <pcl/ModelCoefficients.h>
-#include <pcl/filters/project_inliers.h>
 #include <pcl/filters/voxel_grid.h>
+#include <pcl/sample_consensus/ransac.h>
+#include <pcl/sample_consensus/sac_model_perpendicular_plane.h>
+#include <pcl/sample_consensus/sac_model_plane.h>
 #include <pcl/search/kdtree.h>
 #include <pcl/segmentation/extract_clusters.h>
 #include <pcl/segmentation/extract_polygonal_prism_data.h>
-#include <pcl/segmentation/sac_segmentation.h>
 #include <pcl/surface/convex_hull.h>
 
 #include <Eigen/Eigenvalues>
@@ -98,6 +98,33 @@ struct PlaneFit {
   Cloud::Ptr sample;
 };
 
+// The plane as PCL's SACSegmentation finds it (RANSAC, then the coefficients refined on the inliers and
+// the inliers selected again), from PCL's RANSAC and plane models themselves: SACSegmentation would
+// compile every one of PCL's sample consensus models into this library (pcl_instantiations.cc). Not
+// randomly seeded: the same cloud gives the same plane. Empty coefficients and no inliers: none found.
+Eigen::VectorXf RansacPlane(const Cloud::Ptr& sample, const std::optional<Eigen::Isometry3d>& X_WC,
+                            const SegmentationParams& params, pcl::Indices& inliers) {
+  pcl::SampleConsensusModelPlane<PointT>::Ptr model;
+  if (X_WC) {
+    auto perpendicular = std::make_shared<pcl::SampleConsensusModelPerpendicularPlane<PointT>>(sample);
+    perpendicular->setAxis((X_WC->rotation().transpose() * Eigen::Vector3d::UnitZ()).cast<float>());
+    perpendicular->setEpsAngle(params.plane_max_tilt_rad);
+    model = perpendicular;
+  } else {
+    model = std::make_shared<pcl::SampleConsensusModelPlane<PointT>>(sample);
+  }
+  pcl::RandomSampleConsensus<PointT> ransac(model, params.plane_distance_m);
+  ransac.setMaxIterations(params.plane_iterations);
+  inliers.clear();
+  if (!ransac.computeModel()) return {};
+  ransac.getInliers(inliers);
+  Eigen::VectorXf coefficients, refined;
+  ransac.getModelCoefficients(coefficients);
+  model->optimizeModelCoefficients(inliers, coefficients, refined);
+  model->selectWithinDistance(refined, params.plane_distance_m, inliers);
+  return refined;
+}
+
 // RANSAC on every stride-th pixel of the region of interest. With a pose, the plane must be near
 // horizontal in the world (the table), so a large object face can never be taken for it. No plane:
 // nullopt, with the reason in `detail`.
@@ -113,32 +140,18 @@ std::optional<PlaneFit> FitSupportingPlane(const Cloud& cloud, const std::vector
     const bool sampled = cloud.isOrganized() ? row % stride == 0 && col % stride == 0 : k % (stride * stride) == 0;
     if (sampled) sample->push_back(cloud[i]);
   }
-  pcl::SACSegmentation<PointT> sac;  // Not randomly seeded: the same cloud gives the same plane.
-  sac.setOptimizeCoefficients(true);
-  sac.setMethodType(pcl::SAC_RANSAC);
-  sac.setDistanceThreshold(params.plane_distance_m);
-  sac.setMaxIterations(params.plane_iterations);
-  if (X_WC) {
-    const Eigen::Vector3f up_C = (X_WC->rotation().transpose() * Eigen::Vector3d::UnitZ()).cast<float>();
-    sac.setModelType(pcl::SACMODEL_PERPENDICULAR_PLANE);
-    sac.setAxis(up_C);
-    sac.setEpsAngle(params.plane_max_tilt_rad);
-  } else {
-    sac.setModelType(pcl::SACMODEL_PLANE);
-  }
   PlaneFit fit{Eigen::Vector4d::Zero(), std::make_shared<pcl::PointIndices>(), sample};
-  pcl::ModelCoefficients coefficients;
+  Eigen::VectorXf coefficients;
   if (static_cast<int>(sample->size()) >= params.min_plane_points) {
-    sac.setInputCloud(sample);
-    sac.segment(*fit.inliers, coefficients);
+    coefficients = RansacPlane(sample, X_WC, params, fit.inliers->indices);
   }
-  if (static_cast<int>(fit.inliers->indices.size()) < params.min_plane_points || coefficients.values.size() != 4) {
+  if (static_cast<int>(fit.inliers->indices.size()) < params.min_plane_points || coefficients.size() != 4) {
     detail = "segmentation: no supporting plane found (" + std::to_string(fit.inliers->indices.size()) +
              " sampled inliers of " + std::to_string(sample->size()) + ", need " +
              std::to_string(params.min_plane_points) + "): expected objects standing on a table or floor";
     return std::nullopt;
   }
-  Eigen::Vector4d plane(coefficients.values[0], coefficients.values[1], coefficients.values[2], coefficients.values[3]);
+  Eigen::Vector4d plane = coefficients.cast<double>();
   plane /= plane.head<3>().norm();
   if (plane[3] < 0) plane = -plane;  // n.0 + d = d: positive on the camera's side.
   fit.plane_C = plane;
@@ -148,16 +161,10 @@ std::optional<PlaneFit> FitSupportingPlane(const Cloud& cloud, const std::vector
 // Without a pose: keep what stands on the plane's inlier area (its convex hull), up to a height.
 std::vector<int> OnPlaneArea(const Cloud& cloud, const std::vector<int>& pixels, const PlaneFit& fit,
                              const SegmentationParams& params) {
-  pcl::ModelCoefficients::Ptr coefficients = std::make_shared<pcl::ModelCoefficients>();
-  coefficients->values = {static_cast<float>(fit.plane_C[0]), static_cast<float>(fit.plane_C[1]),
-                          static_cast<float>(fit.plane_C[2]), static_cast<float>(fit.plane_C[3])};
+  // The inliers projected onto the plane, as PCL's ProjectInliers does it with the plane model.
   auto projected = std::make_shared<Cloud>();
-  pcl::ProjectInliers<PointT> project;
-  project.setModelType(pcl::SACMODEL_PLANE);
-  project.setInputCloud(fit.sample);
-  project.setIndices(fit.inliers);
-  project.setModelCoefficients(coefficients);
-  project.filter(*projected);
+  pcl::SampleConsensusModelPlane<PointT>(fit.sample)
+      .projectPoints(fit.inliers->indices, fit.plane_C.cast<float>(), *projected, false);
   auto hull = std::make_shared<Cloud>();
   pcl::ConvexHull<PointT> convex;
   convex.setDimension(2);

@@ -28,8 +28,8 @@ CC=clang CXX=clang++ cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithD
   -DSORTCELL_FUZZ=ON -DSORTCELL_BUILD_TESTS=OFF -DSORTCELL_BUILD_BENCHMARKS=OFF >/dev/null
 cmake --build "$build" --target sortcell_fuzz_targets -j "$(nproc)"
 
-# Leaks count; see scripts/sanitize.sh for alloc_dealloc_mismatch=0 (Debian PCL's allocator pairing).
-export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:alloc_dealloc_mismatch=0}
+# Leaks count, and every other check (scripts/sanitize.sh says why alloc_dealloc_mismatch is on again).
+export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1}
 export LSAN_OPTIONS=${LSAN_OPTIONS:-suppressions=$PWD/scripts/lsan_suppressions.txt}
 export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
 

@@ -16,12 +16,11 @@ cmake -S . -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSORTCELL
   "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g1" "-DCMAKE_C_FLAGS_RELWITHDEBINFO=-O1 -g1" \
   -DSORTCELL_BUILD_BENCHMARKS=OFF >/dev/null
 cmake --build "$build_dir" --target sortcell_unit_tests -j "$(nproc)"
-# Leaks count as findings; UBSan prints the stack of what it finds and stops the test.
-# alloc_dealloc_mismatch=0: Debian's PCL allocates a supervoxel's shared state with malloc (Eigen's aligned
-# allocator) and releases it through a control block compiled here that calls operator delete
-# (SupervoxelClustering::getVoxels, under perception/convex_segmentation.cc): a mismatch between the prebuilt
-# library and this build, not a bug of ours; every other check stays on.
-export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:abort_on_error=0:strict_string_checks=1:alloc_dealloc_mismatch=0}
+# Leaks count as findings; UBSan prints the stack of what it finds and stops the test. Every ASan check is on,
+# alloc_dealloc_mismatch too: PCL's templates are compiled here (perception/pcl_instantiations.cc), so a
+# supervoxel's shared state is allocated and released by code of this build (with Debian's prebuilt
+# libpcl_segmentation it was allocated there with malloc and released here with operator delete).
+export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:abort_on_error=0:strict_string_checks=1}
 export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
 # Leaks inside prebuilt libraries that are theirs (scripts/lsan_suppressions.txt says which and why).
 export LSAN_OPTIONS=${LSAN_OPTIONS:-suppressions=$PWD/scripts/lsan_suppressions.txt}

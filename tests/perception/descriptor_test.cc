@@ -3,6 +3,7 @@
 #include "perception/descriptor.h"
 
 #include <gtest/gtest.h>
+#include <pcl/features/pfh_tools.h>
 
 #include <string>
 #include <vector>
@@ -185,6 +186,63 @@ TEST(Descriptor, UnknownNameIsAClearError) {
     FAIL() << "no exception";
   } catch (const std::invalid_argument& e) {
     EXPECT_STREQ(e.what(), "unknown descriptor 'vfh' (expected cvfh, color-cvfh or color-cvfh-norm)");
+  }
+}
+
+}  // namespace
+}  // namespace sortcell::perception
+
+namespace sortcell::perception {
+namespace {
+
+// CVFH's pair features come from perception/pcl_instantiations.cc, written to PCL's arithmetic: here
+// equal, to the bit, to what Debian's libpcl_features 1.13 gave for the same pairs (printed with %a by a
+// program linked against it, 2026-12-07): both choices of the source point and both degenerate pairs.
+TEST(PairFeatures, EqualPclsLibraryToTheBit) {
+  struct Pair {
+    Eigen::Vector4f p1, n1, p2, n2;
+    bool ok;
+    float f1, f2, f3, f4;
+  };
+  const Pair pairs[] = {
+      {{0.1f, 0.2f, 0.7f, 1},
+       {0.f, 0.6f, -0.8f, 0},
+       {0.13f, 0.17f, 0.72f, 1},
+       {0.48f, 0.6f, -0.64f, 0},
+       true,
+       0x1.c21302p-2f,
+       0x1.11d194p-2f,
+       -0x1.7323dap-1f,
+       0x1.803d2ep-5f},
+      {{0.1f, 0.2f, 0.7f, 1},
+       {0.36f, 0.48f, -0.8f, 0},
+       {0.102f, 0.23f, 0.69f, 1},
+       {0.f, 0.f, -1.f, 0},
+       true,
+       -0x1.d2ab1ap-2f,
+       0x1.d10b06p-2f,
+       0x1.759612p-1f,
+       0x1.039244p-5f},
+      // The second point's normal makes the smaller angle with the line: the pair is taken the other way.
+      {{-0.05f, 0.01f, 0.9f, 1},
+       {0.f, 0.f, -1.f, 0},
+       {-0.02f, 0.04f, 0.88f, 1},
+       {0.f, 0.8f, -0.6f, 0},
+       true,
+       0x1.6a564ap-4f,
+       0x1.98b15ap-1f,
+       -0x1.88f8b6p-1f,
+       0x1.803d22p-5f},
+      {{0.1f, 0.2f, 0.7f, 1}, {0.f, 0.6f, -0.8f, 0}, {0.1f, 0.2f, 0.7f, 1}, {0.f, 0.6f, -0.8f, 0}, false, 0, 0, 0, 0},
+      {{0.f, 0.f, 0.5f, 1}, {0.f, 0.f, -1.f, 0}, {0.f, 0.f, 0.6f, 1}, {0.f, 0.f, -1.f, 0}, false, 0, 0, 0, 0},
+  };
+  for (const Pair& p : pairs) {
+    float f1 = -1, f2 = -1, f3 = -1, f4 = -1;
+    EXPECT_EQ(pcl::computePairFeatures(p.p1, p.n1, p.p2, p.n2, f1, f2, f3, f4), p.ok);
+    EXPECT_EQ(f1, p.f1);
+    EXPECT_EQ(f2, p.f2);
+    EXPECT_EQ(f3, p.f3);
+    EXPECT_EQ(f4, p.f4);
   }
 }
 
