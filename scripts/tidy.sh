@@ -19,7 +19,7 @@ if [[ ! -f $build_dir/compile_commands.json ]]; then
   echo "tidy.sh: $build_dir/compile_commands.json not found (configure the build first: scripts/setup.sh)" >&2
   exit 2
 fi
-# The compiled files, each once (fuzz/replay_main.cc is in every fuzz replay); with --libraries, those of
+# The compiled files, each once; with --libraries, those of
 # the sortcell_* libraries and the sortcell executable.
 files=$(/usr/bin/python3 -c 'import json, re, sys
 files = sorted({e["file"] for e in json.load(open(sys.argv[1]))})
