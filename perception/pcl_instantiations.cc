@@ -1,11 +1,11 @@
 /// @file
 /// PCL's class templates that perception uses, instantiated here for its point type instead of taken
-/// from PCL's prebuilt libraries (libpcl_segmentation, _features, _filters, _surface, _search, which the
-/// binaries no longer load). Those libraries hold every point type's instantiation, and the loader's symbol
-/// lookups in them cost each process about 0.1 s at start (`perf stat -r 20 sortcell --version`: 0.16-0.17 s linked to
-/// them, 0.065 s with this file, one after the other on 2026-12-07; docs/performance.md, Process start), in
-/// every sweep worker, every `sortcell` command and every test. The code is PCL's own (PCL_NO_PRECOMPILE
-/// includes its implementation headers); only where it is compiled changes. Compiled on its own, outside
+/// from PCL's prebuilt libraries (libpcl_segmentation, _features, _filters, _surface, _search, _sample_consensus,
+/// _kdtree, _octree, which the binaries no longer load). Those libraries hold every point type's instantiation, and the
+/// loader's symbol lookups in them cost each process about 0.1 s at start (`perf stat -r 20 sortcell --version`:
+/// 0.16-0.17 s linked to them, 0.065 s with this file, one after the other on 2026-12-07; docs/performance.md, Process
+/// start), in every sweep worker, every `sortcell` command and every test. The code is PCL's own (PCL_NO_PRECOMPILE
+/// includes its implementation headers), compiled by this build's compiler with its flags. Compiled on its own, outside
 /// the unity batches: the macro must reach no other file.
 #define PCL_NO_PRECOMPILE
 // GCC's flow analysis warns of PCL's and Eigen's code here (maybe-uninitialized), not of ours.
