@@ -41,7 +41,6 @@ template class pcl::ExtractPolygonalPrismData<pcl::PointXYZRGB>;
 template class pcl::EuclideanClusterExtraction<pcl::PointXYZRGB>;
 template class pcl::VoxelGrid<pcl::PointXYZRGB>;
 template class pcl::SupervoxelClustering<pcl::PointXYZRGB>;
-template class pcl::NormalEstimation<pcl::PointXYZRGB, pcl::Normal>;
 template class pcl::CVFHEstimation<pcl::PointXYZRGB, pcl::Normal, pcl::VFHSignature308>;
 
 // What PCL's headers declare and its libraries' sources define (segmentation/src/supervoxel_clustering.cpp,

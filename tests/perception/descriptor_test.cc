@@ -189,12 +189,6 @@ TEST(Descriptor, UnknownNameIsAClearError) {
   }
 }
 
-}  // namespace
-}  // namespace sortcell::perception
-
-namespace sortcell::perception {
-namespace {
-
 // CVFH's pair features come from perception/pcl_instantiations.cc, written to PCL's arithmetic: here
 // equal, to the bit, to what Debian's libpcl_features 1.13 gave for the same pairs (printed with %a by a
 // program linked against it, 2026-12-07): both choices of the source point and both degenerate pairs.

@@ -5,7 +5,7 @@
 #include <random>
 #include <vector>
 
-#include <pcl/features/normal_3d.h>
+#include <pcl/features/impl/normal_3d.hpp>  // PCL's estimator, instantiated here: only this test uses it.
 #include <pcl/search/kdtree.h>
 
 #include "perception/normal_estimation.h"
