@@ -6,6 +6,8 @@
 
 #include <algorithm>
 #include <cstdlib>
+#include <stdexcept>
+#include <string>
 
 #include <fstream>
 
@@ -89,23 +91,22 @@ struct RecipeGroup {
   SceneOptions scenes;
 };
 
-// The recipe of `set`: 150 scenes of its own objects; with a training variety, the variety placed among the
-// set's own objects in groups of at most kVarietyGroup (each group the set's objects and a share of the
+// The recipe of `set`: `scenes` scenes of its own objects (150 by default); with a training variety, the variety placed
+// among the set's own objects in groups of at most kVarietyGroup (each group the set's objects and a share of the
 // variety), with as many scenes per object as the set's own objects have (so with two groups or more the set's
 // own objects are seen in each). Among the set's objects rather than apart: the ycb_dev model with a variety
 // captured apart called real ball_2 ball in 1.7 % of its views, with the generated balls among its own
 // objects 44.6 % (tried; the first variety also held our printed objects, so placement is not the only difference).
-std::vector<RecipeGroup> SensorRecipe(const files::ObjectSet& set) {
-  constexpr int kScenes = 150;
+std::vector<RecipeGroup> SensorRecipe(const files::ObjectSet& set, int scenes) {
   const size_t own = set.objects.size(), n = set.training_variety.size();
-  const double per_object = kScenes / static_cast<double>(std::max<size_t>(1, own));
+  const double per_object = scenes / static_cast<double>(std::max<size_t>(1, own));
   files::ObjectSet objects = set;
   objects.training_variety.clear();
-  if (n == 0) return {{objects, TrainingScenes(own, kScenes)}};
+  if (n == 0) return {{objects, TrainingScenes(own, scenes)}};
   // A set too large to share a scene with any of its variety captures its variety apart.
   const size_t room = own < kVarietyGroup ? kVarietyGroup - own : 0;
   std::vector<RecipeGroup> recipe;
-  if (room == 0) recipe.push_back({objects, TrainingScenes(own, kScenes)});
+  if (room == 0) recipe.push_back({objects, TrainingScenes(own, scenes)});
   const size_t slice = room == 0 ? kVarietyGroup : room;
   const size_t groups = (n + slice - 1) / slice, size = (n + groups - 1) / groups;
   for (size_t first = 0; first < n; first += size) {
@@ -125,9 +126,11 @@ std::vector<RecipeGroup> SensorRecipe(const files::ObjectSet& set) {
 // The whole recipe: the groups of SensorRecipe, seen through the Kinect as we model it (they fit the
 // classifier and the familiarity), each followed by a twin of other scenes seen through a widened sensor
 // (WidenScenes), for the classifier only.
-std::vector<RecipeGroup> Recipe(const files::ObjectSet& set) {
+std::vector<RecipeGroup> Recipe(const files::ObjectSet& set, int scenes) {
+  if (scenes < 1)
+    throw std::invalid_argument("the recipe's scene count must be 1 or more (got " + std::to_string(scenes) + ")");
   std::vector<RecipeGroup> recipe;
-  for (RecipeGroup& group : SensorRecipe(set)) {
+  for (RecipeGroup& group : SensorRecipe(set, scenes)) {
     RecipeGroup widened = group;
     widened.objects.name += "_widened";
     WidenScenes(widened.scenes);
@@ -138,9 +141,9 @@ std::vector<RecipeGroup> Recipe(const files::ObjectSet& set) {
 }
 
 // Every scene of the recipe, as `sortcell dataset` options.
-std::string DefaultTrainingSceneArguments(const files::ObjectSet& set) {
+std::string DefaultTrainingSceneArguments(const files::ObjectSet& set, int scenes) {
   std::string text;
-  for (const RecipeGroup& group : Recipe(set)) {
+  for (const RecipeGroup& group : Recipe(set, scenes)) {
     const SceneOptions& scenes = group.scenes;
     text += (text.empty() ? "" : "; ") + std::string("--scenes ") + std::to_string(scenes.scenes) + " --seed " +
             std::to_string(scenes.seed) + " --placement " + PlacementModesText(scenes.modes) + " --lying-fraction " +
@@ -179,10 +182,10 @@ std::string SegmentationDigest() {
 // What the default model of `set` depends on: its objects' models, the sensor it sees them through, and
 // the scenes it is trained on and how they are segmented, and what a model holds (a model of before the
 // familiarity was fitted cannot reject unknown objects: it is trained again).
-std::string TrainedOnDigest(const files::ObjectSet& set) {
+std::string TrainedOnDigest(const files::ObjectSet& set, int scenes) {
   return "model familiarity-3 block-scaled " + files::ObjectModelsDigest(set, files::ObjectTexturesDir()) + " colour " +
          sim::ToString(sim::KinectColourParams{}) + " depth " + sim::ToString(sim::KinectNoiseParams{}) + " scenes " +
-         DefaultTrainingSceneArguments(set) + " segmentation " + SegmentationDigest();
+         DefaultTrainingSceneArguments(set, scenes) + " segmentation " + SegmentationDigest();
 }
 
 std::string ReadDigest(const std::filesystem::path& file) {
@@ -226,13 +229,13 @@ void ForgetTrainedOn(const std::filesystem::path& model) {
   if (error) throw std::runtime_error("cannot remove '" + DigestPath(model).string() + "': " + error.message());
 }
 
-bool TrainedOnIsCurrent(const files::ObjectSet& set, const std::filesystem::path& model) {
+bool TrainedOnIsCurrent(const files::ObjectSet& set, const std::filesystem::path& model, int scenes) {
   return std::filesystem::exists(model) && std::filesystem::exists(DigestPath(model)) &&
-         ReadDigest(DigestPath(model)) == TrainedOnDigest(set);
+         ReadDigest(DigestPath(model)) == TrainedOnDigest(set, scenes);
 }
 
-std::string DefaultRecipeTitle() {
-  const std::vector<RecipeGroup> recipe = Recipe(files::ObjectSet{});
+std::string DefaultRecipeTitle(int scenes_count) {
+  const std::vector<RecipeGroup> recipe = Recipe(files::ObjectSet{}, scenes_count);
   const SceneOptions &scenes = recipe.at(0).scenes, &widened = recipe.at(1).scenes;
   return fmt::format(
       "{} random cell scenes, more in proportion for a training variety ({}; {:g} % lying; colour jitter {:g}; "
@@ -243,8 +246,9 @@ std::string DefaultRecipeTitle() {
       perception::DescriptorTitle(TrainRequest{}.descriptor));
 }
 
-perception::RecognitionModel TrainDefaultRecipe(const files::ObjectSet& set, const std::filesystem::path& dataset_dir) {
-  const std::vector<RecipeGroup> recipe = Recipe(set);
+perception::RecognitionModel TrainDefaultRecipe(const files::ObjectSet& set, const std::filesystem::path& dataset_dir,
+                                                int scenes) {
+  const std::vector<RecipeGroup> recipe = Recipe(set, scenes);
   Dataset dataset = CaptureScenes(recipe.front().objects, recipe.front().scenes, dataset_dir);
   dataset.capture = {{"kind", "recipe"}, {"groups", {dataset.capture}}};
   for (size_t g = 1; g < recipe.size(); ++g) {
@@ -255,8 +259,8 @@ perception::RecognitionModel TrainDefaultRecipe(const files::ObjectSet& set, con
   return TrainModel(dataset, {}, TrainRequest{});
 }
 
-void RecordTrainedOn(const files::ObjectSet& set, const std::filesystem::path& model) {
-  const std::string digest = TrainedOnDigest(set);
+void RecordTrainedOn(const files::ObjectSet& set, const std::filesystem::path& model, int scenes) {
+  const std::string digest = TrainedOnDigest(set, scenes);
   std::ofstream(DigestPath(model)) << digest << "\n";
   if (ReadDigest(DigestPath(model)) != digest)
     throw std::runtime_error("cannot write '" + DigestPath(model).string() + "'");
@@ -270,7 +274,7 @@ std::filesystem::path EnsureDefaultModel(const files::ObjectSet& set) {
                    ? "the objects, the Kinect's colour or depth model or the training recipe have changed since the"
                    : "no",
                path.string(), set.name, set.training_variety.empty() ? "" : " with its training variety",
-               DefaultTrainingSceneArguments(set));
+               DefaultTrainingSceneArguments(set, kDefaultRecipeScenes));
   const perception::RecognitionModel model = TrainDefaultRecipe(set, DefaultDatasetDir(set));
   const std::filesystem::path temporary = path.string() + ".tmp" + std::to_string(::getpid());
   perception::SaveModel(temporary, model);

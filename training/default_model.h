@@ -12,6 +12,10 @@
 
 namespace sortcell::training {
 
+/// The default recipe's count of random cell scenes of a set's own objects (TrainDefaultRecipe); every
+/// cached default model is trained with it.
+inline constexpr int kDefaultRecipeScenes = 150;
+
 /// The folder of cached default models: $SORTCELL_MODEL_CACHE when set; else the folder the build
 /// names (compile definition SORTCELL_DEFAULT_MODEL_CACHE, <build folder>/models); else out/models
 /// under the working directory.
@@ -29,27 +33,33 @@ std::string DefaultModelHint(const files::ObjectSet& set);
 bool DefaultModelIsCurrent(const files::ObjectSet& set);
 /// Whether `model` exists and its digest (<model>.trained_on, RecordTrainedOn) says it was made by the
 /// default recipe from `set`'s current objects through the current sensor models (false without one).
-bool TrainedOnIsCurrent(const files::ObjectSet& set, const std::filesystem::path& model);
+/// `scenes`: the recipe's count of scenes of the set's own objects the model was trained with.
+bool TrainedOnIsCurrent(const files::ObjectSet& set, const std::filesystem::path& model,
+                        int scenes = kDefaultRecipeScenes);
 /// Removes <model>.trained_on if there is one (a model written by other means is not the recipe's).
 /// @throws std::runtime_error if it cannot.
 void ForgetTrainedOn(const std::filesystem::path& model);
 
-/// The default recipe, the one every default model is made with: random cell scenes of `set` (150; seed
+/// The default recipe, the one every default model is made with: random cell scenes of `set` (`scenes`,
+/// 150 unless `sortcell train --scenes` says otherwise: fewer for a quick model; seed
 /// 0; sparse, dense and clustered in turns; 30 % of the bottles and boxes lying), its training variety
 /// among its own objects (as many scenes per object, in groups of at most 60 objects: MuJoCo 2.2 draws at
 /// most 100 textures in one scene), and for each group a twin of other scenes through a widened sensor
 /// (colours jittered, depth noisier) that trains the classifier but not the familiarity; captured into
 /// `dataset_dir` (kept there), and Color-CVFH (normalization) trained on them all.
-perception::RecognitionModel TrainDefaultRecipe(const files::ObjectSet& set, const std::filesystem::path& dataset_dir);
+/// @throws std::invalid_argument if `scenes` < 1.
+perception::RecognitionModel TrainDefaultRecipe(const files::ObjectSet& set, const std::filesystem::path& dataset_dir,
+                                                int scenes = kDefaultRecipeScenes);
 
 /// The recipe in words, e.g. "150 random cell scenes, more in proportion for a training variety
 /// (sparse,dense,clustered; 30 % lying; ...; seed 0), and as many other scenes through a widened sensor
 /// for the classifier only (...), Color-CVFH (normalization)".
-std::string DefaultRecipeTitle();
+std::string DefaultRecipeTitle(int scenes_count = kDefaultRecipeScenes);
 
 /// Writes beside `model` (<model>.trained_on) what a model of `set` made with TrainDefaultRecipe was
 /// trained on, so that the model cache takes it as current. @throws std::runtime_error if it cannot.
-void RecordTrainedOn(const files::ObjectSet& set, const std::filesystem::path& model);
+void RecordTrainedOn(const files::ObjectSet& set, const std::filesystem::path& model,
+                     int scenes = kDefaultRecipeScenes);
 
 /// Trains the default model of `set` if it is not there yet, or was trained on other objects, another
 /// Kinect colour or depth model or another recipe (TrainDefaultRecipe; about 30 s for 150 scenes;

@@ -37,6 +37,7 @@ struct TrainOptions {
   std::string descriptor = perception::DescriptorName(perception::DescriptorKind::kColorCvfhNorm);
   std::string label = perception::ToString(perception::LabelKind::kCategory);
   std::string group_by = ToString(training::Grouping::kSequence);
+  int scenes = training::kDefaultRecipeScenes;
   bool if_stale = false;
 };
 
@@ -120,7 +121,7 @@ int EvalCommand(const perception::RecognitionModel& model, const training::Datas
 // scenes kept beside the model.
 int TrainFromSetCommand(const TrainOptions& o, const std::vector<std::string>& command_line) {
   const files::ObjectSet set = files::LoadObjectSet(o.objects);
-  if (o.if_stale && training::TrainedOnIsCurrent(set, o.out)) {
+  if (o.if_stale && training::TrainedOnIsCurrent(set, o.out, o.scenes)) {
     std::cout << "The model " << o.out.string() << " is current (" << o.out.string()
               << ".trained_on: the same objects, sensor models and recipe): not trained again\n";
     return 0;
@@ -128,12 +129,13 @@ int TrainFromSetCommand(const TrainOptions& o, const std::vector<std::string>& c
   if (o.out.has_parent_path()) files::PrepareOutputDir(o.out.parent_path());
   const std::filesystem::path scenes = o.out.string() + ".scenes";
   const auto start = WallClock::now();
-  const perception::RecognitionModel model = training::TrainDefaultRecipe(set, scenes);
+  const perception::RecognitionModel model = training::TrainDefaultRecipe(set, scenes, o.scenes);
   perception::SaveModel(o.out, model);
-  training::RecordTrainedOn(set, o.out);  // Trained into the model cache, it is the current default model.
+  // Trained into the model cache with the default --scenes, it is the current default model.
+  training::RecordTrainedOn(set, o.out, o.scenes);
   files::WriteJson(scenes / "run.json",
                    files::RunRecord(command_line, 0, {{"command", "train"}, {"objects", o.objects.string()}}));
-  std::cout << "Trained the default recipe for " << set.name << " (" << training::DefaultRecipeTitle()
+  std::cout << "Trained the default recipe for " << set.name << " (" << training::DefaultRecipeTitle(o.scenes)
             << "): " << model.classes.size() << " " << ToString(model.label_kind) << " classes, grouped-CV accuracy "
             << model.cv_accuracy << ", " << std::lround(SecondsSince(start)) << " s. Model " << o.out.string()
             << ", its scenes in " << scenes.string() << "/\n";
@@ -296,6 +298,13 @@ void AddTrainCommand(CLI::App& app, std::function<int()>& run, const std::vector
   cmd->add_flag("--if-stale", o->if_stale,
                 "With --objects: train only if MODEL is missing, has no MODEL.trained_on (the digest train --objects "
                 "writes), or its MODEL.trained_on names other objects, sensor models or another recipe")
+      ->needs(objects);
+  cmd->add_option("--scenes", o->scenes,
+                  "With --objects: random cell scenes of the set's own objects (the training variety's and the widened "
+                  "twin's in proportion); fewer for a quick trial model. A model of another count is not the model "
+                  "cache's default")
+      ->check(CLI::Range(1, 100000))
+      ->capture_default_str()
       ->needs(objects);
   for (CLI::Option* recipe_fixed : {descriptor, label, group}) objects->excludes(recipe_fixed);
   cmd->callback([&run, o, command_line] {

@@ -371,8 +371,8 @@ TEST(TrainModel, OnlyTheViewsThatFitTheFamiliarityFitIt) {
 }
 
 // `train --if-stale` and the model cache judge a recipe's model by its digest: current only beside the
-// digest of the same set and recipe; a model without one (or with another) is stale, and a model written
-// by other means forgets it.
+// digest of the same set and recipe (and scene count); a model without one (or with another) is stale, and a model
+// written by other means forgets it.
 TEST(DefaultModelDigest, OnlyTheSameSetsDigestIsCurrent) {
   const TempDir dir("model_digest");
   const files::ObjectSet paper = files::LoadObjectSet(sortcell_test::kRoot / "scenes/objects/paper.yaml");
@@ -384,11 +384,16 @@ TEST(DefaultModelDigest, OnlyTheSameSetsDigestIsCurrent) {
   RecordTrainedOn(paper, model);
   EXPECT_TRUE(TrainedOnIsCurrent(paper, model));
   EXPECT_FALSE(TrainedOnIsCurrent(produce, model)) << "another set's digest";
+  EXPECT_FALSE(TrainedOnIsCurrent(paper, model, 20)) << "another scene count (train --scenes 20)";
+  RecordTrainedOn(paper, model, 20);
+  EXPECT_TRUE(TrainedOnIsCurrent(paper, model, 20));
+  EXPECT_FALSE(TrainedOnIsCurrent(paper, model)) << "a quick model is not the cache's default";
   std::ofstream(model.string() + ".trained_on") << "model of an older recipe\n";
   EXPECT_FALSE(TrainedOnIsCurrent(paper, model));
   ForgetTrainedOn(model);
   EXPECT_FALSE(std::filesystem::exists(model.string() + ".trained_on"));
   ForgetTrainedOn(model);  // Nothing to forget: no error.
+  EXPECT_EQ(ErrorOf([&] { RecordTrainedOn(paper, model, 0); }), "the recipe's scene count must be 1 or more (got 0)");
 }
 
 TEST(RecognitionSpellings, GroupingAndSplitRoundTripAndUnknownOnesAreClearErrors) {
