@@ -1,6 +1,9 @@
 #include "robot/ik_selection.h"
 
+#include <algorithm>
+#include <array>
 #include <cmath>
+#include <tuple>
 
 namespace sortcell::robot {
 
@@ -31,19 +34,28 @@ bool LinksAboveTable(const Joints& q, double min_z) {
 
 std::optional<SelectedSolution> SelectNearest(const IkResult& ik, const Joints& q_current,
                                               const SelectionOptions& options) {
-  std::optional<SelectedSolution> best;
-  double best_distance = 0;
+  // The links are checked nearest solution first, and only until one clears the table: forward kinematics
+  // of every link is most of the selection's cost. A stable sort keeps the lower index first among equally
+  // near solutions, as a scan for the strictly nearer one would.
+  struct Candidate {
+    int index;
+    Joints q;
+    double distance;
+  };
+  std::array<Candidate, std::tuple_size_v<decltype(ik.solutions)>> candidates;
+  int count = 0;
   for (int k = 0; k < ik.count; ++k) {
     Joints q;
     if (!NearestCopyWithinLimits(ik.solutions[k].q, q_current, options.limits, q)) continue;
-    if (!LinksAboveTable(q, options.min_link_z)) continue;
-    const double distance = (q - q_current).norm();
-    if (!best || distance < best_distance) {
-      best = SelectedSolution{k, q};
-      best_distance = distance;
-    }
+    candidates[count++] = {k, q, (q - q_current).norm()};
   }
-  return best;
+  std::stable_sort(candidates.begin(), candidates.begin() + count,
+                   [](const Candidate& a, const Candidate& b) { return a.distance < b.distance; });
+  for (int i = 0; i < count; ++i) {
+    if (LinksAboveTable(candidates[i].q, options.min_link_z))
+      return SelectedSolution{candidates[i].index, candidates[i].q};
+  }
+  return std::nullopt;
 }
 
 }  // namespace sortcell::robot

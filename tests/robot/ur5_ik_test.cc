@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <optional>
 #include <random>
 
 #include "robot/ik_selection.h"
@@ -196,6 +197,39 @@ TEST(IkSelection, PicksTheSolutionNearestToTheCurrentJoints) {
     ++selected;
   }
   EXPECT_GT(selected, 50);
+}
+
+// The selection checks the links nearest solution first; it picks what a scan of every solution for the
+// strictly nearest one whose links clear the table picks (the lower index among equally near ones).
+TEST(IkSelection, ChoosesAsAScanOfEverySolutionWould) {
+  std::mt19937_64 rng(12);
+  int compared = 0, below = 0;
+  for (int n = 0; n < 2000; ++n) {
+    const Joints target = RandomJoints(rng), current = RandomJoints(rng);
+    const IkResult ik = SolveIk(FlangePose(target), target[5]);
+    std::optional<SelectedSolution> scan;
+    double scan_distance = 0;
+    for (int k = 0; k < ik.count; ++k) {
+      Joints q;
+      if (!NearestCopyWithinLimits(ik.solutions[k].q, current, Ur5JointLimits(), q)) continue;
+      if (!LinksAboveTable(q, 0.06)) {
+        ++below;
+        continue;
+      }
+      if (!scan || (q - current).norm() < scan_distance) {
+        scan = SelectedSolution{k, q};
+        scan_distance = (q - current).norm();
+      }
+    }
+    const auto chosen = SelectNearest(ik, current);
+    ASSERT_EQ(chosen.has_value(), scan.has_value()) << n;
+    if (!chosen) continue;
+    EXPECT_EQ(chosen->index, scan->index) << n;
+    EXPECT_EQ(chosen->q, scan->q) << n;
+    ++compared;
+  }
+  EXPECT_GT(compared, 1000);
+  EXPECT_GT(below, 500) << "solutions through the table were met and passed over";
 }
 
 TEST(IkSelection, RejectsLinksBelowTheTable) {

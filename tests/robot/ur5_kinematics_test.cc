@@ -3,8 +3,10 @@
 #include <gtest/gtest.h>
 
 #include <random>
+#include <vector>
 
 #include "robot/gripper_geometry.h"
+#include "robot/ur5_dh.h"
 
 namespace sortcell::robot {
 namespace {
@@ -27,6 +29,28 @@ TEST(Ur5Kinematics, ClosedFormEqualsTheChainOfDhTransforms) {
     const Eigen::Isometry3d closed = FlangePose(q);
     ASSERT_LT(PositionError(chain, closed), 1e-12);
     ASSERT_LT(RotationError(chain, closed), 1e-12);
+  }
+}
+
+// DhLinkTransform is written out; it must give Eigen's composition of the DH rotations and translation
+// to the bit, at random angles and at the special ones (where sines and cosines are 0 or +-1).
+TEST(Ur5Kinematics, LinkTransformsEqualEigensComposition) {
+  const auto composed = [](int i, double q_i) {
+    const DhRow& row = kUr5Dh.at(static_cast<size_t>(i));
+    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+    T.rotate(Eigen::AngleAxisd(q_i, Eigen::Vector3d::UnitZ()));
+    T.translate(Eigen::Vector3d(row.a, 0, row.d));
+    T.rotate(Eigen::AngleAxisd(row.alpha, Eigen::Vector3d::UnitX()));
+    return T;
+  };
+  std::mt19937_64 rng(8);
+  std::uniform_real_distribution<double> angle(-2 * M_PI, 2 * M_PI);
+  std::vector<double> angles{0, M_PI_2, -M_PI_2, M_PI, -M_PI, 2 * M_PI};
+  for (int n = 0; n < 2000; ++n) angles.push_back(angle(rng));
+  for (int i = 0; i < 6; ++i) {
+    for (const double q_i : angles) {
+      ASSERT_EQ(DhLinkTransform(i, q_i).matrix(), composed(i, q_i).matrix()) << "link " << i << ", angle " << q_i;
+    }
   }
 }
 
