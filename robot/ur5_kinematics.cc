@@ -13,7 +13,7 @@ Eigen::Isometry3d DhLinkTransform(int i, double q_i) {
   // T_{i-1,i} = Rz(q_i) Tz(d_i) Tx(a_i) Rx(alpha_i), written out: composing Eigen's AngleAxis rotations
   // cost forward kinematics most of its time (most of all under the sanitizers). Each entry is the
   // arithmetic Eigen's composition does, its zero terms left out, so the frames are the same to the bit
-  // (unit test Ur5Fk.LinkTransformsEqualEigensComposition): AngleAxis puts (1 - c) + c on the diagonal
+  // (unit test Ur5Kinematics.LinkTransformsEqualEigensComposition): AngleAxis puts (1 - c) + c on the diagonal
   // entry of its own axis, which need not round to 1.
   const double c = std::cos(q_i), s = std::sin(q_i);
   const double ca = std::cos(row.alpha), sa = std::sin(row.alpha);

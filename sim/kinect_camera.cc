@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <stdexcept>
+#include <utility>
 
 namespace sortcell::sim {
 
@@ -28,6 +29,15 @@ KinectCamera::KinectCamera(const Model& model, const std::string& camera_name, i
 KinectFrame KinectCamera::Capture(const Data& data, const KinectNoiseParams* noise, std::mt19937_64* rng,
                                   FrameTruth* truth) {
   if (noise != nullptr && rng == nullptr) throw std::invalid_argument("KinectCamera::Capture: noise needs an rng");
+  KinectFrame frame = RenderClean(data, truth);
+  if (noise == nullptr) return frame;
+  const auto start = std::chrono::steady_clock::now();
+  frame = ApplySensorModel(std::move(frame), *noise, *rng);
+  timings_.noise_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return frame;
+}
+
+KinectFrame KinectCamera::RenderClean(const Data& data, FrameTruth* truth) {
   const RenderView view{camera_id_, intrinsics_.width, intrinsics_.height};
   KinectFrame frame;
   frame.intrinsics = intrinsics_;
@@ -39,11 +49,8 @@ KinectFrame KinectCamera::Capture(const Data& data, const KinectNoiseParams* noi
   };
   cv::Mat depth_buffer;
   renderer_.Render(data, view, frame.rgb, depth_buffer);
-  const cv::Mat clean = LinearizeDepth(depth_buffer, DepthRangeOf(model_));
+  frame.depth = LinearizeDepth(depth_buffer, DepthRangeOf(model_));
   lap(timings_.render_s);
-  frame.depth = noise != nullptr ? ApplyKinectNoise(clean, intrinsics_, *noise, *rng) : clean;
-  if (noise != nullptr) frame.rgb = ApplyKinectColour(frame.rgb, noise->colour, *rng);
-  lap(timings_.noise_s);
   if (truth == nullptr) return frame;
 
   truth->X_WC = CameraPoseInWorld(model_, data, camera_id_);
@@ -57,6 +64,13 @@ KinectFrame KinectCamera::Capture(const Data& data, const KinectNoiseParams* noi
   }
   lap(timings_.labels_s);
   return frame;
+}
+
+KinectFrame KinectCamera::ApplySensorModel(KinectFrame clean, const KinectNoiseParams& noise, std::mt19937_64& rng) {
+  // The depth's draws first, then the colour's, as the sensor model has always drawn them.
+  clean.depth = ApplyKinectNoise(clean.depth, clean.intrinsics, noise, rng);
+  clean.rgb = ApplyKinectColour(clean.rgb, noise.colour, rng);
+  return clean;
 }
 
 }  // namespace sortcell::sim

@@ -53,6 +53,13 @@ class KinectCamera {
   KinectFrame Capture(const Data& data, const KinectNoiseParams* noise, std::mt19937_64* rng,
                       FrameTruth* truth = nullptr);
 
+  /// Capture in two steps, for a caller that renders the next scene while another thread applies the
+  /// sensor's noise to this one: RenderClean renders (on the thread that made the camera: its GL
+  /// context's), ApplySensorModel needs no GL and touches no camera. ApplySensorModel(RenderClean(data,
+  /// truth), noise, rng) is Capture(data, &noise, &rng, truth), draw for draw.
+  KinectFrame RenderClean(const Data& data, FrameTruth* truth = nullptr);
+  static KinectFrame ApplySensorModel(KinectFrame clean, const KinectNoiseParams& noise, std::mt19937_64& rng);
+
   /// Lighting of the following captures (default: the scene's own).
   void SetLighting(const Lighting& lighting) { renderer_.SetLighting(lighting); }
 

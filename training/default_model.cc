@@ -117,7 +117,9 @@ std::vector<RecipeGroup> SensorRecipe(const files::ObjectSet& set, int scenes) {
     group.objects.objects.insert(group.objects.objects.end(), set.training_variety.begin() + first,
                                  set.training_variety.begin() + std::min(n, first + size));
     const size_t count = group.objects.objects.size();
-    group.scenes = TrainingScenes(count, static_cast<int>(std::lround(per_object * static_cast<double>(count))));
+    // At least one scene: a small --scenes with a set far larger than its share of the variety.
+    group.scenes =
+        TrainingScenes(count, std::max(1, static_cast<int>(std::lround(per_object * static_cast<double>(count)))));
     recipe.push_back(std::move(group));
   }
   return recipe;
@@ -141,9 +143,9 @@ std::vector<RecipeGroup> Recipe(const files::ObjectSet& set, int scenes) {
 }
 
 // Every scene of the recipe, as `sortcell dataset` options.
-std::string DefaultTrainingSceneArguments(const files::ObjectSet& set, int scenes) {
+std::string DefaultTrainingSceneArguments(const files::ObjectSet& set, int scenes_count) {
   std::string text;
-  for (const RecipeGroup& group : Recipe(set, scenes)) {
+  for (const RecipeGroup& group : Recipe(set, scenes_count)) {
     const SceneOptions& scenes = group.scenes;
     text += (text.empty() ? "" : "; ") + std::string("--scenes ") + std::to_string(scenes.scenes) + " --seed " +
             std::to_string(scenes.seed) + " --placement " + PlacementModesText(scenes.modes) + " --lying-fraction " +

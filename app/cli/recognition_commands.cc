@@ -295,9 +295,10 @@ void AddTrainCommand(CLI::App& app, std::function<int()>& run, const std::vector
       cmd->add_option("--label", o->label, "What to recognise: category | instance")->capture_default_str();
   CLI::Option* group =
       cmd->add_option("--group-by", o->group_by, "Cross-validation groups: sequence | instance")->capture_default_str();
-  cmd->add_flag("--if-stale", o->if_stale,
-                "With --objects: train only if MODEL is missing, has no MODEL.trained_on (the digest train --objects "
-                "writes), or its MODEL.trained_on names other objects, sensor models or another recipe")
+  cmd->add_flag(
+         "--if-stale", o->if_stale,
+         "With --objects: train only if MODEL is missing, has no MODEL.trained_on (the digest train --objects "
+         "writes), or its MODEL.trained_on names other objects, sensor models or another recipe (another --scenes too)")
       ->needs(objects);
   cmd->add_option("--scenes", o->scenes,
                   "With --objects: random cell scenes of the set's own objects (the training variety's and the widened "

@@ -230,6 +230,17 @@ TEST(IkSelection, ChoosesAsAScanOfEverySolutionWould) {
   }
   EXPECT_GT(compared, 1000);
   EXPECT_GT(below, 500) << "solutions through the table were met and passed over";
+  // Equally near: the lower index, as the scan's strict comparison keeps the first.
+  const Joints q = (Joints() << 0.3, -1.2, 1.1, -1.4, -1.5, 0.2).finished();
+  ASSERT_TRUE(LinksAboveTable(q, 0.06));
+  IkResult twins;
+  twins.count = 3;
+  twins.solutions[0].q = q + Joints::Constant(0.2);  // Farther.
+  twins.solutions[1].q = q;
+  twins.solutions[2].q = q;
+  const auto chosen = SelectNearest(twins, q);
+  ASSERT_TRUE(chosen.has_value());
+  EXPECT_EQ(chosen->index, 1);
 }
 
 TEST(IkSelection, RejectsLinksBelowTheTable) {

@@ -6,6 +6,8 @@
 #include <Eigen/Geometry>
 #include <cmath>
 #include <cstring>
+#include <future>
+#include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include "sim/offscreen_renderer.h"
@@ -173,6 +175,7 @@ TEST(KinectCamera, TableTopLiesWhereTheCellSaysAndEveryObjectIsLabelled) {
   EXPECT_GT(box[0] + box[1] + box[2], 3 * 140);  // white box
 }
 
+// Same seed, same cloud; captured in two steps (KinectCamera::RenderClean, then ApplySensorModel), the same.
 TEST(KinectCamera, SameSeedGivesTheSameCloud) {
   const Model model = WallModel();
   Data data(model);
@@ -197,6 +200,21 @@ TEST(KinectCamera, SameSeedGivesTheSameCloud) {
   };
   EXPECT_TRUE(same(*ca, *cb));
   EXPECT_FALSE(same(*ca, *cc));
+
+  // In two steps (the clean render here, the sensor model on another thread), draw for draw the same,
+  // the truth too; and the stream is left where Capture leaves it.
+  std::mt19937_64 d(42);
+  FrameTruth truth_whole, truth_split;
+  const KinectFrame whole = kinect.Capture(data, &noise, &d, &truth_whole);
+  std::mt19937_64 e(42);
+  KinectFrame clean = kinect.RenderClean(data, &truth_split);
+  const KinectFrame split =
+      std::async(std::launch::async, [&] { return KinectCamera::ApplySensorModel(std::move(clean), noise, e); }).get();
+  EXPECT_TRUE(same(*ToOrganizedCloud(whole), *ToOrganizedCloud(split)));
+  EXPECT_TRUE(same(*ToOrganizedCloud(whole), *ca)) << "the label render draws nothing from the stream";
+  EXPECT_EQ(cv::norm(truth_whole.labels, truth_split.labels, cv::NORM_INF), 0);
+  EXPECT_TRUE(truth_whole.X_WC.matrix() == truth_split.X_WC.matrix());
+  EXPECT_EQ(d(), e());
 }
 
 TEST(KinectCamera, MissingCameraAndTooSmallBufferAreNamed) {
