@@ -53,6 +53,11 @@ sim::Lighting RandomLighting(std::mt19937_64& rng) {
   return lighting;
 }
 
+// Scenes being segmented and described on other threads while this one renders the next (CaptureScenes,
+// CaptureTurntable). One: on 2 cores, 60 paper scenes took 7.8-8.1 s with one, 7.5-7.8 with two, 7.7-7.8 with three
+// (the rendering, with llvmpipe's own threads, is the other half of the work).
+constexpr int kCapturesInFlight = 1;
+
 // A capture rendered (CaptureRig::Render) with what the rest of it needs: the noise and its stream, the
 // empty cell's cloud to subtract, the count of objects the label image numbers.
 struct PendingCapture {
@@ -64,8 +69,8 @@ struct PendingCapture {
   int object_count = 0;
 };
 
-// CaptureSegments' second half, on any thread: the sensor's noise applied (capture.rng goes on drawing),
-// the cloud segmented and each segment labelled from the ground truth.
+// A capture's second half (CaptureRig::Render the first), on any thread: the sensor's noise applied (capture.rng goes
+// on drawing), the cloud segmented and each segment labelled from the ground truth.
 std::vector<LabelledSegment> SegmentCapture(PendingCapture& capture, const perception::SegmentationParams& params,
                                             std::string* failure) {
   const sim::KinectFrame frame =
@@ -137,19 +142,9 @@ class CaptureRig {
     background_[camera] = sim::ToOrganizedCloud(Camera(camera).Capture(data_, &noise, &rng));
   }
 
-  // Captures the current state and labels each segment from the ground-truth label image. A capture
-  // that cannot be segmented (no table or no depth in view) has no segments; `failure` says why.
-  std::vector<LabelledSegment> CaptureSegments(const std::string& camera, std::mt19937_64& rng, std::string* failure,
-                                               const perception::SegmentationParams& params = {},
-                                               double noise_scale = 1) {
-    PendingCapture capture = Render(camera, rng, noise_scale);
-    std::vector<LabelledSegment> segments = SegmentCapture(capture, params, failure);
-    rng = capture.rng;  // The noise's draws were the caller's stream's next ones.
-    return segments;
-  }
-
-  // CaptureSegments' first half, on this thread (the GL context's): the current state rendered under
-  // lighting and a camera colour drawn from `rng`, the noise still to apply from where `rng` stands.
+  // A capture's first half, on this thread (the GL context's): the current state rendered under lighting
+  // and a camera colour drawn from `rng`, the noise still to apply from where `rng` stands (SegmentCapture
+  // finishes it on any thread; a capture that cannot be segmented has no segments, and says why).
   PendingCapture Render(const std::string& camera, std::mt19937_64& rng, double noise_scale) {
     mj_forward(model_.get(), data_.get());
     sim::KinectCamera& kinect = Camera(camera);
@@ -199,12 +194,6 @@ bool KeepDescribed(const LabelledSegment& l, perception::DescriptorParts parts, 
   sample.purity = l.purity;
   sample.iou = l.iou;
   return true;
-}
-
-// Describes a labelled segment and writes its cloud; false (with the reason) when it cannot be described.
-bool Describe(const LabelledSegment& l, const std::filesystem::path& dir, const perception::DescriptorParams& params,
-              Sample& sample, std::string& reason) {
-  return KeepDescribed(l, perception::ComputeDescriptorParts(*l.segment.cloud_C, params), dir, sample, reason);
 }
 
 // The segment with the points beyond a random straight edge across the view dropped: a nearer object's
@@ -267,23 +256,54 @@ struct TurntableView {
   uint64_t index = 0;
 };
 
-// One view: the object alone on the turntable, jittered, captured and described into a sample (with its
-// occluded copies) or into `skipped` with the reason.
-void CaptureTurntableView(CaptureRig& rig, const TurntableOptions& options, const TurntableView& v,
-                          const std::filesystem::path& dir, Dataset& dataset, nlohmann::json& skipped) {
+// A turntable view's capture finished off the GL thread: the object's best segment (none: `failure`, or
+// "no segment of the object") with its descriptor's parts, and its occluded copies with theirs.
+struct SegmentedView {
+  std::optional<LabelledSegment> best;
+  perception::DescriptorParts parts;
+  std::string failure;
+  std::vector<std::pair<LabelledSegment, perception::DescriptorParts>> occluded;
+};
+
+// The second stage of a turntable view (any thread): noise, segmentation, the object's segment and its
+// descriptor, then its occluded copies drawn from the view's stream where the noise left it.
+SegmentedView SegmentView(PendingCapture capture, int label, int occluded_copies,
+                          const perception::DescriptorParams& descriptor) {
+  SegmentedView view;
+  std::vector<LabelledSegment> segments = SegmentCapture(capture, {}, &view.failure);
+  for (auto& l : segments) {
+    if (l.label == label && (!view.best || l.iou > view.best->iou)) view.best = std::move(l);
+  }
+  if (!view.best) return view;
+  view.parts = perception::ComputeDescriptorParts(*view.best->segment.cloud_C, descriptor);
+  if (view.parts.status != perception::DescriptorStatus::kOk) return view;
+  for (int k = 0; k < occluded_copies; ++k) {
+    LabelledSegment copy = OccludedCopy(*view.best, capture.rng);
+    perception::DescriptorParts parts = perception::ComputeDescriptorParts(*copy.segment.cloud_C, descriptor);
+    view.occluded.emplace_back(std::move(copy), std::move(parts));
+  }
+  return view;
+}
+
+// The first stage of a turntable view (this thread): the object alone on the turntable, jittered, and
+// rendered; the rest on another thread (SegmentView).
+std::future<SegmentedView> RenderTurntableView(CaptureRig& rig, const TurntableOptions& options, const TurntableView& v,
+                                               const perception::DescriptorParams& descriptor) {
   std::mt19937_64 rng = EpisodeRng(options.seed, v.index);
   std::uniform_real_distribution<double> unit(-1.0, 1.0);
   rig.ParkAll();
   const double yaw = 2 * M_PI * v.view / options.views + options.yaw_jitter_rad * unit(rng);
   sim::PlaceObject(rig.model(), rig.data(), rig.Body(v.spec.name), options.centre_W.x() + options.jitter_m * unit(rng),
                    options.centre_W.y() + options.jitter_m * unit(rng), yaw);
-  std::string segmentation_failure;
-  const auto segments = rig.CaptureSegments(v.camera, rng, &segmentation_failure);
-  const int label = LabelOf(rig, v.spec.name);
-  const LabelledSegment* best = nullptr;
-  for (const auto& l : segments) {
-    if (l.label == label && (best == nullptr || l.iou > best->iou)) best = &l;
-  }
+  PendingCapture capture = rig.Render(v.camera, rng, 1);
+  return std::async(std::launch::async, SegmentView, std::move(capture), LabelOf(rig, v.spec.name),
+                    options.occluded_copies, descriptor);
+}
+
+// A view's sample (with its occluded copies) kept, ids in order and clouds written, or the view put into
+// `skipped` with the reason.
+void KeepTurntableView(const TurntableView& v, SegmentedView segmented, const std::filesystem::path& dir,
+                       Dataset& dataset, nlohmann::json& skipped) {
   Sample sample;
   sample.id = static_cast<int>(dataset.samples.size());
   sample.category = v.spec.category;
@@ -291,21 +311,19 @@ void CaptureTurntableView(CaptureRig& rig, const TurntableOptions& options, cons
   sample.source = "turntable";
   sample.elevation_deg = v.elevation_deg;
   sample.frame = v.view;
-  std::string reason = segmentation_failure.empty() ? "no segment of the object" : segmentation_failure;
-  if (best == nullptr || !Describe(*best, dir, dataset.params, sample, reason)) {
+  std::string reason = segmented.failure.empty() ? "no segment of the object" : segmented.failure;
+  if (!segmented.best || !KeepDescribed(*segmented.best, std::move(segmented.parts), dir, sample, reason)) {
     skipped.push_back(
         {{"instance", v.spec.instance}, {"elevation_deg", v.elevation_deg}, {"frame", v.view}, {"reason", reason}});
     return;
   }
   dataset.samples.push_back(sample);
-  for (int k = 0; k < options.occluded_copies; ++k) {
+  for (auto& [copy, parts] : segmented.occluded) {
     Sample occluded = sample;
     occluded.id = static_cast<int>(dataset.samples.size());
     occluded.source = "turntable_occluded";
     std::string why;  // An occluded copy too small to describe is left out; the view is not.
-    if (Describe(OccludedCopy(*best, rng), dir, dataset.params, occluded, why)) {
-      dataset.samples.push_back(std::move(occluded));
-    }
+    if (KeepDescribed(copy, std::move(parts), dir, occluded, why)) dataset.samples.push_back(std::move(occluded));
   }
 }
 
@@ -327,16 +345,25 @@ Dataset CaptureTurntable(const files::ObjectSet& set, const TurntableOptions& op
 
   const int total = static_cast<int>(set.objects.size() * cameras.size()) * options.views;
   files::Progress progress("dataset " + set.name, total);
+  // Two stages, as for scenes (CaptureScenes): this thread renders the next view while another segments
+  // and describes the last; the samples are kept in the views' order.
+  std::deque<std::pair<TurntableView, std::future<SegmentedView>>> in_flight;
+  const auto keep_first = [&] {
+    KeepTurntableView(in_flight.front().first, in_flight.front().second.get(), dir, dataset, skipped);
+    in_flight.pop_front();
+    progress.Advance();
+  };
   uint64_t index = 0;
   for (const auto& spec : set.objects) {
     for (size_t c = 0; c < cameras.size(); ++c) {
       for (int view = 0; view < options.views; ++view, ++index) {
-        CaptureTurntableView(rig, options, {spec, cameras[c].name, options.elevations_deg[c], view, index}, dir,
-                             dataset, skipped);
-        progress.Advance();
+        const TurntableView v{spec, cameras[c].name, options.elevations_deg[c], view, index};
+        in_flight.emplace_back(v, RenderTurntableView(rig, options, v, dataset.params));
+        if (static_cast<int>(in_flight.size()) > kCapturesInFlight) keep_first();
       }
     }
   }
+  while (!in_flight.empty()) keep_first();
   progress.Finish();
   dataset.capture = {{"kind", "turntable"},
                      {"captures", total},
@@ -391,11 +418,6 @@ std::vector<int> PlaceRandomScene(CaptureRig& rig, const files::ObjectSet& set,
   }
   return order;
 }
-
-// Scenes being segmented and described on other threads while this one renders the next (CaptureScenes).
-// One: on 2 cores, 60 paper scenes took 7.8-8.1 s with one, 7.5-7.8 with two, 7.7-7.8 with three (the
-// rendering, with llvmpipe's own threads, is the other half of the work).
-constexpr int kScenesInFlight = 1;
 
 // A scene's capture finished off the GL thread: its segments, each with its descriptor's parts.
 struct SegmentedScene {
@@ -509,7 +531,7 @@ Dataset CaptureScenes(const files::ObjectSet& set, const SceneOptions& options, 
     next.segmented =
         std::async(std::launch::async, SegmentAndDescribe, std::move(capture), segmentation, dataset.params);
     in_flight.push_back(std::move(next));
-    if (static_cast<int>(in_flight.size()) > kScenesInFlight) keep_first();
+    if (static_cast<int>(in_flight.size()) > kCapturesInFlight) keep_first();
   }
   while (!in_flight.empty()) keep_first();
   progress.Finish();
