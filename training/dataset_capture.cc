@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <deque>
+#include <functional>
 #include <future>
 #include <map>
 #include <memory>
@@ -12,6 +13,7 @@
 #include <optional>
 #include <random>
 #include <stdexcept>
+#include <utility>
 
 #include "files/data_dir.h"
 #include "files/output_dir.h"
@@ -57,6 +59,31 @@ sim::Lighting RandomLighting(std::mt19937_64& rng) {
 // CaptureTurntable). One: on 2 cores, 60 paper scenes took 7.8-8.1 s with one, 7.5-7.8 with two, 7.7-7.8 with three
 // (the rendering, with llvmpipe's own threads, is the other half of the work).
 constexpr int kCapturesInFlight = 1;
+
+// Captures rendered on this thread (the GL context's) and finished on others, kept in the order they were
+// rendered: Add hands over one (its key and the future of its rest) and keeps the oldest once more than
+// kCapturesInFlight are out; Finish keeps the rest.
+template <typename Key, typename Finished>
+class InOrderCaptures {
+ public:
+  using Keep = std::function<void(const Key&, Finished)>;
+  explicit InOrderCaptures(Keep keep) : keep_(std::move(keep)) {}
+  void Add(Key key, std::future<Finished> finished) {
+    in_flight_.emplace_back(std::move(key), std::move(finished));
+    if (static_cast<int>(in_flight_.size()) > kCapturesInFlight) KeepFirst();
+  }
+  void Finish() {
+    while (!in_flight_.empty()) KeepFirst();
+  }
+
+ private:
+  void KeepFirst() {
+    keep_(in_flight_.front().first, in_flight_.front().second.get());
+    in_flight_.pop_front();
+  }
+  Keep keep_;
+  std::deque<std::pair<Key, std::future<Finished>>> in_flight_;
+};
 
 // A capture rendered (CaptureRig::Render) with what the rest of it needs: the noise and its stream, the
 // empty cell's cloud to subtract, the count of objects the label image numbers.
@@ -347,23 +374,20 @@ Dataset CaptureTurntable(const files::ObjectSet& set, const TurntableOptions& op
   files::Progress progress("dataset " + set.name, total);
   // Two stages, as for scenes (CaptureScenes): this thread renders the next view while another segments
   // and describes the last; the samples are kept in the views' order.
-  std::deque<std::pair<TurntableView, std::future<SegmentedView>>> in_flight;
-  const auto keep_first = [&] {
-    KeepTurntableView(in_flight.front().first, in_flight.front().second.get(), dir, dataset, skipped);
-    in_flight.pop_front();
+  InOrderCaptures<TurntableView, SegmentedView> captures([&](const TurntableView& v, SegmentedView segmented) {
+    KeepTurntableView(v, std::move(segmented), dir, dataset, skipped);
     progress.Advance();
-  };
+  });
   uint64_t index = 0;
   for (const auto& spec : set.objects) {
     for (size_t c = 0; c < cameras.size(); ++c) {
       for (int view = 0; view < options.views; ++view, ++index) {
         const TurntableView v{spec, cameras[c].name, options.elevations_deg[c], view, index};
-        in_flight.emplace_back(v, RenderTurntableView(rig, options, v, dataset.params));
-        if (static_cast<int>(in_flight.size()) > kCapturesInFlight) keep_first();
+        captures.Add(v, RenderTurntableView(rig, options, v, dataset.params));
       }
     }
   }
-  while (!in_flight.empty()) keep_first();
+  captures.Finish();
   progress.Finish();
   dataset.capture = {{"kind", "turntable"},
                      {"captures", total},
@@ -504,23 +528,17 @@ Dataset CaptureScenes(const files::ObjectSet& set, const SceneOptions& options, 
   files::Progress progress("scenes " + set.name, options.scenes);
   perception::SegmentationParams segmentation;
   segmentation.clustering = options.clustering;
-  struct InFlight {
+  struct PlacedScene {
     int scene = 0;
     std::vector<int> placed;
-    std::future<SegmentedScene> segmented;
   };
-  std::deque<InFlight> in_flight;
-  const auto keep_first = [&] {
-    InFlight& done = in_flight.front();
-    AddSceneSamples(rig, set, done.segmented.get(), done.placed, done.scene, dir, dataset, tally);
-    in_flight.pop_front();
+  InOrderCaptures<PlacedScene, SegmentedScene> captures([&](const PlacedScene& p, SegmentedScene segmented) {
+    AddSceneSamples(rig, set, std::move(segmented), p.placed, p.scene, dir, dataset, tally);
     progress.Advance();
-  };
+  });
   for (int scene = 0; scene < options.scenes; ++scene) {
     std::mt19937_64 rng = EpisodeRng(options.seed, static_cast<uint64_t>(scene));
-    InFlight next;
-    next.scene = scene;
-    next.placed = PlaceRandomScene(rig, set, shapes, options, scene, rng);
+    PlacedScene next{scene, PlaceRandomScene(rig, set, shapes, options, scene, rng)};
     tally.placed += static_cast<int>(next.placed.size());
     if (options.colour_jitter > 0) {
       // A stream of its own: the scene's objects, poses and camera are what they are without jitter.
@@ -528,12 +546,10 @@ Dataset CaptureScenes(const files::ObjectSet& set, const SceneOptions& options, 
       rig.JitterColours(std::uniform_real_distribution<double>(0.0, options.colour_jitter)(colours), colours);
     }
     PendingCapture capture = rig.Render("kinect", rng, DepthNoiseScale(options, scene));
-    next.segmented =
-        std::async(std::launch::async, SegmentAndDescribe, std::move(capture), segmentation, dataset.params);
-    in_flight.push_back(std::move(next));
-    if (static_cast<int>(in_flight.size()) > kCapturesInFlight) keep_first();
+    captures.Add(std::move(next),
+                 std::async(std::launch::async, SegmentAndDescribe, std::move(capture), segmentation, dataset.params));
   }
-  while (!in_flight.empty()) keep_first();
+  captures.Finish();
   progress.Finish();
   for (Sample& s : dataset.samples) s.fits_familiarity = options.fits_familiarity;
   dataset.capture = {{"kind", "scenes"},

@@ -62,7 +62,7 @@ void RecordTrainedOn(const files::ObjectSet& set, const std::filesystem::path& m
                      int scenes = kDefaultRecipeScenes);
 
 /// Trains the default model of `set` if it is not there yet, or was trained on other objects, another
-/// Kinect colour or depth model or another recipe (TrainDefaultRecipe; about 50 s for the paper set on 2 cores;
+/// Kinect colour or depth model or another recipe (TrainDefaultRecipe; about 45 s for the paper set on 2 cores;
 /// the scenes' dataset is kept next to it) and returns its path. Written to a temporary file and
 /// renamed, so concurrent runs never read a half-written model.
 std::filesystem::path EnsureDefaultModel(const files::ObjectSet& set);
