@@ -74,8 +74,11 @@ std::optional<Eigen::Vector2d> DrawFree(const Arrangement& arrangement, const Re
                                         int group, const PlacementArea& area, std::mt19937_64& rng) {
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   const Eigen::Vector2d span = (area.max - area.min).array() - 2 * shape.radius;
-  const Eigen::Vector2d c(area.min.x() + shape.radius + unit(rng) * std::fmax(0.0, span.x()),
-                          area.min.y() + shape.radius + unit(rng) * std::fmax(0.0, span.y()));
+  // One draw per statement (arguments are evaluated in an unspecified order): y first, as GCC did.
+  const double fraction_y = unit(rng);
+  const double fraction_x = unit(rng);
+  const Eigen::Vector2d c(area.min.x() + shape.radius + fraction_x * std::fmax(0.0, span.x()),
+                          area.min.y() + shape.radius + fraction_y * std::fmax(0.0, span.y()));
   if (!arrangement.Fits(PlacedOutline(shape.outline, c, yaw), group)) return std::nullopt;
   return c;
 }

@@ -18,7 +18,12 @@ Eigen::Vector3d RandomUnitVector(std::mt19937_64& rng) {
   std::normal_distribution<double> normal;
   Eigen::Vector3d v;
   do {
-    v = Eigen::Vector3d(normal(rng), normal(rng), normal(rng));
+    // One draw per statement: a constructor's arguments are evaluated in an unspecified order (GCC went
+    // from the last, clang from the first). z, y, x is GCC's order, so the results of before stand.
+    const double z = normal(rng);
+    const double y = normal(rng);
+    const double x = normal(rng);
+    v = Eigen::Vector3d(x, y, z);
   } while (v.norm() < 1e-6);
   return v.normalized();
 }

@@ -320,8 +320,11 @@ std::future<SegmentedView> RenderTurntableView(CaptureRig& rig, const TurntableO
   std::uniform_real_distribution<double> unit(-1.0, 1.0);
   rig.ParkAll();
   const double yaw = 2 * M_PI * v.view / options.views + options.yaw_jitter_rad * unit(rng);
-  sim::PlaceObject(rig.model(), rig.data(), rig.Body(v.spec.name), options.centre_W.x() + options.jitter_m * unit(rng),
-                   options.centre_W.y() + options.jitter_m * unit(rng), yaw);
+  // One draw per statement (arguments are evaluated in an unspecified order): y first, as GCC did.
+  const double dy = options.jitter_m * unit(rng);
+  const double dx = options.jitter_m * unit(rng);
+  sim::PlaceObject(rig.model(), rig.data(), rig.Body(v.spec.name), options.centre_W.x() + dx, options.centre_W.y() + dy,
+                   yaw);
   PendingCapture capture = rig.Render(v.camera, rng, 1);
   return std::async(std::launch::async, SegmentView, std::move(capture), LabelOf(rig, v.spec.name),
                     options.occluded_copies, descriptor);
