@@ -31,5 +31,8 @@ print("\n".join(files))' "$build_dir/compile_commands.json" "$only_libraries")
 filter="^($root|$(realpath "$build_dir")/sensor_side_include)/(app|assets|bench|cell|common|files|fuzz|models|perception|robot|sim|simcell|tests|training)/"
 # Every finding is an error (.clang-tidy's WarningsAsErrors): xargs exits non-zero, and so does the pipe.
 # The count of the libraries' own warnings that clang-tidy leaves out is not printed.
-printf '%s\n' "$files" | xargs -P "$(nproc)" -n 1 clang-tidy -p "$build_dir" --quiet --header-filter="$filter" 2>&1 |
+# --config-file: clang-tidy looks for .clang-tidy beside each file, and the unity files are in the build
+# folder: one outside the tree would run clang-tidy's default checks instead of the project's.
+printf '%s\n' "$files" | xargs -P "$(nproc)" -n 1 clang-tidy -p "$build_dir" --config-file="$root/.clang-tidy" --quiet \
+  --header-filter="$filter" 2>&1 |
   { grep -v '^[0-9]* warnings\? generated\.$' || true; }

@@ -11,6 +11,7 @@
 #include "app/sweep/sweep_html_report.h"
 #include "app/sweep/sweep_record.h"
 #include "error_of.h"
+#include "files/output_dir.h"
 #include "temp_dir.h"
 
 namespace sortcell::app {
@@ -37,11 +38,6 @@ std::filesystem::path SweepFolder(const std::filesystem::path& dir) {
   writer.Close();
   std::ofstream(dir / "summary.json") << R"({"episodes": 2, "items": 2})";
   return dir;
-}
-
-std::string Read(const std::filesystem::path& file) {
-  std::ifstream in(file);
-  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
 }
 
 TEST(SweepHtmlReport, TheDataAreTheFoldersInEpisodeOrder) {
@@ -88,7 +84,7 @@ TEST(SweepHtmlReport, WithoutChartJsThePageIsStillWritten) {
   unsetenv("SORTCELL_CHART_JS");
   EXPECT_TRUE(std::filesystem::exists(page));
   EXPECT_FALSE(std::filesystem::exists(dir / "report/chart.min.js"));
-  EXPECT_NE(Read(page).find("chart.min.js is missing beside this page"), std::string::npos);
+  EXPECT_NE(files::ReadTextFile(page).find("chart.min.js is missing beside this page"), std::string::npos);
 }
 
 }  // namespace

@@ -19,6 +19,7 @@
 #include "app/sweep/sweep_report.h"
 #include "app/sweep/sweep_spec.h"
 #include "error_of.h"
+#include "files/output_dir.h"
 #include "run_sortcell.h"
 #include "temp_dir.h"
 #include "source_tree.h"
@@ -86,13 +87,6 @@ std::filesystem::path WriteFile(const std::filesystem::path& file, const std::st
   return file;
 }
 
-std::string Read(const std::filesystem::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
 // ---- Records ----
 
 TEST(SweepRecord, RoundTripKeepsEveryField) {
@@ -147,11 +141,11 @@ TEST(SweepReport, WorkerRunsAndTheirMemoryAreSummarised) {
   EXPECT_EQ(summary["runs"]["not_ok"][0]["episode"], 1);
   EXPECT_EQ(summary["resources"]["worker_peak_memory_mb"]["max"], 500.0);
   EXPECT_EQ(summary["resources"]["worker_peak_memory_mb"]["median"], 500.0) << "the upper median of two";
-  EXPECT_NE(Read(dir / "summary.md")
+  EXPECT_NE(files::ReadTextFile(dir / "summary.md")
                 .find("Worker runs: ok 1, crashed 0, timeout 1; episode 1 timeout (killed after 1 s). "
                       "Peak memory per worker: median 500 MiB, largest 500 MiB."),
             std::string::npos)
-      << Read(dir / "summary.md");
+      << files::ReadTextFile(dir / "summary.md");
 }
 
 TEST(SweepRecord, StatusSpellings) {
@@ -203,7 +197,8 @@ TEST(SweepResults, WrittenRecordsReadBack) {
   const SweepResults results = ReadSweepResults(file);
   ASSERT_EQ(results.records.size(), 2u);
   EXPECT_EQ(results.records[1].episode, 1);
-  EXPECT_EQ(Read(file), Dump(OkRecord(0, {{"objects", 2}})) + "\n" + Dump(OkRecord(1, {{"objects", 3}})) + "\n");
+  EXPECT_EQ(files::ReadTextFile(file),
+            Dump(OkRecord(0, {{"objects", 2}})) + "\n" + Dump(OkRecord(1, {{"objects", 3}})) + "\n");
 }
 
 TEST(SweepResults, ACalibratedEpisodesFiguresReadBack) {
@@ -363,7 +358,7 @@ TEST(SweepReport, CsvQuotesAValueWithAComma) {
   std::vector<SweepRecord> records;
   for (int i = 0; i < 3; ++i) records.push_back(OkRecord(i, {{"model", models[i]}}));
   const nlohmann::json summary = WriteSweepReport(dir.path(), spec, records);
-  const std::string csv = Read(dir / "summary.csv");
+  const std::string csv = files::ReadTextFile(dir / "summary.csv");
   EXPECT_NE(csv.find("\nmodel,\"a,b.model.json\","), std::string::npos) << csv;
   EXPECT_NE(csv.find("\nmodel,\"say \"\"hi\"\".model.json\","), std::string::npos) << csv;
   for (const char* model : {"a,b.model.json", "plain.model.json", "say \"hi\".model.json"}) {
@@ -377,7 +372,7 @@ TEST(SweepReport, CsvQuotesAValueWithAComma) {
   EXPECT_EQ(summary["items"], 6);
   EXPECT_EQ(summary["grasp_attempts"], 9);
   EXPECT_EQ(summary["by_axis"]["model"]["a,b.model.json"]["outcomes"]["grasp_failed"], 1);
-  EXPECT_NE(Read(dir / "summary.md").find("| a,b.model.json | 1 | 2 | 50.0 % |"), std::string::npos);
+  EXPECT_NE(files::ReadTextFile(dir / "summary.md").find("| a,b.model.json | 1 | 2 | 50.0 % |"), std::string::npos);
 }
 
 // The CSV's columns follow from the records' field lists: every figure of a group in summary.json is a
@@ -388,7 +383,7 @@ TEST(SweepReport, CsvColumnsAreTheGroupsFigures) {
   records[0].summary.run.carry_turn_max_deg = 2.5;
   records[1].summary.run.carry_turn_max_deg = 4.0;
   const nlohmann::json summary = WriteSweepReport(dir.path(), SweepSpec(), records);
-  const std::string csv = Read(dir / "summary.csv");
+  const std::string csv = files::ReadTextFile(dir / "summary.csv");
   EXPECT_DOUBLE_EQ(summary["carry_turn_max_deg"].get<double>(), 4.0);
   EXPECT_EQ(CsvCell(csv, "all", "all", "carry_turn_max_deg"), "4.0") << csv;
   EXPECT_EQ(CsvCell(csv, "all", "all", "sim_time_s"), summary["sim_time_s"].dump()) << csv;
@@ -410,8 +405,8 @@ TEST(SweepReport, APlacementAxisIsGroupedByMode) {
                                          OkRecord(1, {{"placement", "clustered"}})};
   const nlohmann::json summary = WriteSweepReport(dir.path(), spec, records);
   EXPECT_EQ(summary["by_axis"]["placement"]["dense"]["items"], 2);
-  EXPECT_NE(Read(dir / "summary.md").find("| clustered | 1 | 2 | 50.0 % |"), std::string::npos)
-      << Read(dir / "summary.md");
+  EXPECT_NE(files::ReadTextFile(dir / "summary.md").find("| clustered | 1 | 2 | 50.0 % |"), std::string::npos)
+      << files::ReadTextFile(dir / "summary.md");
   EXPECT_THROW(WriteSweepReport(dir.path(), spec, {OkRecord(0, {{"placement", 3}})}), std::invalid_argument);
 }
 
@@ -429,9 +424,10 @@ TEST(SweepReport, PicksPerHourAndTheCycleByPhasePooledOverEpisodes) {
   EXPECT_DOUBLE_EQ(summary["cycle_phases_s"]["carry"].get<double>(), 0.5);
   EXPECT_EQ(summary["torque_saturated_samples"], 5);
   EXPECT_DOUBLE_EQ(summary["tracking_max_error_rad"].get<double>(), 0.02);
-  EXPECT_NE(Read(dir / "summary.md").find("mean simulated seconds per attempt: approach 3.00, carry 0.50."),
-            std::string::npos)
-      << Read(dir / "summary.md");
+  EXPECT_NE(
+      files::ReadTextFile(dir / "summary.md").find("mean simulated seconds per attempt: approach 3.00, carry 0.50."),
+      std::string::npos)
+      << files::ReadTextFile(dir / "summary.md");
 }
 
 TEST(SweepReport, FailuresByObjectAndTheCalibrations) {
@@ -448,9 +444,9 @@ TEST(SweepReport, FailuresByObjectAndTheCalibrations) {
   EXPECT_EQ(summary["by_object"]["ball"]["items"], 2);
   EXPECT_EQ(summary["by_object"]["ball"]["outcomes"]["grasp_failed"], 1);
   EXPECT_EQ(summary["by_object"]["cup"]["episodes"], 2);
-  const std::string md = Read(dir / "summary.md");
+  const std::string md = files::ReadTextFile(dir / "summary.md");
   EXPECT_NE(md.find("| ball | 2 | 2 | 50.0 % |"), std::string::npos) << md;
-  const std::string csv = Read(dir / "summary.csv");
+  const std::string csv = files::ReadTextFile(dir / "summary.csv");
   EXPECT_EQ(CsvCell(csv, "object", "ball", "items"), "2") << csv;
   EXPECT_EQ(CsvCell(csv, "object", "ball", "correct_sort_rate"), "0.5") << csv;
   EXPECT_EQ(summary["calibration"]["episodes"], 2);
@@ -606,7 +602,7 @@ TEST(SweepCli, ARefusedResumeLeavesADamagedFileAsItWas) {
   sortcell_test::ExpectOneLineError(
       sortcell_test::RunSortcell("sweep " + spec.string() + " --resume --out " + out.string()),
       "/nonexistent/m.model.json");
-  EXPECT_EQ(Read(out / "results.jsonl"), results);
+  EXPECT_EQ(files::ReadTextFile(out / "results.jsonl"), results);
 }
 
 }  // namespace
