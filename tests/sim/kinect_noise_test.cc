@@ -9,9 +9,8 @@
 #include <limits>
 #include <opencv2/core.hpp>
 
+namespace sortcell::sim {
 namespace {
-
-using namespace sortcell::sim;
 
 CameraIntrinsics Kinect() {
   CameraIntrinsics k;
@@ -253,3 +252,4 @@ TEST(KinectNoise, TheWindowRefusesAnEvenWindowAToleranceOfZeroAndAnotherImageTyp
 }
 
 }  // namespace
+}  // namespace sortcell::sim

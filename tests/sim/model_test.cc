@@ -9,9 +9,8 @@
 #include "sim/mujoco_handlers.h"
 #include "temp_dir.h"
 
+namespace sortcell::sim {
 namespace {
-
-using namespace sortcell::sim;
 
 constexpr char kBall[] = R"(<mujoco><worldbody><geom type="plane" size="1 1 0.1"/>
   <body name="ball" pos="0 0 0.5"><freejoint/><geom type="sphere" size="0.05"/></body></worldbody></mujoco>)";
@@ -77,3 +76,4 @@ TEST(Model, BadFilesAreNamedInOneLine) {
 }
 
 }  // namespace
+}  // namespace sortcell::sim
