@@ -101,7 +101,7 @@ TEST(SceneVariation, ColourJitterLeavesTheOtherDrawsAsTheyWere) {
 
 // The shift's direction is three normal draws in a fixed order (z, y, x), whatever the compiler: as a
 // constructor's arguments they were drawn last-first by GCC and first-first by clang, so the same seed
-// moved the camera elsewhere in the sanitizer build (clang) than in Release (GCC).
+// moved the camera elsewhere in a clang build than in Release (GCC).
 TEST(SceneVariation, TheCameraShiftIsDrawnInOneOrderByEveryCompiler) {
   Model model = Scene();
   const int c = model.Id(mjOBJ_CAMERA, "kinect");
