@@ -12,12 +12,15 @@
 
 #include "perception/normal_estimation.h"
 #include "perception/supervoxel_normals.h"
+#include "perception/supervoxels.h"
 
 #include <algorithm>
 #include <cmath>
 #include <iterator>
 #include <limits>
 #include <map>
+#include <memory>
+#include <optional>
 #include <set>
 #include <utility>
 #include <vector>
@@ -235,11 +238,11 @@ void JoinPiecesInsideOthers(const Cloud& voxels, const PlaneFrame& frame, const 
   clusters = std::move(kept);
 }
 
-using Supervoxels = std::map<std::uint32_t, pcl::Supervoxel<PointT>::Ptr>;
+using SupervoxelMap = std::map<std::uint32_t, pcl::Supervoxel<PointT>::Ptr>;
 using Adjacency = std::multimap<std::uint32_t, std::uint32_t>;
 
 // CIE L*a*b* colour of each supervoxel's mean colour (Euclidean distance ~ perceived difference).
-std::map<std::uint32_t, Eigen::Vector3f> LabColours(const Supervoxels& supervoxels) {
+std::map<std::uint32_t, Eigen::Vector3f> LabColours(const SupervoxelMap& supervoxels) {
   cv::Mat rgb(static_cast<int>(supervoxels.size()), 1, CV_32FC3);
   int row = 0;
   for (const auto& [label, sv] : supervoxels) {
@@ -272,7 +275,7 @@ double ConcavityDeg(const pcl::Supervoxel<PointT>& a, const pcl::Supervoxel<Poin
 // Removes the connections between differently coloured supervoxels that are even slightly concave:
 // two touching objects of different colour come apart where their surfaces meet at a shallow crease,
 // while a label or print on one object (a colour edge across a flat or convex surface) stays joined.
-void CutColourCreases(const Supervoxels& supervoxels, const ConvexClusteringParams& params, Adjacency& adjacency) {
+void CutColourCreases(const SupervoxelMap& supervoxels, const ConvexClusteringParams& params, Adjacency& adjacency) {
   const std::map<std::uint32_t, Eigen::Vector3f> lab = LabColours(supervoxels);
   for (auto it = adjacency.begin(); it != adjacency.end();) {
     const auto a = supervoxels.find(it->first), b = supervoxels.find(it->second);
@@ -291,7 +294,7 @@ using SegmentOf = std::map<std::uint32_t, std::uint32_t>;  // Supervoxel label -
 // Each segment renamed after its smallest supervoxel (supervoxel labels start at 1: never 0, none).
 void NameBySmallestSupervoxel(SegmentOf& segment_of) {
   std::map<std::uint32_t, std::uint32_t> name_of;
-  for (const auto& [sv, seg] : segment_of) name_of.try_emplace(seg, sv);  // Supervoxels ascend.
+  for (const auto& [sv, seg] : segment_of) name_of.try_emplace(seg, sv);  // SupervoxelMap ascend.
   for (auto& [sv, seg] : segment_of) seg = name_of[seg];
 }
 
@@ -351,25 +354,29 @@ SegmentOf CanonicalSegments(SegmentOf segment_of, const Adjacency& adjacency) {
   return segment_of;
 }
 
+// The supervoxels of `voxels`, computed here where that reproduces PCL's, else by PCL.
+SupervoxelGraph SupervoxelsOf(const Cloud::Ptr& voxels, const ConvexClusteringParams& params) {
+  SupervoxelSettings settings;
+  settings.voxel_m = static_cast<float>(params.voxel_m);
+  settings.seed_m = static_cast<float>(params.seed_m);
+  settings.colour_importance = static_cast<float>(params.colour_importance);
+  settings.spatial_importance = 1.0f;
+  settings.normal_importance = static_cast<float>(params.normal_importance);
+  pcl::PointCloud<pcl::Normal>::Ptr normals;
+  if (params.own_voxel_normals) {  // The voxel normals PCL would compute, computed faster.
+    normals = std::make_shared<pcl::PointCloud<pcl::Normal>>(SupervoxelVoxelNormals(*voxels, settings.voxel_m));
+  }
+  if (params.own_supervoxels && normals && !normals->empty()) {
+    std::optional<SupervoxelGraph> graph = ExtractSupervoxels(*voxels, *normals, settings);
+    if (graph) return *std::move(graph);
+  }
+  return PclSupervoxels(voxels, normals, settings);
+}
+
 // Voxel i's segment (0: none), in the input's order; segments named as CanonicalSegments names them.
 std::vector<std::uint32_t> LccpLabels(const Cloud::Ptr& voxels, const ConvexClusteringParams& params) {
-  pcl::SupervoxelClustering<PointT> clustering(static_cast<float>(params.voxel_m), static_cast<float>(params.seed_m));
-  // The input is unorganized (voxel centres): no single-camera depth transform.
-  clustering.setUseSingleCameraTransform(false);
-  clustering.setInputCloud(voxels);
-  if (params.own_voxel_normals) {  // The voxel normals PCL would compute, computed faster.
-    const auto voxel_normals = std::make_shared<pcl::PointCloud<pcl::Normal>>(
-        SupervoxelVoxelNormals(*voxels, static_cast<float>(params.voxel_m)));
-    if (!voxel_normals->empty()) clustering.setNormalCloud(voxel_normals);
-  }
-  clustering.setColorImportance(static_cast<float>(params.colour_importance));
-  clustering.setSpatialImportance(1.0f);
-  clustering.setNormalImportance(static_cast<float>(params.normal_importance));
-  Supervoxels supervoxels;
-  clustering.extract(supervoxels);
-  Adjacency adjacency;
-  clustering.getSupervoxelAdjacency(adjacency);
-  CutColourCreases(supervoxels, params, adjacency);
+  SupervoxelGraph graph = SupervoxelsOf(voxels, params);
+  CutColourCreases(graph.supervoxels, params, graph.adjacency);
 
   pcl::LCCPSegmentation<PointT> lccp;
   lccp.setConcavityToleranceThreshold(static_cast<float>(params.concavity_deg));
@@ -377,16 +384,14 @@ std::vector<std::uint32_t> LccpLabels(const Cloud::Ptr& voxels, const ConvexClus
   lccp.setSmoothnessCheck(true, static_cast<float>(params.voxel_m), static_cast<float>(params.seed_m), 0.1f);
   lccp.setKFactor(0);
   lccp.setMinSegmentSize(0);  // Merged in CanonicalSegments instead.
-  lccp.setInputSupervoxels(supervoxels, adjacency);
+  lccp.setInputSupervoxels(graph.supervoxels, graph.adjacency);
   lccp.segment();
   SegmentOf lccp_segment_of;
   lccp.getSupervoxelToSegmentMap(lccp_segment_of);
-  const SegmentOf segment_of = CanonicalSegments(std::move(lccp_segment_of), adjacency);
-  // getLabeledCloud keeps the input's order: point i of it is voxel i (label 0: none).
-  const pcl::PointCloud<pcl::PointXYZL>::Ptr labelled = clustering.getLabeledCloud();
+  const SegmentOf segment_of = CanonicalSegments(std::move(lccp_segment_of), graph.adjacency);
   std::vector<std::uint32_t> labels(voxels->size(), 0);
-  for (size_t i = 0; i < labelled->size() && i < labels.size(); ++i) {
-    const auto segment = segment_of.find((*labelled)[i].label);
+  for (size_t i = 0; i < graph.label_of_point.size() && i < labels.size(); ++i) {
+    const auto segment = segment_of.find(graph.label_of_point[i]);
     if (segment != segment_of.end()) labels[i] = segment->second;
   }
   return labels;

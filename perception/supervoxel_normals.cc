@@ -1,6 +1,7 @@
 #include "perception/supervoxel_normals.h"
 
 #include "perception/normal_estimation.h"
+#include "perception/octree_box.h"
 #include "perception/plane_moments.h"
 
 #include <algorithm>
@@ -13,34 +14,13 @@
 namespace sortcell::perception {
 namespace {
 
-// The corner of PCL's adjacency octree (OctreePointCloudAdjacency::addPointsFromInputCloud, then
-// OctreePointCloud::defineBoundingBox and getKeyBitSize, PCL 1.13): the points' box, grown evenly on
-// each side to the octree's cube of 2^depth voxels. In double, as PCL computes it.
+// The corner of PCL's adjacency octree (OctreePointCloudAdjacency::addPointsFromInputCloud fits the box
+// to the points' extent).
 Eigen::Vector3d OctreeCorner(const Cloud& points, double resolution) {
   Eigen::Vector3f low = Eigen::Vector3f::Constant(std::numeric_limits<float>::max());
   Eigen::Vector3f high = -low;
   for (const PointT& p : points) low = low.cwiseMin(p.getVector3fMap()), high = high.cwiseMax(p.getVector3fMap());
-  const double min_value = std::numeric_limits<float>::epsilon();
-  const Eigen::Vector3d min = low.cast<double>(), max = high.cast<double>();
-  std::uint32_t max_voxels = 2;
-  for (int a = 0; a < 3; ++a) {
-    max_voxels =
-        std::max(max_voxels, static_cast<std::uint32_t>(std::ceil((max[a] - min[a] - min_value) / resolution)));
-  }
-  const auto depth = static_cast<std::uint32_t>(std::ceil(std::log2(max_voxels) - min_value));
-  const double side = static_cast<double>(1u << depth) * resolution;
-  Eigen::Vector3d corner = min;
-  for (int a = 0; a < 3; ++a) {
-    const double oversize = (side - (max[a] - min[a])) / 2.0;
-    if (oversize > min_value) corner[a] -= oversize;
-  }
-  return corner;
-}
-
-constexpr int kKeyBits = 21;  // Per axis in a packed key: 2^21 voxels (15 km at 7.5 mm).
-
-std::uint64_t Pack(std::uint64_t x, std::uint64_t y, std::uint64_t z) {
-  return (x << (2 * kKeyBits)) | (y << kKeyBits) | z;
+  return PclOctreeBox(low.cast<double>(), high.cast<double>(), resolution).min;
 }
 
 // PCL's voxels: their keys (sorted), each point's voxel, and each voxel's centroid (the float mean of
@@ -59,9 +39,9 @@ bool MakeVoxels(const Cloud& points, double resolution, Voxels& voxels) {
     std::uint64_t k[3];
     for (int a = 0; a < 3; ++a) {
       k[a] = static_cast<std::uint32_t>((static_cast<double>(points[i].getVector3fMap()[a]) - corner[a]) / resolution);
-      if (k[a] >= (1u << kKeyBits)) return false;
+      if (k[a] >= (1u << kPackedKeyBits)) return false;
     }
-    keyed.emplace_back(Pack(k[0], k[1], k[2]), static_cast<int>(i));
+    keyed.emplace_back(PackKey(k[0], k[1], k[2]), static_cast<int>(i));
   }
   std::sort(keyed.begin(), keyed.end());  // By voxel, then by input order within one.
   voxels.of_point.assign(points.size(), -1);
@@ -86,14 +66,14 @@ bool MakeVoxels(const Cloud& points, double resolution, Voxels& voxels) {
 // with one search.
 NeighbourLists Neighbours(const Voxels& voxels) {
   NeighbourLists lists;
-  const std::uint64_t mask = (1u << kKeyBits) - 1;
+  const std::uint64_t mask = (1u << kPackedKeyBits) - 1;
   for (const std::uint64_t key : voxels.keys) {
-    const int x = static_cast<int>(key >> (2 * kKeyBits)), y = static_cast<int>((key >> kKeyBits) & mask);
+    const int x = static_cast<int>(key >> (2 * kPackedKeyBits)), y = static_cast<int>((key >> kPackedKeyBits) & mask);
     const int z = static_cast<int>(key & mask);
     for (int dx = -1; dx <= 1; ++dx) {
       for (int dy = -1; dy <= 1; ++dy) {
         if (x + dx < 0 || y + dy < 0) continue;
-        const std::uint64_t column = Pack(x + dx, y + dy, 0);
+        const std::uint64_t column = PackKey(x + dx, y + dy, 0);
         const std::uint64_t first = column + std::max(z - 1, 0), last = column + z + 1;
         for (auto k = std::lower_bound(voxels.keys.begin(), voxels.keys.end(), first);
              k != voxels.keys.end() && *k <= last; ++k) {

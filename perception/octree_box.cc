@@ -1,0 +1,54 @@
+#include "perception/octree_box.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+
+namespace sortcell::perception {
+
+OctreeBox PclOctreeBox(const Eigen::Vector3d& low, const Eigen::Vector3d& high, double resolution) {
+  const double min_value = std::numeric_limits<float>::epsilon();
+  OctreeBox box{low.cwiseMin(high), low.cwiseMax(high), 0};
+  std::uint32_t max_voxels = 2;
+  for (int a = 0; a < 3; ++a) {
+    max_voxels =
+        std::max(max_voxels, static_cast<std::uint32_t>(std::ceil((box.max[a] - box.min[a] - min_value) / resolution)));
+  }
+  box.depth = static_cast<int>(std::min(32.0, std::ceil(std::log2(max_voxels) - min_value)));
+  const double side = static_cast<double>(1 << box.depth) * resolution;
+  for (int a = 0; a < 3; ++a) {
+    const double oversize = (side - (box.max[a] - box.min[a])) / 2.0;
+    if (oversize > min_value) box.min[a] -= oversize, box.max[a] += oversize;
+  }
+  return box;
+}
+
+std::array<std::uint32_t, 3> PclGrowOctreeBox(const Eigen::Vector3f& p, double resolution, bool& defined,
+                                              OctreeBox& box) {
+  const double min_value = std::numeric_limits<float>::epsilon();
+  std::array<std::uint32_t, 3> moved{0, 0, 0};
+  while (true) {
+    bool below = false, beyond[3];
+    for (int a = 0; a < 3; ++a) {
+      below = below || p[a] < box.min[a];
+      beyond[a] = p[a] >= box.max[a];
+    }
+    if (defined && !below && !beyond[0] && !beyond[1] && !beyond[2]) return moved;
+    if (!defined) {
+      const Eigen::Vector3d centre = p.cast<double>();
+      box = PclOctreeBox(centre.array() - resolution / 2, centre.array() + resolution / 2, resolution);
+      defined = true;
+      continue;
+    }
+    const double side = static_cast<double>(1 << box.depth) * resolution;
+    for (int a = 0; a < 3; ++a) {
+      if (!beyond[a]) box.min[a] -= side, moved[a] += 1u << box.depth;
+    }
+    ++box.depth;
+    const double grown = static_cast<double>(1 << box.depth) * resolution - min_value;
+    for (int a = 0; a < 3; ++a) box.max[a] = box.min[a] + grown;
+  }
+}
+
+}  // namespace sortcell::perception

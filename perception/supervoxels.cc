@@ -1,0 +1,416 @@
+#include "perception/supervoxels.h"
+
+#include "perception/normal_estimation.h"
+#include "perception/octree_box.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <set>
+#include <utility>
+
+namespace sortcell::perception {
+namespace {
+
+using Key = std::array<std::uint32_t, 3>;
+
+// The order in which PCL's octrees visit their leaves (depth first, children by index x << 2 | y << 1 | z):
+// the keys' bits interleaved from the top.
+std::uint64_t LeafOrder(const Key& k) {
+  std::uint64_t code = 0;
+  for (int b = kPackedKeyBits - 1; b >= 0; --b) {
+    code = (code << 3) | ((k[0] >> b) & 1u) << 2 | ((k[1] >> b) & 1u) << 1 | ((k[2] >> b) & 1u);
+  }
+  return code;
+}
+
+// A point's key in an octree with `box` (genOctreeKeyforPoint, in double); false outside the box's cube.
+bool KeyOf(const Eigen::Vector3f& p, const OctreeBox& box, double resolution, Key& key) {
+  for (int a = 0; a < 3; ++a) {
+    const double k = (static_cast<double>(p[a]) - box.min[a]) / resolution;
+    if (!(k >= 0) || k >= static_cast<double>(1u << box.depth)) return false;
+    key[a] = static_cast<std::uint32_t>(k);
+  }
+  return true;
+}
+
+// pcl::SupervoxelClustering<PointT>::VoxelData, in the same Eigen types so that the same expressions
+// round alike; owner: the supervoxel's index, -1 for none.
+struct VoxelData {
+  Eigen::Vector3f xyz = Eigen::Vector3f::Zero();
+  Eigen::Vector3f rgb = Eigen::Vector3f::Zero();
+  Eigen::Vector4f normal = Eigen::Vector4f::Zero();
+  float distance = std::numeric_limits<float>::max();
+  int owner = -1;
+};
+
+// SupervoxelClustering::voxelDataDistance, expression for expression.
+float Distance(const VoxelData& v1, const VoxelData& v2, const SupervoxelSettings& s) {
+  const float spatial_dist = (v1.xyz - v2.xyz).norm() / s.seed_m;
+  const float color_dist = (v1.rgb - v2.rgb).norm() / 255.0f;
+  const float cos_angle_normal = 1.0f - std::abs(v1.normal.dot(v2.normal));
+  return cos_angle_normal * s.normal_importance + color_dist * s.colour_importance +
+         spatial_dist * s.spatial_importance;
+}
+
+// PCL's adjacency octree, flat: its leaves in its leaf order (PCL's idx_), each point's leaf, each leaf's
+// 26-neighbours and itself in PCL's order (dx, dy, dz ascending).
+struct AdjacencyGrid {
+  std::vector<VoxelData> voxels;
+  std::vector<int> of_point;
+  NeighbourLists neighbours;
+};
+
+// Each leaf's occupied neighbours and itself, as OctreePointCloudAdjacency::computeNeighbors lists them
+// (dx, dy, dz ascending). Found in the keys sorted x, y, z, column by column: a column's cells z-1 .. z+1
+// are one run, and as the columns ascend so does each of the nine around them, so nine cursors that only
+// move forward find them all (PCL looks each of the 27 up in its octree).
+NeighbourLists LeafNeighbours(const std::vector<Key>& keys) {
+  constexpr int kMost = 27;
+  std::vector<std::pair<std::uint64_t, int>> sorted;
+  sorted.reserve(keys.size());
+  for (size_t v = 0; v < keys.size(); ++v) sorted.emplace_back(PackKey(keys[v][0], keys[v][1], keys[v][2]), v);
+  std::sort(sorted.begin(), sorted.end());
+  const auto key_at = [&sorted](size_t at) { return at < sorted.size() ? sorted[at].first : ~std::uint64_t{0}; };
+  std::vector<int> found(keys.size() * kMost), count(keys.size(), 0);
+  size_t cursor[9] = {};
+  for (size_t begin = 0, end = 0; begin < sorted.size(); begin = end) {
+    const Key& k = keys[sorted[begin].second];
+    while (end < sorted.size() && (sorted[end].first >> kPackedKeyBits) == (sorted[begin].first >> kPackedKeyBits))
+      ++end;
+    for (int c = 0; c < 9; ++c) {  // Each neighbouring column's first cell.
+      const std::int64_t x = std::int64_t{k[0]} + c / 3 - 1, y = std::int64_t{k[1]} + c % 3 - 1;
+      if (x < 0 || y < 0) continue;
+      while (key_at(cursor[c]) < PackKey(x, y, 0)) ++cursor[c];
+    }
+    for (size_t i = begin; i < end; ++i) {
+      const int v = sorted[i].second;
+      const std::uint32_t z = keys[v][2];
+      for (int c = 0; c < 9; ++c) {
+        const std::int64_t x = std::int64_t{k[0]} + c / 3 - 1, y = std::int64_t{k[1]} + c % 3 - 1;
+        if (x < 0 || y < 0) continue;
+        const std::uint64_t first = PackKey(x, y, z - (z > 0)), last = PackKey(x, y, z + 1);
+        while (key_at(cursor[c]) < first) ++cursor[c];  // z ascends within the column.
+        for (size_t at = cursor[c]; key_at(at) <= last; ++at) found[v * kMost + count[v]++] = sorted[at].second;
+      }
+    }
+  }
+  NeighbourLists lists;
+  lists.indices.reserve(keys.size() * 12);
+  for (size_t v = 0; v < keys.size(); ++v) {
+    lists.indices.insert(lists.indices.end(), found.begin() + v * kMost, found.begin() + v * kMost + count[v]);
+    lists.offsets.push_back(static_cast<int>(lists.indices.size()));
+  }
+  return lists;
+}
+
+// OctreePointCloudAdjacency::addPointsFromInputCloud and SupervoxelClustering::computeVoxelData with a
+// normal cloud: each leaf's sums in input order, made means; its normal the normalised sum of its points'.
+bool MakeAdjacencyGrid(const Cloud& points, const pcl::PointCloud<pcl::Normal>& normals, double resolution,
+                       AdjacencyGrid& grid) {
+  Eigen::Vector3f low = Eigen::Vector3f::Constant(std::numeric_limits<float>::max()), high = -low;
+  for (const PointT& p : points) {
+    if (!p.getVector3fMap().allFinite()) return false;
+    low = low.cwiseMin(p.getVector3fMap()), high = high.cwiseMax(p.getVector3fMap());
+  }
+  const OctreeBox box = PclOctreeBox(low.cast<double>(), high.cast<double>(), resolution);
+  if (box.depth > kPackedKeyBits) return false;
+  std::vector<std::pair<std::uint64_t, int>> ordered;
+  std::vector<Key> point_keys(points.size());
+  ordered.reserve(points.size());
+  for (size_t i = 0; i < points.size(); ++i) {
+    if (!KeyOf(points[i].getVector3fMap(), box, resolution, point_keys[i])) return false;
+    ordered.emplace_back(LeafOrder(point_keys[i]), static_cast<int>(i));
+  }
+  std::sort(ordered.begin(), ordered.end());  // By leaf, then by input order within one.
+  grid.of_point.assign(points.size(), -1);
+  std::vector<Key> keys;
+  std::vector<int> count;
+  for (size_t n = 0; n < ordered.size(); ++n) {
+    const int i = ordered[n].second;
+    if (n == 0 || ordered[n].first != ordered[n - 1].first) {
+      grid.voxels.emplace_back();
+      keys.push_back(point_keys[i]);
+      count.push_back(0);
+    }
+    VoxelData& v = grid.voxels.back();
+    v.xyz += points[i].getVector3fMap();
+    v.rgb += Eigen::Vector3f(points[i].r, points[i].g, points[i].b);
+    v.normal += normals[i].getNormalVector4fMap();
+    ++count.back();
+    grid.of_point[i] = static_cast<int>(grid.voxels.size()) - 1;
+  }
+  for (size_t v = 0; v < grid.voxels.size(); ++v) {
+    const auto n = static_cast<float>(count[v]);
+    for (int k = 0; k < 3; ++k) grid.voxels[v].rgb[k] /= n;
+    for (int k = 0; k < 3; ++k) grid.voxels[v].xyz[k] /= n;
+    grid.voxels[v].normal.normalize();
+  }
+  grid.neighbours = LeafNeighbours(keys);
+  return true;
+}
+
+// FLANN's L2_Simple distance, in float, summed axis by axis.
+float SquaredDistance(const Eigen::Vector3f& a, const Eigen::Vector3f& b) {
+  float result = 0;
+  for (int k = 0; k < 3; ++k) {
+    const float diff = a[k] - b[k];
+    result += diff * diff;
+  }
+  return result;
+}
+
+// The voxel centroids bucketed by the seed octree's cells, for searches within one cell of a point.
+struct SeedCells {
+  OctreeBox box;
+  std::vector<Key> key_of_voxel;
+  std::vector<std::pair<std::uint64_t, int>> voxels_by_cell;  // Packed cell key, voxel; sorted.
+  std::vector<Key> occupied;                                  // In the seed octree's leaf order.
+};
+
+// The seed octree (OctreePointCloudSearch over the voxel centroids in leaf order): its box grown point by
+// point as PCL grows it, each centroid's key as PCL gave it when the point went in, moved with the cube as it
+// grew since.
+bool MakeSeedCells(const AdjacencyGrid& grid, double resolution, SeedCells& cells) {
+  bool defined = false;
+  std::vector<Key> keys;
+  keys.reserve(grid.voxels.size());
+  for (const VoxelData& v : grid.voxels) {
+    const std::array<std::uint32_t, 3> moved = PclGrowOctreeBox(v.xyz, resolution, defined, cells.box);
+    if (cells.box.depth > kPackedKeyBits) return false;
+    if (moved != std::array<std::uint32_t, 3>{0, 0, 0}) {
+      for (Key& k : keys) {
+        for (int a = 0; a < 3; ++a) k[a] += moved[a];
+      }
+    }
+    keys.emplace_back();
+    if (!KeyOf(v.xyz, cells.box, resolution, keys.back())) return false;
+  }
+  std::vector<std::pair<std::uint64_t, Key>> occupied;
+  cells.key_of_voxel = keys;
+  for (size_t v = 0; v < keys.size(); ++v) {
+    cells.voxels_by_cell.emplace_back(PackKey(keys[v][0], keys[v][1], keys[v][2]), static_cast<int>(v));
+    occupied.emplace_back(LeafOrder(keys[v]), keys[v]);
+  }
+  std::sort(cells.voxels_by_cell.begin(), cells.voxels_by_cell.end());
+  std::sort(occupied.begin(), occupied.end());
+  occupied.erase(std::unique(occupied.begin(), occupied.end()), occupied.end());
+  for (const auto& [order, k] : occupied) cells.occupied.push_back(k);
+  return true;
+}
+
+// Calls visit(voxel) for every voxel in the cells around `k` (itself and its 26 neighbours).
+template <typename Visit>
+void ForVoxelsAround(const SeedCells& cells, const Key& k, Visit&& visit) {
+  for (std::uint32_t x = k[0] - (k[0] > 0); x <= k[0] + 1; ++x) {
+    for (std::uint32_t y = k[1] - (k[1] > 0); y <= k[1] + 1; ++y) {
+      const std::uint64_t first = PackKey(x, y, k[2] - (k[2] > 0)), last = PackKey(x, y, k[2] + 1);
+      for (auto it =
+               std::lower_bound(cells.voxels_by_cell.begin(), cells.voxels_by_cell.end(), std::make_pair(first, -1));
+           it != cells.voxels_by_cell.end() && it->first <= last; ++it) {
+        visit(it->second);
+      }
+    }
+  }
+}
+
+// SupervoxelClustering::selectInitialSupervoxelSeeds: for each occupied cell of the seed octree, the voxel
+// nearest its centre (within one cell: the cell holds a centroid nearer than its width), kept when more
+// than a share of the voxels a disc of half a cell would hold lie within half a cell of it. Empty when a
+// centre has two nearest voxels, or a count may hang on FLANN's rounding at the radius.
+std::optional<std::vector<int>> Seeds(const AdjacencyGrid& grid, const SupervoxelSettings& s) {
+  SeedCells cells;
+  const double resolution = s.seed_m;
+  if (!MakeSeedCells(grid, resolution, cells)) return std::nullopt;
+  std::vector<int> nearest;
+  for (const Key& k : cells.occupied) {
+    Eigen::Vector3f centre;
+    for (int a = 0; a < 3; ++a) {
+      centre[a] = static_cast<float>((static_cast<double>(k[a]) + 0.5f) * resolution + cells.box.min[a]);
+    }
+    float best = std::numeric_limits<float>::max();
+    int best_voxel = -1, ties = 0;
+    ForVoxelsAround(cells, k, [&](int v) {
+      const float d = SquaredDistance(centre, grid.voxels[v].xyz);
+      if (d < best)
+        best = d, best_voxel = v, ties = 0;
+      else if (d == best)
+        ++ties;
+    });
+    if (best_voxel < 0 || ties > 0) return std::nullopt;
+    nearest.push_back(best_voxel);
+  }
+  const float search_radius = 0.5f * s.seed_m;
+  const float min_points = 0.05f * (search_radius) * (search_radius)*3.1415926536f / (s.voxel_m * s.voxel_m);
+  // Each seed finds itself within the radius: with min_points under 1 every seed is kept, uncounted.
+  if (min_points < 1) return nearest;
+  const auto radius2 = static_cast<float>(static_cast<double>(search_radius) * search_radius);
+  std::vector<int> kept;
+  for (int seed : nearest) {
+    const Key& k = cells.key_of_voxel[seed];
+    int within = 0;
+    bool near_edge = false;
+    ForVoxelsAround(cells, k, [&](int v) {
+      const float d = SquaredDistance(grid.voxels[seed].xyz, grid.voxels[v].xyz);
+      within += d < radius2;
+      near_edge = near_edge || std::abs(d - radius2) <= 1e-5f * radius2;
+    });
+    if (near_edge) return std::nullopt;
+    if (static_cast<float>(within) > min_points) kept.push_back(seed);
+  }
+  return kept;
+}
+
+// SupervoxelClustering::SupervoxelHelper: its voxels in PCL's leaf order (PCL keeps them in a std::set
+// ordered by idx_) and its centre.
+struct Helper {
+  std::uint32_t label = 0;
+  std::vector<int> leaves;
+  VoxelData centroid;  // Zero until the first update: PCL's first round measures from it, as here.
+  bool alive = true;
+};
+
+void RemoveLeaf(Helper& helper, int v) {
+  const auto it = std::lower_bound(helper.leaves.begin(), helper.leaves.end(), v);
+  if (it != helper.leaves.end() && *it == v) helper.leaves.erase(it);
+}
+
+// SupervoxelHelper::expand: every neighbour of its voxels that is nearer its centre than to the centre
+// that last claimed it is taken over.
+void Expand(int h, std::vector<Helper>& helpers, AdjacencyGrid& grid, const SupervoxelSettings& s,
+            std::vector<int>& taken, std::vector<int>& tried, int stamp) {
+  taken.clear();
+  Helper& helper = helpers[h];
+  for (int leaf : helper.leaves) {
+    for (int n : grid.neighbours.Of(leaf)) {
+      VoxelData& voxel = grid.voxels[n];
+      // A voxel this expansion measured already and did not take it would not take now: the same
+      // centre, and only this expansion's takings lower a distance.
+      if (voxel.owner == h || tried[n] == stamp) continue;
+      tried[n] = stamp;
+      const float dist = Distance(helper.centroid, voxel, s);
+      if (!(dist < voxel.distance)) continue;
+      voxel.distance = dist;
+      if (voxel.owner >= 0) RemoveLeaf(helpers[voxel.owner], n);
+      voxel.owner = h;
+      taken.push_back(n);
+    }
+  }
+  std::sort(taken.begin(), taken.end());
+  std::vector<int> merged;
+  merged.reserve(helper.leaves.size() + taken.size());
+  std::set_union(helper.leaves.begin(), helper.leaves.end(), taken.begin(), taken.end(), std::back_inserter(merged));
+  helper.leaves = std::move(merged);
+}
+
+// SupervoxelHelper::updateCentroid: the means of its voxels, summed in leaf order.
+void UpdateCentroid(Helper& helper, const AdjacencyGrid& grid) {
+  VoxelData& c = helper.centroid;
+  c.normal = Eigen::Vector4f::Zero();
+  c.xyz = Eigen::Vector3f::Zero();
+  c.rgb = Eigen::Vector3f::Zero();
+  for (int leaf : helper.leaves) {
+    c.normal += grid.voxels[leaf].normal;
+    c.xyz += grid.voxels[leaf].xyz;
+    c.rgb += grid.voxels[leaf].rgb;
+  }
+  c.normal.normalize();
+  c.xyz /= static_cast<float>(helper.leaves.size());
+  c.rgb /= static_cast<float>(helper.leaves.size());
+}
+
+std::vector<Helper> Grow(const std::vector<int>& seeds, AdjacencyGrid& grid, const SupervoxelSettings& s) {
+  std::vector<Helper> helpers(seeds.size());
+  for (size_t i = 0; i < seeds.size(); ++i) {
+    helpers[i].label = static_cast<std::uint32_t>(i + 1);
+    const auto it = std::lower_bound(helpers[i].leaves.begin(), helpers[i].leaves.end(), seeds[i]);
+    helpers[i].leaves.insert(it, seeds[i]);
+    grid.voxels[seeds[i]].owner = static_cast<int>(i);  // A seed shared with an earlier one stays in both.
+  }
+  const int depth = static_cast<int>(1.8f * s.seed_m / s.voxel_m);
+  std::vector<int> taken, tried(grid.voxels.size(), -1);
+  int stamp = 0;
+  for (int round = 1; round < depth; ++round) {
+    for (size_t h = 0; h < helpers.size(); ++h) {
+      if (helpers[h].alive) Expand(static_cast<int>(h), helpers, grid, s, taken, tried, stamp++);
+    }
+    for (Helper& helper : helpers) {
+      if (!helper.alive) continue;
+      if (helper.leaves.empty()) {
+        helper.alive = false;
+        continue;
+      }
+      UpdateCentroid(helper, grid);
+    }
+  }
+  return helpers;
+}
+
+SupervoxelGraph GraphOf(const std::vector<Helper>& helpers, const AdjacencyGrid& grid) {
+  SupervoxelGraph graph;
+  for (size_t h = 0; h < helpers.size(); ++h) {
+    const Helper& helper = helpers[h];
+    if (!helper.alive) continue;
+    auto sv = std::make_shared<pcl::Supervoxel<PointT>>();
+    const VoxelData& c = helper.centroid;
+    sv->centroid_.x = c.xyz[0], sv->centroid_.y = c.xyz[1], sv->centroid_.z = c.xyz[2];
+    sv->centroid_.rgba = static_cast<std::uint32_t>(c.rgb[0]) << 16 | static_cast<std::uint32_t>(c.rgb[1]) << 8 |
+                         static_cast<std::uint32_t>(c.rgb[2]);
+    sv->normal_.normal_x = c.normal[0], sv->normal_.normal_y = c.normal[1], sv->normal_.normal_z = c.normal[2];
+    sv->normal_.curvature = 0;  // PCL's centre keeps the curvature it was made with.
+    graph.supervoxels[helper.label] = std::move(sv);
+    std::set<std::uint32_t> neighbour_labels;
+    for (int leaf : helper.leaves) {
+      for (int n : grid.neighbours.Of(leaf)) {
+        const int owner = grid.voxels[n].owner;
+        if (owner >= 0 && owner != static_cast<int>(h)) neighbour_labels.insert(helpers[owner].label);
+      }
+    }
+    for (std::uint32_t other : neighbour_labels) graph.adjacency.emplace(helper.label, other);
+  }
+  graph.label_of_point.reserve(grid.of_point.size());
+  for (int v : grid.of_point) {
+    const int owner = grid.voxels[v].owner;
+    graph.label_of_point.push_back(owner >= 0 ? helpers[owner].label : 0);
+  }
+  return graph;
+}
+
+}  // namespace
+
+std::optional<SupervoxelGraph> ExtractSupervoxels(const Cloud& points, const pcl::PointCloud<pcl::Normal>& normals,
+                                                  const SupervoxelSettings& settings) {
+  AdjacencyGrid grid;
+  // PCL's resolutions are the floats it was given, widened to double.
+  if (points.empty() || normals.size() != points.size() ||
+      !MakeAdjacencyGrid(points, normals, settings.voxel_m, grid)) {
+    return std::nullopt;
+  }
+  const std::optional<std::vector<int>> seeds = Seeds(grid, settings);
+  if (!seeds) return std::nullopt;
+  return GraphOf(Grow(*seeds, grid, settings), grid);
+}
+
+SupervoxelGraph PclSupervoxels(const Cloud::Ptr& points, const pcl::PointCloud<pcl::Normal>::ConstPtr& normals,
+                               const SupervoxelSettings& settings) {
+  pcl::SupervoxelClustering<PointT> clustering(settings.voxel_m, settings.seed_m);
+  // The input is unorganized (voxel centres): no single-camera depth transform.
+  clustering.setUseSingleCameraTransform(false);
+  clustering.setInputCloud(points);
+  if (normals && !normals->empty()) clustering.setNormalCloud(normals);
+  clustering.setColorImportance(settings.colour_importance);
+  clustering.setSpatialImportance(settings.spatial_importance);
+  clustering.setNormalImportance(settings.normal_importance);
+  SupervoxelGraph graph;
+  clustering.extract(graph.supervoxels);
+  clustering.getSupervoxelAdjacency(graph.adjacency);
+  // getLabeledCloud keeps the input's order: point i of it is point i (label 0: none).
+  const pcl::PointCloud<pcl::PointXYZL>::Ptr labelled = clustering.getLabeledCloud();
+  graph.label_of_point.reserve(labelled->size());
+  for (const pcl::PointXYZL& p : *labelled) graph.label_of_point.push_back(p.label);
+  return graph;
+}
+
+}  // namespace sortcell::perception
