@@ -362,13 +362,13 @@ SupervoxelGraph SupervoxelsOf(const Cloud::Ptr& voxels, const ConvexClusteringPa
   settings.colour_importance = static_cast<float>(params.colour_importance);
   settings.spatial_importance = 1.0f;
   settings.normal_importance = static_cast<float>(params.normal_importance);
+  if (params.own_voxel_normals && params.own_supervoxels) {
+    std::optional<SupervoxelGraph> graph = ExtractSupervoxels(*voxels, settings);
+    if (graph) return *std::move(graph);
+  }
   pcl::PointCloud<pcl::Normal>::Ptr normals;
   if (params.own_voxel_normals) {  // The voxel normals PCL would compute, computed faster.
     normals = std::make_shared<pcl::PointCloud<pcl::Normal>>(SupervoxelVoxelNormals(*voxels, settings.voxel_m));
-  }
-  if (params.own_supervoxels && normals && !normals->empty()) {
-    std::optional<SupervoxelGraph> graph = ExtractSupervoxels(*voxels, *normals, settings);
-    if (graph) return *std::move(graph);
   }
   return PclSupervoxels(voxels, normals, settings);
 }

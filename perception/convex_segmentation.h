@@ -39,8 +39,9 @@ struct ConvexClusteringParams {
   /// The supervoxels' voxel normals computed here (SupervoxelVoxelNormals: PCL's up to rounding, faster)
   /// and handed to PCL; false: PCL computes them itself (kept to time the two in one run).
   bool own_voxel_normals = true;
-  /// The supervoxels computed here (Supervoxels: PCL's bit for bit, faster), given those voxel normals;
-  /// false: PCL's SupervoxelClustering (kept as the reference, and to time the two in one run).
+  /// The supervoxels computed here (ExtractSupervoxels: PCL's bit for bit given those voxel normals, and the
+  /// normals computed on the same grid), faster; false: PCL's SupervoxelClustering (kept as the reference,
+  /// and to time the two in one run).
   bool own_supervoxels = true;
   /// Where two objects touch, supervoxels (several voxels wide) can straddle the contact and hide its
   /// crease from LCCP. With split_at_creases, the crease is looked for at the voxels' own resolution: a

@@ -90,10 +90,11 @@ NeighbourLists Neighbours(const Voxels& voxels) {
 // itself, then for each neighbour n (itself among them) n and each of n's neighbours. That is the voxel
 // once, plus for each neighbour n its own moments and the sum over n's neighbourhood. About the first
 // voxel's centroid.
-std::vector<Moments> IndexListMoments(const Voxels& voxels, const NeighbourLists& neighbours) {
-  const size_t n = voxels.centroid.size();
+std::vector<Moments> IndexListMoments(const std::vector<Eigen::Vector3f>& centroids, const NeighbourLists& neighbours,
+                                      size_t origin) {
+  const size_t n = centroids.size();
   std::vector<Moments> own(n), ring(n), list(n);
-  for (size_t v = 0; v < n; ++v) own[v] = Moments::Of((voxels.centroid[v] - voxels.centroid[0]).cast<double>());
+  for (size_t v = 0; v < n; ++v) own[v] = Moments::Of((centroids[v] - centroids[origin]).cast<double>());
   for (size_t v = 0; v < n; ++v) {
     for (int u : neighbours.Of(v)) ring[v].Add(own[u]);
   }
@@ -119,18 +120,23 @@ pcl::Normal VoxelNormal(const Moments& m, bool alone, const Eigen::Vector3f& c) 
 
 }  // namespace
 
+std::vector<pcl::Normal> PclVoxelNormals(const std::vector<Eigen::Vector3f>& centroids,
+                                         const NeighbourLists& neighbours, size_t origin) {
+  const std::vector<Moments> moments = IndexListMoments(centroids, neighbours, origin);
+  std::vector<pcl::Normal> normals;
+  normals.reserve(centroids.size());
+  for (size_t v = 0; v < centroids.size(); ++v) {
+    normals.push_back(VoxelNormal(moments[v], neighbours.Of(v).size() == 1, centroids[v]));
+  }
+  return normals;
+}
+
 pcl::PointCloud<pcl::Normal> SupervoxelVoxelNormals(const Cloud& points, float resolution_m) {
   pcl::PointCloud<pcl::Normal> normals;
   Voxels voxels;
   // PCL's resolution is the float it was given, widened to double.
   if (points.empty() || !MakeVoxels(points, static_cast<double>(resolution_m), voxels)) return normals;
-  const NeighbourLists neighbours = Neighbours(voxels);
-  const std::vector<Moments> moments = IndexListMoments(voxels, neighbours);
-  std::vector<pcl::Normal> of_voxel;
-  of_voxel.reserve(voxels.keys.size());
-  for (size_t v = 0; v < voxels.keys.size(); ++v) {
-    of_voxel.push_back(VoxelNormal(moments[v], neighbours.Of(v).size() == 1, voxels.centroid[v]));
-  }
+  const std::vector<pcl::Normal> of_voxel = PclVoxelNormals(voxels.centroid, Neighbours(voxels), 0);
   normals.resize(points.size());
   for (size_t i = 0; i < points.size(); ++i) normals[i] = of_voxel[voxels.of_point[i]];
   return normals;

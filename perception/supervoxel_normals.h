@@ -6,7 +6,10 @@
 #include <pcl/point_cloud.h>
 #include <pcl/point_types.h>
 
+#include <vector>
+
 #include "perception/cloud.h"
+#include "perception/normal_estimation.h"
 
 namespace sortcell::perception {
 
@@ -21,5 +24,11 @@ namespace sortcell::perception {
 /// voxel gets the voxel's normal, so that PCL's average over a voxel's points is that normal. Empty
 /// where `points` is, or spreads over more than 2^21 voxels along an axis (then let PCL compute them).
 pcl::PointCloud<pcl::Normal> SupervoxelVoxelNormals(const Cloud& points, float resolution_m);
+
+/// The same normal for each voxel, given PCL's voxel centroids, their neighbour lists (each voxel's occupied
+/// 26-neighbours and itself, in PCL's order) and `origin`, the voxel first in x, y, z order: the fit's sums
+/// are taken about its centroid, so that they round as SupervoxelVoxelNormals' do.
+std::vector<pcl::Normal> PclVoxelNormals(const std::vector<Eigen::Vector3f>& centroids,
+                                         const NeighbourLists& neighbours, size_t origin);
 
 }  // namespace sortcell::perception

@@ -2,6 +2,7 @@
 
 #include "perception/normal_estimation.h"
 #include "perception/octree_box.h"
+#include "perception/supervoxel_normals.h"
 
 #include <algorithm>
 #include <array>
@@ -106,9 +107,26 @@ NeighbourLists LeafNeighbours(const std::vector<Key>& keys) {
   return lists;
 }
 
+// The sums of the normal cloud SupervoxelVoxelNormals gives (each of a voxel's points its voxel's normal), in
+// each voxel's normal: PclVoxelNormals on this grid, its sums about the voxel first in x, y, z order.
+void AddPclVoxelNormals(const std::vector<Key>& keys, const std::vector<int>& count, AdjacencyGrid& grid) {
+  std::vector<Eigen::Vector3f> centroids;
+  centroids.reserve(grid.voxels.size());
+  for (const VoxelData& v : grid.voxels) centroids.push_back(v.xyz);
+  const auto first = std::min_element(keys.begin(), keys.end(), [](const Key& a, const Key& b) {
+    return PackKey(a[0], a[1], a[2]) < PackKey(b[0], b[1], b[2]);
+  });
+  const std::vector<pcl::Normal> normals =
+      PclVoxelNormals(centroids, grid.neighbours, static_cast<size_t>(first - keys.begin()));
+  for (size_t v = 0; v < grid.voxels.size(); ++v) {
+    for (int k = 0; k < count[v]; ++k) grid.voxels[v].normal += normals[v].getNormalVector4fMap();
+  }
+}
+
 // OctreePointCloudAdjacency::addPointsFromInputCloud and SupervoxelClustering::computeVoxelData with a
 // normal cloud: each leaf's sums in input order, made means; its normal the normalised sum of its points'.
-bool MakeAdjacencyGrid(const Cloud& points, const pcl::PointCloud<pcl::Normal>& normals, double resolution,
+// `normals` null: the normal cloud SupervoxelVoxelNormals would give, computed on this grid.
+bool MakeAdjacencyGrid(const Cloud& points, const pcl::PointCloud<pcl::Normal>* normals, double resolution,
                        AdjacencyGrid& grid) {
   Eigen::Vector3f low = Eigen::Vector3f::Constant(std::numeric_limits<float>::max()), high = -low;
   for (const PointT& p : points) {
@@ -138,7 +156,7 @@ bool MakeAdjacencyGrid(const Cloud& points, const pcl::PointCloud<pcl::Normal>& 
     VoxelData& v = grid.voxels.back();
     v.xyz += points[i].getVector3fMap();
     v.rgb += Eigen::Vector3f(points[i].r, points[i].g, points[i].b);
-    v.normal += normals[i].getNormalVector4fMap();
+    if (normals) v.normal += (*normals)[i].getNormalVector4fMap();
     ++count.back();
     grid.of_point[i] = static_cast<int>(grid.voxels.size()) - 1;
   }
@@ -146,9 +164,10 @@ bool MakeAdjacencyGrid(const Cloud& points, const pcl::PointCloud<pcl::Normal>& 
     const auto n = static_cast<float>(count[v]);
     for (int k = 0; k < 3; ++k) grid.voxels[v].rgb[k] /= n;
     for (int k = 0; k < 3; ++k) grid.voxels[v].xyz[k] /= n;
-    grid.voxels[v].normal.normalize();
   }
   grid.neighbours = LeafNeighbours(keys);
+  if (!normals) AddPclVoxelNormals(keys, count, grid);
+  for (VoxelData& v : grid.voxels) v.normal.normalize();
   return true;
 }
 
@@ -378,19 +397,27 @@ SupervoxelGraph GraphOf(const std::vector<Helper>& helpers, const AdjacencyGrid&
   return graph;
 }
 
+// Both forms of ExtractSupervoxels: `normals` null for the normals computed on the grid.
+std::optional<SupervoxelGraph> Extract(const Cloud& points, const pcl::PointCloud<pcl::Normal>* normals,
+                                       const SupervoxelSettings& settings) {
+  AdjacencyGrid grid;
+  // PCL's resolutions are the floats it was given, widened to double.
+  if (points.empty() || !MakeAdjacencyGrid(points, normals, settings.voxel_m, grid)) return std::nullopt;
+  const std::optional<std::vector<int>> seeds = Seeds(grid, settings);
+  if (!seeds) return std::nullopt;
+  return GraphOf(Grow(*seeds, grid, settings), grid);
+}
+
 }  // namespace
 
 std::optional<SupervoxelGraph> ExtractSupervoxels(const Cloud& points, const pcl::PointCloud<pcl::Normal>& normals,
                                                   const SupervoxelSettings& settings) {
-  AdjacencyGrid grid;
-  // PCL's resolutions are the floats it was given, widened to double.
-  if (points.empty() || normals.size() != points.size() ||
-      !MakeAdjacencyGrid(points, normals, settings.voxel_m, grid)) {
-    return std::nullopt;
-  }
-  const std::optional<std::vector<int>> seeds = Seeds(grid, settings);
-  if (!seeds) return std::nullopt;
-  return GraphOf(Grow(*seeds, grid, settings), grid);
+  if (normals.size() != points.size()) return std::nullopt;
+  return Extract(points, &normals, settings);
+}
+
+std::optional<SupervoxelGraph> ExtractSupervoxels(const Cloud& points, const SupervoxelSettings& settings) {
+  return Extract(points, nullptr, settings);
 }
 
 SupervoxelGraph PclSupervoxels(const Cloud::Ptr& points, const pcl::PointCloud<pcl::Normal>::ConstPtr& normals,

@@ -46,6 +46,10 @@ struct SupervoxelGraph {
 std::optional<SupervoxelGraph> ExtractSupervoxels(const Cloud& points, const pcl::PointCloud<pcl::Normal>& normals,
                                                   const SupervoxelSettings& settings);
 
+/// The same given the normal cloud SupervoxelVoxelNormals(points, settings.voxel_m) would give, computed on
+/// this grid in one pass (bit for bit that cloud's result: unit SupervoxelGraphs).
+std::optional<SupervoxelGraph> ExtractSupervoxels(const Cloud& points, const SupervoxelSettings& settings);
+
 /// The same from PCL's pcl::SupervoxelClustering itself (`normals` null: PCL computes the voxel normals).
 SupervoxelGraph PclSupervoxels(const Cloud::Ptr& points, const pcl::PointCloud<pcl::Normal>::ConstPtr& normals,
                                const SupervoxelSettings& settings);

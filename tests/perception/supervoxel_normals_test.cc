@@ -148,6 +148,9 @@ TEST(SupervoxelGraphs, PclsOwnBitForBit) {
     EXPECT_GT(pcl.supervoxels.size(), 20u);
     EXPECT_GT(pcl.adjacency.size(), 40u);
     ExpectTheSameGraph(pcl, *ours);
+    const std::optional<SupervoxelGraph> one_pass = ExtractSupervoxels(*cloud, settings);  // Normals on its grid.
+    ASSERT_TRUE(one_pass.has_value());
+    ExpectTheSameGraph(pcl, *one_pass);
   }
 }
 
@@ -169,6 +172,9 @@ TEST(SupervoxelGraphs, PclsOwnOnARealCapture) {
   const SupervoxelGraph pcl = PclSupervoxels(cloud, normals, settings);
   EXPECT_GT(pcl.supervoxels.size(), 200u);
   ExpectTheSameGraph(pcl, *ours);
+  const std::optional<SupervoxelGraph> one_pass = ExtractSupervoxels(*cloud, settings);
+  ASSERT_TRUE(one_pass.has_value());
+  ExpectTheSameGraph(pcl, *one_pass);
 }
 
 TEST(SupervoxelGraphs, NoneWherePclsWouldHangOnWhatIsNotReproduced) {
@@ -176,12 +182,14 @@ TEST(SupervoxelGraphs, NoneWherePclsWouldHangOnWhatIsNotReproduced) {
   const SupervoxelSettings settings;
   const pcl::PointCloud<pcl::Normal> normals = SupervoxelVoxelNormals(*cloud, settings.voxel_m);
   EXPECT_FALSE(ExtractSupervoxels(Cloud(), pcl::PointCloud<pcl::Normal>(), settings).has_value());
+  EXPECT_FALSE(ExtractSupervoxels(Cloud(), settings).has_value());
   pcl::PointCloud<pcl::Normal> fewer = normals;
   fewer.resize(normals.size() - 1);
   EXPECT_FALSE(ExtractSupervoxels(*cloud, fewer, settings).has_value()) << "a normal missing";
   Cloud with_nan = *cloud;
   with_nan[3].x = std::numeric_limits<float>::quiet_NaN();
   EXPECT_FALSE(ExtractSupervoxels(with_nan, normals, settings).has_value()) << "a point not finite";
+  EXPECT_FALSE(ExtractSupervoxels(with_nan, settings).has_value()) << "a point not finite";
   Cloud far;
   far.push_back(Point(0, 0, 1, 1, 2, 3));
   far.push_back(Point(1e5, 0, 1, 1, 2, 3));  // 1.3e7 voxels away: beyond 2^21.
