@@ -1,8 +1,9 @@
 // Per-stage cost of the cell's recognition chain on a 640x480 Kinect frame of the cell with its six
 // objects (noise on), as placed in scenes/cell.xml and heaped touching (dense): crop, plane, voxel,
-// convex clustering, then per segment normals, CVFH, HSV and the SVM (and the clustering three times
-// more, in turn: as it is, without its split at creases, to show what the split costs, and with PCL
-// computing the supervoxels' voxel normals, to show what ours save). Prints a Markdown table of
+// convex clustering, then per segment normals, CVFH, HSV and the SVM (and the clustering four times
+// more, in turn: as it is, without its split at creases, to show what the split costs, with PCL's
+// supervoxels, and with PCL's supervoxels computing their voxel normals too, to show what ours save).
+// Prints a Markdown table of
 // medians over the repetitions per frame. Usage: perception_benchmark [--model MODEL.json] [--repetitions N]
 // (without a model, one is trained on jittered copies of the frame's own segments to time prediction).
 #include <algorithm>
@@ -97,9 +98,9 @@ std::vector<Frame> Frames(const sim::Model& model, perception::Cloud::Ptr& backg
 struct StageTimes {
   std::vector<double> crop, plane, voxel, cluster, normals, cvfh, hsv, svm, total;
   std::vector<double> bins;  // The cell's look into its bins (cell::BinFill::See), besides the chain.
-  // The clustering again after the chain, as it is, without its split at creases, and with PCL
-  // computing its voxel normals itself: in turn, each first in every third repetition (a second pass
-  // over a frame runs warmer than the chain's first).
+  // The clustering again after the chain, as it is, without its split at creases, with PCL's supervoxels,
+  // and with PCL's supervoxels computing their voxel normals too: in turn, each first in every fourth
+  // repetition (a second pass over a frame runs warmer than the chain's first).
   std::vector<double> cluster_again, cluster_unsplit, cluster_pcl_supervoxels, cluster_pcl_normals;
   int round = 0;
   size_t objects = 0, points = 0;
