@@ -16,7 +16,7 @@ OctreeBox PclOctreeBox(const Eigen::Vector3d& low, const Eigen::Vector3d& high, 
         std::max(max_voxels, static_cast<std::uint32_t>(std::ceil((box.max[a] - box.min[a] - min_value) / resolution)));
   }
   box.depth = static_cast<int>(std::min(32.0, std::ceil(std::log2(max_voxels) - min_value)));
-  const double side = static_cast<double>(1 << box.depth) * resolution;
+  const double side = std::ldexp(1.0, box.depth) * resolution;  // PCL's (1 << depth), for any depth.
   for (int a = 0; a < 3; ++a) {
     const double oversize = (side - (box.max[a] - box.min[a])) / 2.0;
     if (oversize > min_value) box.min[a] -= oversize, box.max[a] += oversize;
@@ -34,19 +34,20 @@ std::array<std::uint32_t, 3> PclGrowOctreeBox(const Eigen::Vector3f& p, double r
       below = below || p[a] < box.min[a];
       beyond[a] = p[a] >= box.max[a];
     }
-    if (defined && !below && !beyond[0] && !beyond[1] && !beyond[2]) return moved;
+    // Past 2^30 voxels a side the box is of no use to its callers (PCL's own would overflow its keys).
+    if ((defined && !below && !beyond[0] && !beyond[1] && !beyond[2]) || box.depth >= 30) return moved;
     if (!defined) {
       const Eigen::Vector3d centre = p.cast<double>();
       box = PclOctreeBox(centre.array() - resolution / 2, centre.array() + resolution / 2, resolution);
       defined = true;
       continue;
     }
-    const double side = static_cast<double>(1 << box.depth) * resolution;
+    const double side = std::ldexp(1.0, box.depth) * resolution;
     for (int a = 0; a < 3; ++a) {
       if (!beyond[a]) box.min[a] -= side, moved[a] += 1u << box.depth;
     }
     ++box.depth;
-    const double grown = static_cast<double>(1 << box.depth) * resolution - min_value;
+    const double grown = std::ldexp(1.0, box.depth) * resolution - min_value;
     for (int a = 0; a < 3; ++a) box.max[a] = box.min[a] + grown;
   }
 }

@@ -33,6 +33,7 @@ OctreeBox PclOctreeBox(const Eigen::Vector3d& low, const Eigen::Vector3d& high, 
 /// doubles the cube away from the side `p` lies beyond); an undefined box (`defined` false) is first centred
 /// on `p`, one voxel wide, then fitted as above. Returns how many voxels the keys of what the octree held
 /// moved along each axis (the old cube becomes a child of the new one, the last of a side it grew below).
+/// Stops growing at 2^30 voxels a side.
 std::array<std::uint32_t, 3> PclGrowOctreeBox(const Eigen::Vector3f& p, double resolution, bool& defined,
                                               OctreeBox& box);
 
