@@ -7,9 +7,10 @@
 // (perception/segmentation_scoring.h): objects found as one segment (IoU >= 0.5), merged, split,
 // missed, and the overlap precision / recall / F-measure under one-to-one matching; then pooled per
 // folder. Also the segmentation's wall time per frame.
-// Usage: segmentation_benchmark [--scenes N] [--verbose] [--overlays DIR] [FOLDER ...]
+// Usage: segmentation_benchmark [--scenes N] [--verbose] [--overlays DIR] [--pcl-supervoxels] [FOLDER ...]
 //   (default: 50 sim scenes per mode; ../shared/real/mosd-learn and mosd-hard; --verbose: the objects
-//   not found in each sim frame; --overlays: each such frame's convex segments as DIR/<mode><frame>.png)
+//   not found in each sim frame; --overlays: each such frame's convex segments as DIR/<mode><frame>.png;
+//   --pcl-supervoxels: the convex clusters from PCL's SupervoxelClustering, the reference ours reproduce)
 #include <algorithm>
 #include <cstdlib>
 #include <map>
@@ -133,7 +134,7 @@ std::vector<SimFrame> RenderScenes(const sim::Model& model, sim::PlacementMode m
   return frames;
 }
 
-void RunSim(const sim::Model& model, int scenes, bool verbose, const fs::path& overlays) {
+void RunSim(const sim::Model& model, int scenes, bool verbose, const fs::path& overlays, bool pcl_supervoxels) {
   for (const sim::PlacementMode mode : {sim::PlacementMode::kDense, sim::PlacementMode::kClustered}) {
     perception::Cloud::Ptr background;
     const std::vector<SimFrame> frames = RenderScenes(model, mode, scenes, background);
@@ -144,6 +145,7 @@ void RunSim(const sim::Model& model, int scenes, bool verbose, const fs::path& o
     for (const Clustering clustering : {Clustering::kEuclidean, Clustering::kConvex}) {
       perception::SegmentationParams params = cell::CellSegmentation(cell::CellLayout());
       params.clustering = clustering;
+      params.convex.own_supervoxels = !pcl_supervoxels;
       std::vector<perception::SegmentationScore> scores;
       double total_ms = 0;
       for (const SimFrame& f : frames) {
@@ -172,7 +174,7 @@ void RunSim(const sim::Model& model, int scenes, bool verbose, const fs::path& o
 int Run(int argc, char** argv) {
   std::vector<fs::path> folders;
   int scenes = 50;
-  bool verbose = false;
+  bool verbose = false, pcl_supervoxels = false;
   fs::path overlays;
   CLI::App cli("Scores the segmentation against the ground truth: random sim scenes and labelled real captures.",
                "segmentation_benchmark");
@@ -182,10 +184,12 @@ int Run(int argc, char** argv) {
   cli.add_flag("--verbose", verbose, "list the sim objects not found");
   cli.add_option("--overlays", overlays, "write those frames' segments as images into this folder")
       ->check(CLI::ExistingDirectory);
+  cli.add_flag("--pcl-supervoxels", pcl_supervoxels,
+               "convex clusters from PCL's own supervoxels (the reference; the same figures, slower)");
   if (const auto exit_code = ParseBenchmarkArgs(cli, argc, argv)) return *exit_code;
   if (scenes > 0)
     RunSim(sim::Model::FromFile((fs::path(SORTCELL_SOURCE_DIR) / "scenes" / "cell.xml").string()), scenes, verbose,
-           overlays);
+           overlays, pcl_supervoxels);
   if (folders.empty()) {
     const fs::path real = fs::path(SORTCELL_SOURCE_DIR) / ".." / "shared" / "real";
     folders = {real / "mosd-learn", real / "mosd-hard"};
@@ -193,6 +197,7 @@ int Run(int argc, char** argv) {
   for (const Clustering clustering : {Clustering::kEuclidean, Clustering::kConvex}) {
     perception::SegmentationParams params;
     params.clustering = clustering;
+    params.convex.own_supervoxels = !pcl_supervoxels;
     std::printf("real, %s clusters on the dominant plane (no camera pose), against the labels:\n", Name(clustering));
     for (const fs::path& folder : folders) {
       if (!fs::is_directory(folder)) {

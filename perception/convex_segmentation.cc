@@ -294,7 +294,7 @@ using SegmentOf = std::map<std::uint32_t, std::uint32_t>;  // Supervoxel label -
 // Each segment renamed after its smallest supervoxel (supervoxel labels start at 1: never 0, none).
 void NameBySmallestSupervoxel(SegmentOf& segment_of) {
   std::map<std::uint32_t, std::uint32_t> name_of;
-  for (const auto& [sv, seg] : segment_of) name_of.try_emplace(seg, sv);  // SupervoxelMap ascend.
+  for (const auto& [sv, seg] : segment_of) name_of.try_emplace(seg, sv);  // Supervoxels ascend.
   for (auto& [sv, seg] : segment_of) seg = name_of[seg];
 }
 

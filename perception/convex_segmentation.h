@@ -40,8 +40,8 @@ struct ConvexClusteringParams {
   /// and handed to PCL; false: PCL computes them itself (kept to time the two in one run).
   bool own_voxel_normals = true;
   /// The supervoxels computed here (ExtractSupervoxels: PCL's bit for bit given those voxel normals, and the
-  /// normals computed on the same grid), faster; false: PCL's SupervoxelClustering (kept as the reference,
-  /// and to time the two in one run).
+  /// normals computed on the same grid), faster; false, or own_voxel_normals false: PCL's SupervoxelClustering
+  /// (kept as the reference, and to time the two in one run).
   bool own_supervoxels = true;
   /// Where two objects touch, supervoxels (several voxels wide) can straddle the contact and hide its
   /// crease from LCCP. With split_at_creases, the crease is looked for at the voxels' own resolution: a

@@ -17,6 +17,9 @@ inline std::uint64_t PackKey(std::uint64_t x, std::uint64_t y, std::uint64_t z) 
   return (x << (2 * kPackedKeyBits)) | (y << kPackedKeyBits) | z;
 }
 
+/// A voxel's integer key (x, y, z) in an octree.
+using VoxelKey = std::array<std::uint32_t, 3>;
+
 /// A PCL octree's box: its corner, its far side (exclusive) and its depth (2^depth voxels a side).
 struct OctreeBox {
   Eigen::Vector3d min;
@@ -36,5 +39,13 @@ OctreeBox PclOctreeBox(const Eigen::Vector3d& low, const Eigen::Vector3d& high, 
 /// Stops growing at 2^30 voxels a side.
 std::array<std::uint32_t, 3> PclGrowOctreeBox(const Eigen::Vector3f& p, double resolution, bool& defined,
                                               OctreeBox& box);
+
+/// The key of `p` in an octree with `box` (OctreePointCloud::genOctreeKeyforPoint, in double); false where
+/// `p` lies outside the box's cube.
+bool PclOctreeKey(const Eigen::Vector3f& p, const OctreeBox& box, double resolution, VoxelKey& key);
+
+/// The rank of `key` in the order PCL's octrees visit their leaves (depth first, children by index
+/// x << 2 | y << 1 | z): the key's bits interleaved from the top. For keys under 2^kPackedKeyBits.
+std::uint64_t PclLeafOrder(const VoxelKey& key);
 
 }  // namespace sortcell::perception

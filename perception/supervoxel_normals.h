@@ -22,12 +22,13 @@ namespace sortcell::perception {
 /// because PCL gathers each voxel's two rings through its octree one index at a time: about a fifth of
 /// the convex clustering's time (measured at 7360cf6, perception_benchmark under perf). Every point of a
 /// voxel gets the voxel's normal, so that PCL's average over a voxel's points is that normal. Empty
-/// where `points` is, or spreads over more than 2^21 voxels along an axis (then let PCL compute them).
+/// where `points` is, holds a point not finite or spreads over 2^20 voxels or more along an axis (then let
+/// PCL compute them).
 pcl::PointCloud<pcl::Normal> SupervoxelVoxelNormals(const Cloud& points, float resolution_m);
 
 /// The same normal for each voxel, given PCL's voxel centroids, their neighbour lists (each voxel's occupied
 /// 26-neighbours and itself, in PCL's order) and `origin`, the voxel first in x, y, z order: the fit's sums
-/// are taken about its centroid, so that they round as SupervoxelVoxelNormals' do.
+/// are taken about its centroid (PclAdjacencyGrid gives all three; SupervoxelVoxelNormals uses them).
 std::vector<pcl::Normal> PclVoxelNormals(const std::vector<Eigen::Vector3f>& centroids,
                                          const NeighbourLists& neighbours, size_t origin);
 

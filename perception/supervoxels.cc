@@ -2,6 +2,7 @@
 
 #include "perception/normal_estimation.h"
 #include "perception/octree_box.h"
+#include "perception/pcl_adjacency_grid.h"
 #include "perception/supervoxel_normals.h"
 
 #include <algorithm>
@@ -14,28 +15,6 @@
 
 namespace sortcell::perception {
 namespace {
-
-using Key = std::array<std::uint32_t, 3>;
-
-// The order in which PCL's octrees visit their leaves (depth first, children by index x << 2 | y << 1 | z):
-// the keys' bits interleaved from the top.
-std::uint64_t LeafOrder(const Key& k) {
-  std::uint64_t code = 0;
-  for (int b = kPackedKeyBits - 1; b >= 0; --b) {
-    code = (code << 3) | ((k[0] >> b) & 1u) << 2 | ((k[1] >> b) & 1u) << 1 | ((k[2] >> b) & 1u);
-  }
-  return code;
-}
-
-// A point's key in an octree with `box` (genOctreeKeyforPoint, in double); false outside the box's cube.
-bool KeyOf(const Eigen::Vector3f& p, const OctreeBox& box, double resolution, Key& key) {
-  for (int a = 0; a < 3; ++a) {
-    const double k = (static_cast<double>(p[a]) - box.min[a]) / resolution;
-    if (!(k >= 0) || k >= static_cast<double>(1u << box.depth)) return false;
-    key[a] = static_cast<std::uint32_t>(k);
-  }
-  return true;
-}
 
 // pcl::SupervoxelClustering<PointT>::VoxelData, in the same Eigen types so that the same expressions
 // round alike; owner: the supervoxel's index, -1 for none.
@@ -56,117 +35,32 @@ float Distance(const VoxelData& v1, const VoxelData& v2, const SupervoxelSetting
          spatial_dist * s.spatial_importance;
 }
 
-// PCL's adjacency octree, flat: its leaves in its leaf order (PCL's idx_), each point's leaf, each leaf's
-// 26-neighbours and itself in PCL's order (dx, dy, dz ascending).
+// PCL's adjacency octree with each leaf's voxel data (PCL's idx_ is the index).
 struct AdjacencyGrid {
+  PclAdjacencyGrid leaves;
   std::vector<VoxelData> voxels;
-  std::vector<int> of_point;
-  NeighbourLists neighbours;
 };
 
-// Each leaf's occupied neighbours and itself, as OctreePointCloudAdjacency::computeNeighbors lists them
-// (dx, dy, dz ascending). Found in the keys sorted x, y, z, column by column: a column's cells z-1 .. z+1
-// are one run, and as the columns ascend so does each of the nine around them, so nine cursors that only
-// move forward find them all (PCL looks each of the 27 up in its octree).
-NeighbourLists LeafNeighbours(const std::vector<Key>& keys) {
-  constexpr int kMost = 27;
-  std::vector<std::pair<std::uint64_t, int>> sorted;
-  sorted.reserve(keys.size());
-  for (size_t v = 0; v < keys.size(); ++v) sorted.emplace_back(PackKey(keys[v][0], keys[v][1], keys[v][2]), v);
-  std::sort(sorted.begin(), sorted.end());
-  const auto key_at = [&sorted](size_t at) { return at < sorted.size() ? sorted[at].first : ~std::uint64_t{0}; };
-  std::vector<int> found(keys.size() * kMost), count(keys.size(), 0);
-  size_t cursor[9] = {};
-  for (size_t begin = 0, end = 0; begin < sorted.size(); begin = end) {
-    const Key& k = keys[sorted[begin].second];
-    while (end < sorted.size() && (sorted[end].first >> kPackedKeyBits) == (sorted[begin].first >> kPackedKeyBits))
-      ++end;
-    for (int c = 0; c < 9; ++c) {  // Each neighbouring column's first cell.
-      const std::int64_t x = std::int64_t{k[0]} + c / 3 - 1, y = std::int64_t{k[1]} + c % 3 - 1;
-      if (x < 0 || y < 0) continue;
-      while (key_at(cursor[c]) < PackKey(x, y, 0)) ++cursor[c];
-    }
-    for (size_t i = begin; i < end; ++i) {
-      const int v = sorted[i].second;
-      const std::uint32_t z = keys[v][2];
-      for (int c = 0; c < 9; ++c) {
-        const std::int64_t x = std::int64_t{k[0]} + c / 3 - 1, y = std::int64_t{k[1]} + c % 3 - 1;
-        if (x < 0 || y < 0) continue;
-        const std::uint64_t first = PackKey(x, y, z - (z > 0)), last = PackKey(x, y, z + 1);
-        while (key_at(cursor[c]) < first) ++cursor[c];  // z ascends within the column.
-        for (size_t at = cursor[c]; key_at(at) <= last; ++at) found[v * kMost + count[v]++] = sorted[at].second;
-      }
-    }
-  }
-  NeighbourLists lists;
-  lists.indices.reserve(keys.size() * 12);
-  for (size_t v = 0; v < keys.size(); ++v) {
-    lists.indices.insert(lists.indices.end(), found.begin() + v * kMost, found.begin() + v * kMost + count[v]);
-    lists.offsets.push_back(static_cast<int>(lists.indices.size()));
-  }
-  return lists;
-}
-
-// The sums of the normal cloud SupervoxelVoxelNormals gives (each of a voxel's points its voxel's normal), in
-// each voxel's normal: PclVoxelNormals on this grid, its sums about the voxel first in x, y, z order.
-void AddPclVoxelNormals(const std::vector<Key>& keys, const std::vector<int>& count, AdjacencyGrid& grid) {
-  std::vector<Eigen::Vector3f> centroids;
-  centroids.reserve(grid.voxels.size());
-  for (const VoxelData& v : grid.voxels) centroids.push_back(v.xyz);
-  const auto first = std::min_element(keys.begin(), keys.end(), [](const Key& a, const Key& b) {
-    return PackKey(a[0], a[1], a[2]) < PackKey(b[0], b[1], b[2]);
-  });
-  const std::vector<pcl::Normal> normals =
-      PclVoxelNormals(centroids, grid.neighbours, static_cast<size_t>(first - keys.begin()));
-  for (size_t v = 0; v < grid.voxels.size(); ++v) {
-    for (int k = 0; k < count[v]; ++k) grid.voxels[v].normal += normals[v].getNormalVector4fMap();
-  }
-}
-
-// OctreePointCloudAdjacency::addPointsFromInputCloud and SupervoxelClustering::computeVoxelData with a
-// normal cloud: each leaf's sums in input order, made means; its normal the normalised sum of its points'.
-// `normals` null: the normal cloud SupervoxelVoxelNormals would give, computed on this grid.
+// SupervoxelClustering::computeVoxelData with a normal cloud: each leaf's normal the normalised sum of its
+// points' normals in input order. `normals` null: the normal cloud SupervoxelVoxelNormals would give (each
+// of a leaf's points the leaf's normal), computed on this grid.
 bool MakeAdjacencyGrid(const Cloud& points, const pcl::PointCloud<pcl::Normal>* normals, double resolution,
                        AdjacencyGrid& grid) {
-  Eigen::Vector3f low = Eigen::Vector3f::Constant(std::numeric_limits<float>::max()), high = -low;
-  for (const PointT& p : points) {
-    if (!p.getVector3fMap().allFinite()) return false;
-    low = low.cwiseMin(p.getVector3fMap()), high = high.cwiseMax(p.getVector3fMap());
-  }
-  const OctreeBox box = PclOctreeBox(low.cast<double>(), high.cast<double>(), resolution);
-  if (box.depth > kPackedKeyBits) return false;
-  std::vector<std::pair<std::uint64_t, int>> ordered;
-  std::vector<Key> point_keys(points.size());
-  ordered.reserve(points.size());
-  for (size_t i = 0; i < points.size(); ++i) {
-    if (!KeyOf(points[i].getVector3fMap(), box, resolution, point_keys[i])) return false;
-    ordered.emplace_back(LeafOrder(point_keys[i]), static_cast<int>(i));
-  }
-  std::sort(ordered.begin(), ordered.end());  // By leaf, then by input order within one.
-  grid.of_point.assign(points.size(), -1);
-  std::vector<Key> keys;
-  std::vector<int> count;
-  for (size_t n = 0; n < ordered.size(); ++n) {
-    const int i = ordered[n].second;
-    if (n == 0 || ordered[n].first != ordered[n - 1].first) {
-      grid.voxels.emplace_back();
-      keys.push_back(point_keys[i]);
-      count.push_back(0);
+  if (!MakePclAdjacencyGrid(points, resolution, grid.leaves)) return false;
+  const PclAdjacencyGrid& leaves = grid.leaves;
+  grid.voxels.resize(leaves.keys.size());
+  for (size_t v = 0; v < grid.voxels.size(); ++v)
+    grid.voxels[v].xyz = leaves.xyz[v], grid.voxels[v].rgb = leaves.rgb[v];
+  if (normals) {
+    for (size_t i = 0; i < points.size(); ++i) {
+      grid.voxels[leaves.of_point[i]].normal += (*normals)[i].getNormalVector4fMap();
     }
-    VoxelData& v = grid.voxels.back();
-    v.xyz += points[i].getVector3fMap();
-    v.rgb += Eigen::Vector3f(points[i].r, points[i].g, points[i].b);
-    if (normals) v.normal += (*normals)[i].getNormalVector4fMap();
-    ++count.back();
-    grid.of_point[i] = static_cast<int>(grid.voxels.size()) - 1;
+  } else {
+    const std::vector<pcl::Normal> of_leaf = PclVoxelNormals(leaves.xyz, leaves.neighbours, leaves.first_in_key_order);
+    for (size_t v = 0; v < grid.voxels.size(); ++v) {
+      for (int k = 0; k < leaves.count[v]; ++k) grid.voxels[v].normal += of_leaf[v].getNormalVector4fMap();
+    }
   }
-  for (size_t v = 0; v < grid.voxels.size(); ++v) {
-    const auto n = static_cast<float>(count[v]);
-    for (int k = 0; k < 3; ++k) grid.voxels[v].rgb[k] /= n;
-    for (int k = 0; k < 3; ++k) grid.voxels[v].xyz[k] /= n;
-  }
-  grid.neighbours = LeafNeighbours(keys);
-  if (!normals) AddPclVoxelNormals(keys, count, grid);
   for (VoxelData& v : grid.voxels) v.normal.normalize();
   return true;
 }
@@ -184,9 +78,9 @@ float SquaredDistance(const Eigen::Vector3f& a, const Eigen::Vector3f& b) {
 // The voxel centroids bucketed by the seed octree's cells, for searches within one cell of a point.
 struct SeedCells {
   OctreeBox box;
-  std::vector<Key> key_of_voxel;
+  std::vector<VoxelKey> key_of_voxel;
   std::vector<std::pair<std::uint64_t, int>> voxels_by_cell;  // Packed cell key, voxel; sorted.
-  std::vector<Key> occupied;                                  // In the seed octree's leaf order.
+  std::vector<VoxelKey> occupied;                             // In the seed octree's leaf order.
 };
 
 // The seed octree (OctreePointCloudSearch over the voxel centroids in leaf order): its box grown point by
@@ -194,24 +88,24 @@ struct SeedCells {
 // grew since.
 bool MakeSeedCells(const AdjacencyGrid& grid, double resolution, SeedCells& cells) {
   bool defined = false;
-  std::vector<Key> keys;
+  std::vector<VoxelKey> keys;
   keys.reserve(grid.voxels.size());
   for (const VoxelData& v : grid.voxels) {
     const std::array<std::uint32_t, 3> moved = PclGrowOctreeBox(v.xyz, resolution, defined, cells.box);
-    if (cells.box.depth > kPackedKeyBits) return false;
+    if (cells.box.depth >= kPackedKeyBits) return false;  // Cells around a key stay inside a packed key's field.
     if (moved != std::array<std::uint32_t, 3>{0, 0, 0}) {
-      for (Key& k : keys) {
+      for (VoxelKey& k : keys) {
         for (int a = 0; a < 3; ++a) k[a] += moved[a];
       }
     }
     keys.emplace_back();
-    if (!KeyOf(v.xyz, cells.box, resolution, keys.back())) return false;
+    if (!PclOctreeKey(v.xyz, cells.box, resolution, keys.back())) return false;
   }
-  std::vector<std::pair<std::uint64_t, Key>> occupied;
+  std::vector<std::pair<std::uint64_t, VoxelKey>> occupied;
   cells.key_of_voxel = keys;
   for (size_t v = 0; v < keys.size(); ++v) {
     cells.voxels_by_cell.emplace_back(PackKey(keys[v][0], keys[v][1], keys[v][2]), static_cast<int>(v));
-    occupied.emplace_back(LeafOrder(keys[v]), keys[v]);
+    occupied.emplace_back(PclLeafOrder(keys[v]), keys[v]);
   }
   std::sort(cells.voxels_by_cell.begin(), cells.voxels_by_cell.end());
   std::sort(occupied.begin(), occupied.end());
@@ -222,7 +116,7 @@ bool MakeSeedCells(const AdjacencyGrid& grid, double resolution, SeedCells& cell
 
 // Calls visit(voxel) for every voxel in the cells around `k` (itself and its 26 neighbours).
 template <typename Visit>
-void ForVoxelsAround(const SeedCells& cells, const Key& k, Visit&& visit) {
+void ForVoxelsAround(const SeedCells& cells, const VoxelKey& k, Visit&& visit) {
   for (std::uint32_t x = k[0] - (k[0] > 0); x <= k[0] + 1; ++x) {
     for (std::uint32_t y = k[1] - (k[1] > 0); y <= k[1] + 1; ++y) {
       const std::uint64_t first = PackKey(x, y, k[2] - (k[2] > 0)), last = PackKey(x, y, k[2] + 1);
@@ -238,27 +132,29 @@ void ForVoxelsAround(const SeedCells& cells, const Key& k, Visit&& visit) {
 // SupervoxelClustering::selectInitialSupervoxelSeeds: for each occupied cell of the seed octree, the voxel
 // nearest its centre (within one cell: the cell holds a centroid nearer than its width), kept when more
 // than a share of the voxels a disc of half a cell would hold lie within half a cell of it. Empty when a
-// centre has two nearest voxels, or a count may hang on FLANN's rounding at the radius.
+// centre's two nearest voxels are equally near to rounding, or a count may hang on rounding at the radius.
 std::optional<std::vector<int>> Seeds(const AdjacencyGrid& grid, const SupervoxelSettings& s) {
   SeedCells cells;
   const double resolution = s.seed_m;
   if (!MakeSeedCells(grid, resolution, cells)) return std::nullopt;
   std::vector<int> nearest;
-  for (const Key& k : cells.occupied) {
+  for (const VoxelKey& k : cells.occupied) {
     Eigen::Vector3f centre;
     for (int a = 0; a < 3; ++a) {
       centre[a] = static_cast<float>((static_cast<double>(k[a]) + 0.5f) * resolution + cells.box.min[a]);
     }
-    float best = std::numeric_limits<float>::max();
-    int best_voxel = -1, ties = 0;
+    // The nearest and the second nearest: where the two are within rounding of each other, FLANN's k-d tree,
+    // which prunes on bounds that round too, might pick either.
+    float best = std::numeric_limits<float>::max(), second = best;
+    int best_voxel = -1;
     ForVoxelsAround(cells, k, [&](int v) {
       const float d = SquaredDistance(centre, grid.voxels[v].xyz);
       if (d < best)
-        best = d, best_voxel = v, ties = 0;
-      else if (d == best)
-        ++ties;
+        second = best, best = d, best_voxel = v;
+      else if (d < second)
+        second = d;
     });
-    if (best_voxel < 0 || ties > 0) return std::nullopt;
+    if (best_voxel < 0 || second - best <= 1e-6f * best) return std::nullopt;
     nearest.push_back(best_voxel);
   }
   const float search_radius = 0.5f * s.seed_m;
@@ -268,13 +164,13 @@ std::optional<std::vector<int>> Seeds(const AdjacencyGrid& grid, const Supervoxe
   const auto radius2 = static_cast<float>(static_cast<double>(search_radius) * search_radius);
   std::vector<int> kept;
   for (int seed : nearest) {
-    const Key& k = cells.key_of_voxel[seed];
+    const VoxelKey& k = cells.key_of_voxel[seed];
     int within = 0;
     bool near_edge = false;
     ForVoxelsAround(cells, k, [&](int v) {
       const float d = SquaredDistance(grid.voxels[seed].xyz, grid.voxels[v].xyz);
       within += d < radius2;
-      near_edge = near_edge || std::abs(d - radius2) <= 1e-5f * radius2;
+      near_edge = near_edge || std::abs(d - radius2) <= 1e-6f * radius2;
     });
     if (near_edge) return std::nullopt;
     if (static_cast<float>(within) > min_points) kept.push_back(seed);
@@ -303,7 +199,7 @@ void Expand(int h, std::vector<Helper>& helpers, AdjacencyGrid& grid, const Supe
   taken.clear();
   Helper& helper = helpers[h];
   for (int leaf : helper.leaves) {
-    for (int n : grid.neighbours.Of(leaf)) {
+    for (int n : grid.leaves.neighbours.Of(leaf)) {
       VoxelData& voxel = grid.voxels[n];
       // A voxel this expansion measured already and did not take it would not take now: the same
       // centre, and only this expansion's takings lower a distance.
@@ -344,8 +240,7 @@ std::vector<Helper> Grow(const std::vector<int>& seeds, AdjacencyGrid& grid, con
   std::vector<Helper> helpers(seeds.size());
   for (size_t i = 0; i < seeds.size(); ++i) {
     helpers[i].label = static_cast<std::uint32_t>(i + 1);
-    const auto it = std::lower_bound(helpers[i].leaves.begin(), helpers[i].leaves.end(), seeds[i]);
-    helpers[i].leaves.insert(it, seeds[i]);
+    helpers[i].leaves.push_back(seeds[i]);
     grid.voxels[seeds[i]].owner = static_cast<int>(i);  // A seed shared with an earlier one stays in both.
   }
   const int depth = static_cast<int>(1.8f * s.seed_m / s.voxel_m);
@@ -382,15 +277,15 @@ SupervoxelGraph GraphOf(const std::vector<Helper>& helpers, const AdjacencyGrid&
     graph.supervoxels[helper.label] = std::move(sv);
     std::set<std::uint32_t> neighbour_labels;
     for (int leaf : helper.leaves) {
-      for (int n : grid.neighbours.Of(leaf)) {
+      for (int n : grid.leaves.neighbours.Of(leaf)) {
         const int owner = grid.voxels[n].owner;
         if (owner >= 0 && owner != static_cast<int>(h)) neighbour_labels.insert(helpers[owner].label);
       }
     }
     for (std::uint32_t other : neighbour_labels) graph.adjacency.emplace(helper.label, other);
   }
-  graph.label_of_point.reserve(grid.of_point.size());
-  for (int v : grid.of_point) {
+  graph.label_of_point.reserve(grid.leaves.of_point.size());
+  for (int v : grid.leaves.of_point) {
     const int owner = grid.voxels[v].owner;
     graph.label_of_point.push_back(owner >= 0 ? helpers[owner].label : 0);
   }

@@ -40,9 +40,11 @@ struct SupervoxelGraph {
 /// bit for bit (unit SupervoxelGraphs). Written here because PCL's keeps every voxel as an octree leaf
 /// and each supervoxel's voxels in a std::set: about half of the convex clustering's time
 /// (perception_benchmark, 2026-12-07). Empty (then use PclSupervoxels) where PCL's result would hang on
-/// what is not reproduced: a point not finite or `normals` not one per point; points spread over more
-/// than 2^21 voxels along an axis; a cell of the seed octree with two voxels equally near its centre (PCL's
-/// k-d tree would pick one by its own order).
+/// what is not reproduced: a point not finite or `normals` not one per point; points spread over 2^20
+/// voxels or more along an axis, or reaching the far side of PCL's octree cube (PCL's keys would wrap);
+/// a seed cell's two nearest voxels equally near its centre to within rounding, or (where seeds are
+/// counted: seed_m over about 5 voxel_m) a seed's neighbour that near the counting radius (PCL's k-d tree
+/// prunes on bounds that round too).
 std::optional<SupervoxelGraph> ExtractSupervoxels(const Cloud& points, const pcl::PointCloud<pcl::Normal>& normals,
                                                   const SupervoxelSettings& settings);
 

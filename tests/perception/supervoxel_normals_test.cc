@@ -11,6 +11,7 @@
 #include <pcl/filters/voxel_grid.h>
 #include <pcl/segmentation/supervoxel_clustering.h>
 
+#include "perception/convex_segmentation.h"
 #include "perception/pcd_io.h"
 #include "perception/supervoxel_normals.h"
 #include "perception/supervoxels.h"
@@ -21,9 +22,7 @@ namespace {
 
 using sortcell_test::Point;
 
-// A tabletop seen from 0.9 m, voxelised at 5 mm as the segmentation does: a table patch, a cylinder, a
-// sphere, two faces of a box meeting at an edge, jittered by up to 1 mm, and one point far from the rest
-// (a voxel with no neighbour but itself).
+// `raw` on a voxel grid of 5 mm, as the segmentation voxelises.
 Cloud::Ptr Voxelised(const Cloud& raw) {
   auto voxels = std::make_shared<Cloud>();
   pcl::VoxelGrid<PointT> grid;
@@ -33,6 +32,8 @@ Cloud::Ptr Voxelised(const Cloud& raw) {
   return voxels;
 }
 
+// A tabletop seen from 0.9 m, voxelised: a table patch, a cylinder, a sphere, two faces of a box meeting at
+// an edge, jittered by up to 1 mm, and one point far from the rest (a voxel with no neighbour but itself).
 Cloud::Ptr Scene() {
   Cloud raw = sortcell_test::CylinderFront(0.035, 0.12, 0.9, 200, 30, 30, -0.1);
   raw += sortcell_test::SphereFront(0.04, 0.95, 30, 200, 30);
@@ -54,17 +55,9 @@ Cloud::Ptr Scene() {
 
 using Supervoxels = std::map<std::uint32_t, pcl::Supervoxel<PointT>::Ptr>;
 
+// PCL's supervoxels under the convex clustering's settings (`normals` null: PCL computes them).
 Supervoxels Extract(const Cloud::Ptr& cloud, const pcl::PointCloud<pcl::Normal>::Ptr& normals) {
-  pcl::SupervoxelClustering<PointT> clustering(0.0075f, 0.03f);  // The convex clustering's settings.
-  clustering.setUseSingleCameraTransform(false);
-  clustering.setInputCloud(cloud);
-  if (normals) clustering.setNormalCloud(normals);
-  clustering.setColorImportance(0);
-  clustering.setSpatialImportance(1);
-  clustering.setNormalImportance(4);
-  Supervoxels supervoxels;
-  clustering.extract(supervoxels);
-  return supervoxels;
+  return PclSupervoxels(cloud, normals, SupervoxelSettings()).supervoxels;
 }
 
 TEST(SupervoxelVoxelNormals, TheSupervoxelsOfPclsOwnVoxelNormals) {
@@ -175,6 +168,30 @@ TEST(SupervoxelGraphs, PclsOwnOnARealCapture) {
   const std::optional<SupervoxelGraph> one_pass = ExtractSupervoxels(*cloud, settings);
   ASSERT_TRUE(one_pass.has_value());
   ExpectTheSameGraph(pcl, *one_pass);
+}
+
+TEST(SupervoxelGraphs, TheConvexClustersOfPclsSupervoxels) {
+  const Cloud::Ptr cloud = Scene();
+  const Eigen::Vector4d plane_C(0, -1, 0, 0.07);  // The table at y = 0.07 m, the camera above it.
+  ConvexClusteringParams ours, pcls;
+  pcls.own_supervoxels = false;
+  const std::vector<pcl::PointIndices> a = ConvexClusters(cloud, plane_C, ours),
+                                       b = ConvexClusters(cloud, plane_C, pcls);
+  EXPECT_GE(a.size(), 3u);
+  ASSERT_EQ(a.size(), b.size());
+  for (size_t c = 0; c < a.size(); ++c) EXPECT_EQ(a[c].indices, b[c].indices) << "cluster " << c;
+}
+
+TEST(SupervoxelGraphs, NoneWhereASeedCellsCentreHasTwoNearestVoxels) {
+  // A flat lattice of points 1 cm apart, one to a voxel. The seed octree's cells (3 cm) start 3 cm below
+  // the first point, so each cell's centre lies 1.5 cm past a point on both axes: midway between four
+  // voxel centroids, and which one PCL's k-d tree takes is its own order's choice.
+  Cloud lattice;
+  for (int i = 0; i < 24; ++i) {
+    for (int j = 0; j < 24; ++j) lattice.push_back(Point(0.005 + 0.01 * i, 0.005 + 0.01 * j, 1.0, 90, 90, 90));
+  }
+  pcl::PointCloud<pcl::Normal> up(lattice.size(), 1, pcl::Normal(0, 0, -1));
+  EXPECT_FALSE(ExtractSupervoxels(lattice, up, SupervoxelSettings()).has_value());
 }
 
 TEST(SupervoxelGraphs, NoneWherePclsWouldHangOnWhatIsNotReproduced) {
