@@ -1,5 +1,6 @@
 #include "perception/normal_estimation.h"
 
+#include "perception/octree_box.h"
 #include "perception/plane_moments.h"
 
 // FLANN's one index type we use, not flann.hpp: that instantiates every index type FLANN has (about
@@ -83,10 +84,7 @@ class Grid {
 
  private:
   Eigen::Array3i CellOf(const Eigen::Vector3f& p) const { return ((p - lowest_) / cell_).array().floor().cast<int>(); }
-  static std::uint64_t Key(const Eigen::Array3i& c) {
-    return (static_cast<std::uint64_t>(c.x()) << 42) | (static_cast<std::uint64_t>(c.y()) << 21) |
-           static_cast<std::uint64_t>(c.z());
-  }
+  static std::uint64_t Key(const Eigen::Array3i& c) { return PackKey(c.x(), c.y(), c.z()); }
 
   float cell_;
   Eigen::Vector3f lowest_;

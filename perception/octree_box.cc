@@ -25,32 +25,31 @@ OctreeBox PclOctreeBox(const Eigen::Vector3d& low, const Eigen::Vector3d& high, 
   return box;
 }
 
-std::array<std::uint32_t, 3> PclGrowOctreeBox(const Eigen::Vector3f& p, double resolution, bool& defined,
-                                              OctreeBox& box) {
+std::array<std::uint32_t, 3> PclGrowOctreeBox(const Eigen::Vector3f& p, double resolution,
+                                              std::optional<OctreeBox>& box) {
   const double min_value = std::numeric_limits<float>::epsilon();
   std::array<std::uint32_t, 3> moved{0, 0, 0};
-  while (true) {
+  if (!box) {
+    const Eigen::Vector3d centre = p.cast<double>();
+    box = PclOctreeBox(centre.array() - resolution / 2, centre.array() + resolution / 2, resolution);
+  }
+  // Past 2^30 voxels a side the box is of no use to its callers (PCL's own would overflow its keys).
+  while (box->depth < 30) {
     bool below = false, beyond[3];
     for (int a = 0; a < 3; ++a) {
-      below = below || p[a] < box.min[a];
-      beyond[a] = p[a] >= box.max[a];
+      below = below || p[a] < box->min[a];
+      beyond[a] = p[a] >= box->max[a];
     }
-    // Past 2^30 voxels a side the box is of no use to its callers (PCL's own would overflow its keys).
-    if ((defined && !below && !beyond[0] && !beyond[1] && !beyond[2]) || box.depth >= 30) return moved;
-    if (!defined) {
-      const Eigen::Vector3d centre = p.cast<double>();
-      box = PclOctreeBox(centre.array() - resolution / 2, centre.array() + resolution / 2, resolution);
-      defined = true;
-      continue;
-    }
-    const double side = std::ldexp(1.0, box.depth) * resolution;
+    if (!below && !beyond[0] && !beyond[1] && !beyond[2]) break;
+    const double side = std::ldexp(1.0, box->depth) * resolution;
     for (int a = 0; a < 3; ++a) {
-      if (!beyond[a]) box.min[a] -= side, moved[a] += 1u << box.depth;
+      if (!beyond[a]) box->min[a] -= side, moved[a] += 1u << box->depth;
     }
-    ++box.depth;
-    const double grown = std::ldexp(1.0, box.depth) * resolution - min_value;
-    for (int a = 0; a < 3; ++a) box.max[a] = box.min[a] + grown;
+    ++box->depth;
+    const double grown = std::ldexp(1.0, box->depth) * resolution - min_value;
+    for (int a = 0; a < 3; ++a) box->max[a] = box->min[a] + grown;
   }
+  return moved;
 }
 
 bool PclOctreeKey(const Eigen::Vector3f& p, const OctreeBox& box, double resolution, VoxelKey& key) {

@@ -7,6 +7,7 @@
 
 #include <array>
 #include <cstdint>
+#include <optional>
 
 namespace sortcell::perception {
 
@@ -33,12 +34,12 @@ struct OctreeBox {
 OctreeBox PclOctreeBox(const Eigen::Vector3d& low, const Eigen::Vector3d& high, double resolution);
 
 /// The box after PCL's octree grew to take `p` in (OctreePointCloud::adoptBoundingBoxToPoint: each growth
-/// doubles the cube away from the side `p` lies beyond); an undefined box (`defined` false) is first centred
-/// on `p`, one voxel wide, then fitted as above. Returns how many voxels the keys of what the octree held
+/// doubles the cube away from the side `p` lies beyond); an empty octree's (`box` none) is first centred on
+/// `p`, one voxel wide, then fitted as above. Returns how many voxels the keys of what the octree held
 /// moved along each axis (the old cube becomes a child of the new one, the last of a side it grew below).
 /// Stops growing at 2^30 voxels a side.
-std::array<std::uint32_t, 3> PclGrowOctreeBox(const Eigen::Vector3f& p, double resolution, bool& defined,
-                                              OctreeBox& box);
+std::array<std::uint32_t, 3> PclGrowOctreeBox(const Eigen::Vector3f& p, double resolution,
+                                              std::optional<OctreeBox>& box);
 
 /// The key of `p` in an octree with `box` (OctreePointCloud::genOctreeKeyforPoint, in double); false where
 /// `p` lies outside the box's cube.

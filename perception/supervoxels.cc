@@ -10,6 +10,7 @@
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <set>
 #include <utility>
 
@@ -87,22 +88,23 @@ struct SeedCells {
 // point as PCL grows it, each centroid's key as PCL gave it when the point went in, moved with the cube as it
 // grew since.
 bool MakeSeedCells(const AdjacencyGrid& grid, double resolution, SeedCells& cells) {
-  bool defined = false;
-  std::vector<VoxelKey> keys;
+  std::optional<OctreeBox> box;
+  std::vector<VoxelKey>& keys = cells.key_of_voxel;
   keys.reserve(grid.voxels.size());
   for (const VoxelData& v : grid.voxels) {
-    const std::array<std::uint32_t, 3> moved = PclGrowOctreeBox(v.xyz, resolution, defined, cells.box);
-    if (cells.box.depth >= kPackedKeyBits) return false;  // Cells around a key stay inside a packed key's field.
+    const std::array<std::uint32_t, 3> moved = PclGrowOctreeBox(v.xyz, resolution, box);
+    if (box->depth >= kPackedKeyBits) return false;  // Cells around a key stay inside a packed key's field.
     if (moved != std::array<std::uint32_t, 3>{0, 0, 0}) {
       for (VoxelKey& k : keys) {
         for (int a = 0; a < 3; ++a) k[a] += moved[a];
       }
     }
     keys.emplace_back();
-    if (!PclOctreeKey(v.xyz, cells.box, resolution, keys.back())) return false;
+    if (!PclOctreeKey(v.xyz, *box, resolution, keys.back())) return false;
   }
+  if (!box) return false;  // No voxels.
+  cells.box = *box;
   std::vector<std::pair<std::uint64_t, VoxelKey>> occupied;
-  cells.key_of_voxel = keys;
   for (size_t v = 0; v < keys.size(); ++v) {
     cells.voxels_by_cell.emplace_back(PackKey(keys[v][0], keys[v][1], keys[v][2]), static_cast<int>(v));
     occupied.emplace_back(PclLeafOrder(keys[v]), keys[v]);
