@@ -49,24 +49,18 @@ void CheckInput(const Cloud& cloud, const Cloud* background) {
   }
 }
 
-// Pixels inside the region of interest: valid, inside the world workspace box (with a pose).
-std::vector<int> RegionOfInterest(const Cloud& cloud, const std::optional<Eigen::Isometry3d>& X_WC,
-                                  const SegmentationParams& params) {
-  std::vector<int> roi;
-  roi.reserve(cloud.size());
-  for (int i = 0; i < static_cast<int>(cloud.size()); ++i) {
-    const PointT& p = cloud[i];
-    if (!Finite(p)) continue;
-    if (X_WC) {
-      const Eigen::Vector3d p_W = *X_WC * Eigen::Vector3d(p.x, p.y, p.z);
-      if ((p_W.array() < params.workspace_min_W.array()).any() ||
-          (p_W.array() > params.workspace_max_W.array()).any()) {
-        continue;
-      }
-    }
-    roi.push_back(i);
-  }
-  return roi;
+// Whether the valid point `p` lies in the region of interest: inside the world workspace box (with a pose).
+bool InRegion(const PointT& p, const std::optional<Eigen::Isometry3d>& X_WC, const SegmentationParams& params) {
+  if (!X_WC) return true;
+  const Eigen::Vector3d p_W = *X_WC * Eigen::Vector3d(p.x, p.y, p.z);
+  return !((p_W.array() < params.workspace_min_W.array()).any() ||
+           (p_W.array() > params.workspace_max_W.array()).any());
+}
+
+// Whether the valid point `p` has the empty cell's depth `b` at its pixel (the paper's foreground/background
+// subtraction).
+bool IsBackground(const PointT& p, const PointT& b, double tolerance) {
+  return Finite(b) && std::abs(p.z - b.z) < tolerance + 3.0 * AxialSigma(b.z);
 }
 
 // Why the region of interest is empty: no depth at all, or nothing inside the workspace box.
@@ -79,17 +73,47 @@ std::string NoValidPointDetail(const Cloud& cloud, const SegmentationParams& par
   return detail.str();
 }
 
-// Drops pixels whose depth matches the empty cell's (the paper's foreground/background subtraction).
-std::vector<int> SubtractBackground(const Cloud& cloud, const Cloud& background, const std::vector<int>& pixels,
-                                    double tolerance) {
-  std::vector<int> foreground;
-  foreground.reserve(pixels.size());
-  for (int i : pixels) {
-    const PointT& b = background[i];
-    if (Finite(b) && std::abs(cloud[i].z - b.z) < tolerance + 3.0 * AxialSigma(b.z)) continue;
-    foreground.push_back(i);
+// What the rest is taken from: the points of the region of interest the plane is fitted on (organized:
+// every plane_stride-th pixel of every plane_stride-th row; unorganized: every plane_stride^2-th point, as
+// many), and the region's foreground pixels, both in pixel order.
+struct Crop {
+  Cloud::Ptr plane_sample = std::make_shared<Cloud>();
+  std::vector<int> candidates;
+  bool any_in_region = false;
+};
+
+// One pass over the pixels: a pixel the background subtraction drops and the plane does not sample is used by
+// nothing, so its workspace test (a transform to the world) is skipped; the empty cell's depth is compared first.
+Crop CropCloud(const Cloud& cloud, const Cloud* background, const std::optional<Eigen::Isometry3d>& X_WC,
+               const SegmentationParams& params) {
+  Crop crop;
+  const bool organized = cloud.isOrganized();
+  const int stride = std::max(1, params.plane_stride);
+  const int width = organized ? static_cast<int>(cloud.width) : static_cast<int>(cloud.size());
+  const int height = organized ? static_cast<int>(cloud.height) : 1;
+  crop.plane_sample->reserve(cloud.size() / (stride * stride) + 1);
+  int in_region = 0;
+  for (int row = 0; row < height; ++row) {
+    const bool row_on_grid = organized && row % stride == 0;
+    // `phase` is col % stride, counted rather than divided.
+    for (int col = 0, phase = 0, i = row * width; col < width;
+         ++col, ++i, phase = phase + 1 == stride ? 0 : phase + 1) {
+      const PointT& p = cloud[i];
+      if (!Finite(p)) continue;
+      const bool on_grid = row_on_grid && phase == 0;
+      const bool foreground =
+          background == nullptr || !IsBackground(p, (*background)[i], params.background_tolerance_m);
+      if ((!foreground && !on_grid) || !InRegion(p, X_WC, params)) continue;
+      if (organized ? on_grid : in_region % (stride * stride) == 0) crop.plane_sample->push_back(p);
+      ++in_region;
+      if (foreground) crop.candidates.push_back(i);
+    }
   }
-  return foreground;
+  // Every pixel in the region may have been background off the grid: then look again, testing each.
+  crop.any_in_region = in_region > 0 || std::any_of(cloud.begin(), cloud.end(), [&](const PointT& p) {
+                         return Finite(p) && InRegion(p, X_WC, params);
+                       });
+  return crop;
 }
 
 struct PlaneFit {
@@ -125,21 +149,11 @@ Eigen::VectorXf RansacPlane(const Cloud::Ptr& sample, const std::optional<Eigen:
   return refined;
 }
 
-// RANSAC on every stride-th pixel of the region of interest. With a pose, the plane must be near
-// horizontal in the world (the table), so a large object face can never be taken for it. No plane:
-// nullopt, with the reason in `detail`.
-std::optional<PlaneFit> FitSupportingPlane(const Cloud& cloud, const std::vector<int>& roi,
-                                           const std::optional<Eigen::Isometry3d>& X_WC,
+// RANSAC on the region of interest's sample (CropCloud). With a pose, the plane must be near horizontal in the
+// world (the table), so a large object face can never be taken for it. No plane: nullopt, with the reason
+// in `detail`.
+std::optional<PlaneFit> FitSupportingPlane(const Cloud::Ptr& sample, const std::optional<Eigen::Isometry3d>& X_WC,
                                            const SegmentationParams& params, std::string& detail) {
-  auto sample = std::make_shared<Cloud>();
-  const int stride = std::max(1, params.plane_stride);
-  for (size_t k = 0; k < roi.size(); ++k) {
-    const int i = roi[k];
-    const int row = i / static_cast<int>(cloud.width), col = i % static_cast<int>(cloud.width);
-    // Organized: a grid of every stride-th pixel; unorganized: every stride^2-th point, as many.
-    const bool sampled = cloud.isOrganized() ? row % stride == 0 && col % stride == 0 : k % (stride * stride) == 0;
-    if (sampled) sample->push_back(cloud[i]);
-  }
   PlaneFit fit{Eigen::Vector4d::Zero(), std::make_shared<pcl::PointIndices>(), sample};
   Eigen::VectorXf coefficients;
   if (static_cast<int>(sample->size()) >= params.min_plane_points) {
@@ -295,18 +309,17 @@ SegmentationResult SegmentObjects(const Cloud& cloud, const std::optional<Eigen:
   result.world_frame = X_WC.has_value();
 
   auto t = Clock::now();
-  const std::vector<int> roi = RegionOfInterest(cloud, X_WC, params);
-  if (roi.empty()) {
+  const Crop crop = CropCloud(cloud, background, X_WC, params);
+  if (!crop.any_in_region) {
     result.status = SegmentationStatus::kNoValidPoints;
     result.detail = NoValidPointDetail(cloud, params);
     return result;
   }
-  const std::vector<int> candidates =
-      background != nullptr ? SubtractBackground(cloud, *background, roi, params.background_tolerance_m) : roi;
+  const std::vector<int>& candidates = crop.candidates;
   result.timings.crop_s = SecondsSince(t);
 
   t = Clock::now();
-  const std::optional<PlaneFit> fit = FitSupportingPlane(cloud, roi, X_WC, params, result.detail);
+  const std::optional<PlaneFit> fit = FitSupportingPlane(crop.plane_sample, X_WC, params, result.detail);
   if (!fit) {
     result.status = SegmentationStatus::kNoPlane;
     return result;

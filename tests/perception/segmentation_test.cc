@@ -160,6 +160,17 @@ TEST(Segmentation, NoSupportingPlaneIsAStatusNotAnError) {
             "objects standing on a table or floor");
   EXPECT_TRUE(r.segments.empty());
 
+  // The one valid point is the empty cell's depth, off the plane's sampling grid (pixels 0, 3, 6, ...):
+  // nothing samples it and nothing keeps it, yet it is inside the region: no plane, not "no valid point".
+  Cloud lone(40, 30);
+  for (auto& p : lone) p.x = p.y = p.z = std::numeric_limits<float>::quiet_NaN();
+  lone.at(4, 5) = sortcell_test::Point(0, 0, 1, 1, 1, 1);
+  const SegmentationResult background_only = SegmentObjects(lone, std::nullopt, &lone);
+  EXPECT_EQ(background_only.status, SegmentationStatus::kNoPlane);
+  EXPECT_EQ(background_only.detail,
+            "segmentation: no supporting plane found (0 sampled inliers of 0, need 200): expected "
+            "objects standing on a table or floor");
+
   // With a pose the plane must be horizontal in the world: a wall-like view has none.
   const Scene s = TableWithBoxes({}, 0);
   Eigen::Isometry3d X_WC_sideways = s.X_WC;
