@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -73,44 +74,49 @@ std::string NoValidPointDetail(const Cloud& cloud, const SegmentationParams& par
   return detail.str();
 }
 
-// What the rest is taken from: the points of the region of interest the plane is fitted on (organized:
-// every plane_stride-th pixel of every plane_stride-th row; unorganized: every plane_stride^2-th point, as
-// many), and the region's foreground pixels, both in pixel order.
+// What the rest of the segmentation is taken from, both in pixel order: the region of interest's points the
+// plane is fitted on, and the region's foreground pixels.
 struct Crop {
   Cloud::Ptr plane_sample = std::make_shared<Cloud>();
   std::vector<int> candidates;
   bool any_in_region = false;
 };
 
-// One pass over the pixels: a pixel the background subtraction drops and the plane does not sample is used by
-// nothing, so its workspace test (a transform to the world) is skipped; the empty cell's depth is compared first.
+// One pass over the pixels. The plane's sample: organized, every plane_stride-th pixel of every plane_stride-th
+// row (a grid); unorganized, every plane_stride^2-th point of the region, as many. A pixel the background
+// subtraction drops and the grid leaves out is used by nothing, so its workspace test (a transform to the world)
+// is skipped; the empty cell's depth is compared first. (A background needs an organized cloud, CheckInput: an
+// unorganized cloud's sample counts every point of the region, so each is tested.)
 Crop CropCloud(const Cloud& cloud, const Cloud* background, const std::optional<Eigen::Isometry3d>& X_WC,
                const SegmentationParams& params) {
   Crop crop;
   const bool organized = cloud.isOrganized();
   const int stride = std::max(1, params.plane_stride);
+  const std::int64_t every = std::int64_t{stride} * stride;  // Unorganized: one sampled point in `every`.
   const int width = organized ? static_cast<int>(cloud.width) : static_cast<int>(cloud.size());
   const int height = organized ? static_cast<int>(cloud.height) : 1;
-  crop.plane_sample->reserve(cloud.size() / (stride * stride) + 1);
-  int in_region = 0;
+  crop.plane_sample->reserve(organized
+                                 ? static_cast<size_t>((width + stride - 1) / stride) * ((height + stride - 1) / stride)
+                                 : static_cast<size_t>(static_cast<std::int64_t>(cloud.size()) / every + 1));
+  std::int64_t found_in_region = 0;  // Pixels found in the region so far (not counting those skipped).
   for (int row = 0; row < height; ++row) {
     const bool row_on_grid = organized && row % stride == 0;
-    // `phase` is col % stride, counted rather than divided.
-    for (int col = 0, phase = 0, i = row * width; col < width;
-         ++col, ++i, phase = phase + 1 == stride ? 0 : phase + 1) {
+    int phase = 0;  // col % stride, counted rather than divided.
+    for (int col = 0; col < width; ++col, phase = phase + 1 == stride ? 0 : phase + 1) {
+      const int i = row * width + col;
       const PointT& p = cloud[i];
       if (!Finite(p)) continue;
       const bool on_grid = row_on_grid && phase == 0;
       const bool foreground =
           background == nullptr || !IsBackground(p, (*background)[i], params.background_tolerance_m);
       if ((!foreground && !on_grid) || !InRegion(p, X_WC, params)) continue;
-      if (organized ? on_grid : in_region % (stride * stride) == 0) crop.plane_sample->push_back(p);
-      ++in_region;
+      if (organized ? on_grid : found_in_region % every == 0) crop.plane_sample->push_back(p);
+      ++found_in_region;
       if (foreground) crop.candidates.push_back(i);
     }
   }
   // Every pixel in the region may have been background off the grid: then look again, testing each.
-  crop.any_in_region = in_region > 0 || std::any_of(cloud.begin(), cloud.end(), [&](const PointT& p) {
+  crop.any_in_region = found_in_region > 0 || std::any_of(cloud.begin(), cloud.end(), [&](const PointT& p) {
                          return Finite(p) && InRegion(p, X_WC, params);
                        });
   return crop;

@@ -160,16 +160,24 @@ TEST(Segmentation, NoSupportingPlaneIsAStatusNotAnError) {
             "objects standing on a table or floor");
   EXPECT_TRUE(r.segments.empty());
 
-  // The one valid point is the empty cell's depth, off the plane's sampling grid (pixels 0, 3, 6, ...):
-  // nothing samples it and nothing keeps it, yet it is inside the region: no plane, not "no valid point".
+  // The one valid point is the empty cell's depth, off the plane's sampling grid (neither its row 5 nor its
+  // column 4 a multiple of the stride, 3): nothing samples it and nothing keeps it, yet it is inside the region:
+  // no plane, not "no valid point". With a pose, the same inside the workspace box, and "no valid point" outside.
   Cloud lone(40, 30);
   for (auto& p : lone) p.x = p.y = p.z = std::numeric_limits<float>::quiet_NaN();
   lone.at(4, 5) = sortcell_test::Point(0, 0, 1, 1, 1, 1);
-  const SegmentationResult background_only = SegmentObjects(lone, std::nullopt, &lone);
-  EXPECT_EQ(background_only.status, SegmentationStatus::kNoPlane);
-  EXPECT_EQ(background_only.detail,
-            "segmentation: no supporting plane found (0 sampled inliers of 0, need 200): expected "
-            "objects standing on a table or floor");
+  SegmentationParams around_it = OpenBox();
+  around_it.workspace_max_W.z() = 1.5;  // The point is at world z = 1 with the identity pose.
+  for (const auto& pose : {std::optional<Eigen::Isometry3d>(), std::optional(Eigen::Isometry3d::Identity())}) {
+    const SegmentationResult background_only = SegmentObjects(lone, pose, &lone, around_it);
+    EXPECT_EQ(background_only.status, SegmentationStatus::kNoPlane);
+    EXPECT_EQ(background_only.detail,
+              "segmentation: no supporting plane found (0 sampled inliers of 0, need 200): expected "
+              "objects standing on a table or floor");
+  }
+  const SegmentationResult outside_box = SegmentObjects(lone, Eigen::Isometry3d::Identity(), &lone, OpenBox());
+  EXPECT_EQ(outside_box.status, SegmentationStatus::kNoValidPoints);
+  EXPECT_NE(outside_box.detail.find("no valid point inside the workspace box"), std::string::npos);
 
   // With a pose the plane must be horizontal in the world: a wall-like view has none.
   const Scene s = TableWithBoxes({}, 0);
