@@ -59,13 +59,14 @@ NeighbourLists LeafNeighbours(const std::vector<VoxelKey>& keys) {
 // added to its leaf in input order (OctreePointCloudAdjacencyContainer::addPoint, pcl_instantiations.cc),
 // the sums made means (computeData), the leaves visited depth first.
 bool MakePclAdjacencyGrid(const Cloud& points, double resolution, PclAdjacencyGrid& grid) {
+  if (points.empty()) return false;
   Eigen::Vector3f low = Eigen::Vector3f::Constant(std::numeric_limits<float>::max()), high = -low;
   for (const PointT& p : points) {
     if (!p.getVector3fMap().allFinite()) return false;
     low = low.cwiseMin(p.getVector3fMap()), high = high.cwiseMax(p.getVector3fMap());
   }
   const OctreeBox box = PclOctreeBox(low.cast<double>(), high.cast<double>(), resolution);
-  if (points.empty() || box.depth >= kPackedKeyBits) return false;
+  if (box.depth >= kPackedKeyBits) return false;
   std::vector<std::pair<std::uint64_t, int>> ordered;
   std::vector<VoxelKey> point_keys(points.size());
   ordered.reserve(points.size());

@@ -172,6 +172,8 @@ TEST(SupervoxelGraphs, PclsOwnOnARealCapture) {
 
 TEST(SupervoxelGraphs, TheConvexClustersOfPclsSupervoxels) {
   const Cloud::Ptr cloud = Scene();
+  // Ours on this cloud (else both would be PCL's): the convex clustering's settings are SupervoxelSettings'.
+  ASSERT_TRUE(ExtractSupervoxels(*cloud, SupervoxelSettings()).has_value());
   const Eigen::Vector4d plane_C(0, -1, 0, 0.07);  // The table at y = 0.07 m, the camera above it.
   ConvexClusteringParams ours, pcls;
   pcls.own_supervoxels = false;
