@@ -15,30 +15,38 @@
 #include "cell/sorting_rules.h"
 #include "robot/gripper_geometry.h"
 #include "robot/joint_trajectory.h"
+#include "robot/ur5_limits.h"
 #include "robot/ur5_kinematics.h"
 
 namespace sortcell::cell {
 
-/// How fast the arm moves. Holding an object it keeps to the accelerations that are safe in every
-/// pose (robot::Ur5FastLimits) and moderate lines, so the grasp holds; with empty fingers only the
-/// joint torques limit it: lines and joint moves are planned at the `empty` caps and slowed down
-/// where the pose needs it (robot/torque_limited_motion.h). Every motion is torque-checked.
+/// How fast the arm moves. Holding an object it keeps to moderate caps, so the grasp holds; with empty
+/// fingers only the joint torques limit it. Lines and joint moves are planned at these caps and slowed
+/// down where the pose needs it (robot/torque_limited_motion.h): every motion is torque-checked. The
+/// caps are the fastest the sweeps measured without losing items (docs/performance.md).
 struct ArmSpeeds {
   /// Holding an object, where the fingers touch nothing else (the lift, down into a bin): speed (m/s)
   /// and peak acceleration (m/s^2).
+  /// (Lines at 4 and at 5 m/s^2 lost a user's block held at the limit of its pads' friction.)
   double transit = 0.8;
   double transit_acceleration = 3.0;
+  /// Holding, the carry over to the bin: half as hard again as the accelerations that are within the
+  /// torque budget in every pose (robot::Ur5AccelerationLimits), slowed where a pose needs it.
+  robot::JointMotionLimits held_joints{robot::Joints::Constant(robot::kUr5MaxJointSpeed),
+                                       1.5 * robot::Ur5AccelerationLimits()};
   /// With empty fingers: to above the next object and down to it, and home.
   double empty_transit = 1.0;
   double empty_transit_acceleration = 8.0;
   robot::JointMotionLimits empty_joints{robot::Joints::Constant(robot::kUr5MaxJointSpeed),
                                         (robot::Joints() << 25, 25, 25, 40, 40, 40).finished()};
-  /// The last descent onto an object, the fingers passing its sides.
+  /// The last descent onto an object, the fingers passing its sides: no faster (coming down faster, a
+  /// finger pushed a cluttered neighbour and the grasp missed), but up to speed sooner (at 2 m/s^2 the
+  /// descent was mostly speeding up and slowing down).
   double reach = 0.25;
-  double reach_acceleration = 2.0;
+  double reach_acceleration = 6.0;
   /// Slow: the last centimetres into a bin and the first out of it, and the put-back.
-  double slow = 0.15;
-  double slow_acceleration = 2.0;
+  double slow = 0.3;
+  double slow_acceleration = 4.0;
 };
 
 /// A bin as the cell knows it (the world's x and y are its sides).

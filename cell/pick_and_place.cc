@@ -204,7 +204,7 @@ PickReport PickAndPlace(MotionSequencer& run, const PickRequest& request, const 
   Notify(hooks.grasped);
   if (hooks.choose_release) hooks.choose_release(release);
 
-  MotionChain transfer(run.io().CommandedJoints(), MotionChain::Load::kHolding);
+  MotionChain transfer(run.io().CommandedJoints(), MotionChain::Load::kHolding, request.speeds.held_joints);
   robot::PlacePlan place;
   if (!PlanTransfer(release, transfer, place)) return Fail(run, request, report);
   bool held_above_bin = false;
