@@ -22,8 +22,8 @@ namespace sortcell::cell {
 
 /// How fast the arm moves. Holding an object it keeps to moderate caps, so the grasp holds; with empty
 /// fingers only the joint torques limit it. Lines and joint moves are planned at these caps and slowed
-/// down where the pose needs it (robot/torque_limited_motion.h): every motion is torque-checked. The
-/// caps are the fastest the sweeps measured without losing items (docs/performance.md).
+/// down where the pose needs it (robot/torque_limited_motion.h): every motion is torque-checked. What
+/// each cap was measured against: docs/performance.md, "Motion".
 struct ArmSpeeds {
   /// Holding an object, where the fingers touch nothing else (the lift, down into a bin): speed (m/s)
   /// and peak acceleration (m/s^2).
@@ -39,12 +39,14 @@ struct ArmSpeeds {
   double empty_transit_acceleration = 8.0;
   robot::JointMotionLimits empty_joints{robot::Joints::Constant(robot::kUr5MaxJointSpeed),
                                         (robot::Joints() << 25, 25, 25, 40, 40, 40).finished()};
-  /// The last descent onto an object, the fingers passing its sides: no faster (coming down faster, a
-  /// finger pushed a cluttered neighbour and the grasp missed), but up to speed sooner (at 2 m/s^2 the
-  /// descent was mostly speeding up and slowing down).
+  /// The last descent onto an object, the fingers passing its sides: no faster (blended into the descent
+  /// and faster, a finger pushed a cluttered neighbour and the grasp missed), but up to speed sooner (at
+  /// 2 m/s^2 the descent was mostly speeding up and slowing down).
   double reach = 0.25;
   double reach_acceleration = 6.0;
-  /// Slow: the last centimetres into a bin and the first out of it, and the put-back.
+  /// Slow: the last centimetres into a bin (holding, at 4 m/s^2: the sweeps and a grasp at its friction
+  /// limit kept their objects there) and the first out of it, the recentring, and the put-back (holding,
+  /// rare: not measured on its own at these caps).
   double slow = 0.3;
   double slow_acceleration = 4.0;
 };
