@@ -27,7 +27,7 @@ namespace sortcell::cell {
 struct ArmSpeeds {
   /// Holding an object, where the fingers touch nothing else (the lift, down into a bin): speed (m/s)
   /// and peak acceleration (m/s^2).
-  /// (Lines at 4 and at 5 m/s^2 lost a user's block held at the limit of its pads' friction.)
+  /// (At 5 m/s^2 a sim test lost a user's block held at the limit of its pads' friction; at 4, in one of two runs.)
   double transit = 0.8;
   double transit_acceleration = 3.0;
   /// Holding, the carry over to the bin: half as hard again as the accelerations that are within the

@@ -53,7 +53,8 @@ TEST_P(PaperPick, HeldByFrictionAndPlacedInItsBin) {
   EXPECT_TRUE(r.held);  // still squeezed when lowered into the bin
   EXPECT_LT(r.slip_mm, 5.0);
   EXPECT_LT(r.slip_total_mm, 5.0);
-  EXPECT_GT(r.cycle_time_s, 3.0);  // at working speed, not teleported: a pick needs 2.2-2.9 s at the least
+  // At working speed, not teleported: these picks took 4.9 s and more, the fingers alone 0.5 s.
+  EXPECT_GT(r.cycle_time_s, 3.0);
   EXPECT_LT(r.cycle_time_s, 20.0);
 }
 
