@@ -111,6 +111,11 @@ double BinFill::HighestUnder(const std::string& bin, const BinRelease& release) 
   return highest;
 }
 
+double BinFill::HighestIn(const std::string& bin) const {
+  const std::vector<double>& height = MapOf(bin).height;
+  return height.empty() ? 0.0 : *std::max_element(height.begin(), height.end());
+}
+
 BinRelease BinFill::Upright(const std::string& bin, int filled, double radius, double min_clearance) const {
   MapOf(bin);  // Names an unknown bin first.
   if (layout_.bin_slots.empty()) throw std::invalid_argument("cell layout: no bin slots");

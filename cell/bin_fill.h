@@ -57,6 +57,8 @@ class BinFill {
 
   /// The height (m) of the highest cell under `release`'s disc or band.
   double HighestUnder(const std::string& bin, const BinRelease& release) const;
+  /// The height (m) of the highest cell of `bin`: what stands highest in it.
+  double HighestIn(const std::string& bin) const;
 
  private:
   struct Map {

@@ -2,8 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "robot/gripper_geometry.h"
+#include "robot/ik_selection.h"
+#include "robot/ur5_ik.h"
 #include "robot/joint_trajectory.h"
 
 namespace sortcell::cell {
@@ -16,6 +21,17 @@ constexpr double kSlowPlacing = 0.05;
 constexpr double kOffCentre = 0.006;
 // How much wider than the held gap the fingers open to let go (m): 5 mm per side.
 constexpr double kReleaseOpening = 0.010;
+// A carried object's bottom passes at least this high over what the camera saw under it (m): the
+// Kinect's noise at a top (a few mm) and the arm's tracking (mm, cm only where it meets something).
+constexpr double kCarryAbove = 0.03;
+// ... where it passes within this of it sideways (m).
+constexpr double kCarryBeside = 0.02;
+// The lowest lift tried (the held object's bottom above where it stood, m), and how many tries: each
+// next one as much higher as the last passed too low (a few millimetres more at least), since the
+// joint move's path changes with the heights at its ends.
+constexpr double kLowestCarry = 0.10;
+constexpr int kCarryTries = 6;
+constexpr double kCarryRaise = 0.005;
 
 void Notify(const std::function<void()>& hook) {
   if (hook) hook();
@@ -51,6 +67,41 @@ PickReport PutBack(MotionSequencer& run, const PickRequest& request, PickReport 
   return report;
 }
 
+// Over to the object and down to its pre-grasp pose (`approach`, from where it leaves the arm) via the
+// lowest pose above the pre-grasp from which the open fingers pass kCarryAbove over everything seen
+// under them (the object itself included) off the plumb lines out of the last bin and down to the
+// pre-grasp. False: none found below the grasp plan's lift (the caller goes via that).
+bool PlanLowApproach(const PickRequest& request, MotionChain& approach) {
+  if (!request.approach_over) return false;
+  const robot::GraspPlan& plan = request.grasp;
+  const ArmSpeeds& lines = request.speeds;
+  const robot::GraspOptions grasping;
+  const HeldObject open_fingers{robot::kFingerTipBeyondTcp, 0.5 * robot::kMaxGap + robot::kFingerDepth};
+  std::vector<Eigen::Vector2d> plumb_xy{plan.X_WT_pregrasp.translation().head<2>()};
+  if (request.X_WT_exit) plumb_xy.push_back(request.X_WT_exit->translation().head<2>());
+  double above = grasping.approach_height;  // The via pose over the pre-grasp (m).
+  for (int tries = 0; tries < kCarryTries; ++tries) {
+    Eigen::Isometry3d X_WT_via = plan.X_WT_pregrasp;
+    X_WT_via.translation().z() += above;
+    if (X_WT_via.translation().z() >= plan.X_WT_lift.translation().z()) return false;
+    const auto q_via =
+        robot::SelectNearest(robot::SolveTcpIk(X_WT_via, plan.q_lift[5]), plan.q_lift, grasping.selection);
+    MotionChain trial = approach;
+    if (!q_via || std::abs(q_via->q[2]) < grasping.min_elbow_bend || !trial.JointMove("approach", q_via->q) ||
+        !trial.Line("descend", plan.X_WT_pregrasp, lines.empty_transit, lines.empty_transit_acceleration)) {
+      return false;
+    }
+    const double least = LeastClearanceOver(trial.trajectory(), 0, trial.trajectory().size(), open_fingers,
+                                            *request.approach_over, kCarryBeside, plumb_xy);
+    if (least >= kCarryAbove) {
+      approach = std::move(trial);
+      return true;
+    }
+    above += std::fmax(kCarryAbove - least, kCarryRaise);
+  }
+  return false;
+}
+
 // Where the arm was to the fingers closing: out of the last bin, above the object and down to it.
 bool ApproachAndGrasp(MotionSequencer& run, const PickRequest& request) {
   const robot::GraspPlan& plan = request.grasp;
@@ -67,8 +118,10 @@ bool ApproachAndGrasp(MotionSequencer& run, const PickRequest& request) {
   if (request.X_WT_exit && !approach.Line("retreat", *request.X_WT_exit, lines.transit, lines.transit_acceleration)) {
     return run.Run(approach);  // Reports the planning failure.
   }
-  approach.JointMove("approach", plan.q_lift);
-  approach.Line("descend", plan.X_WT_pregrasp, lines.empty_transit, lines.empty_transit_acceleration);
+  if (!PlanLowApproach(request, approach)) {
+    approach.JointMove("approach", plan.q_lift);
+    approach.Line("descend", plan.X_WT_pregrasp, lines.empty_transit, lines.empty_transit_acceleration);
+  }
   // The fingers go to the next opening once out of the bin: closing them to a narrower one in it
   // caught an object that had tipped against them and carried it off to the next pick.
   ChainHooks fingers;
@@ -134,18 +187,22 @@ bool LetGo(MotionSequencer& run, const PickRequest& request, const Eigen::Isomet
   return true;
 }
 
-// Lift, carry and lower as one chain (`transfer`, starting where the arm is); the placement into the bin
-// planned from where the lift ends (not ok: the bin cannot be reached from there, the chain ends with the
-// lift). False when the lift itself cannot be planned.
-bool PlanTransfer(const PickRequest& release, MotionChain& transfer, robot::PlacePlan& place) {
+// Lift to `X_WT_lift`, carry and lower as one chain (`transfer`, starting where the arm is); the
+// placement into the bin planned from where the lift ends, the held object's bottom at most
+// `place_clearance` above the bin's floor (not ok: the bin cannot be reached from there, the chain
+// ends with the lift). False when the lift itself cannot be planned.
+bool PlanTransferVia(const PickRequest& release, const Eigen::Isometry3d& X_WT_lift, double place_clearance,
+                     MotionChain& transfer, robot::PlacePlan& place) {
   const ArmSpeeds& lines = release.speeds;
-  const robot::GraspPlan& plan = release.grasp;
-  if (!transfer.Line("lift", plan.X_WT_lift, lines.transit, lines.transit_acceleration)) return false;
+  if (!transfer.Line("lift", X_WT_lift, lines.transit, lines.transit_acceleration)) return false;
   robot::GraspOptions place_options;
+  // Above the bin at the carry's height, not lower (the walls are the carry's check to clear).
+  place_options.lift_clearance = place_clearance;
+  place_options.min_lift_clearance = std::fmin(place_options.min_lift_clearance, place_clearance);
   place_options.place_yaw_step = release.place_yaw_step;
   place_options.place_yaw_offset = release.place_yaw_offset;
   place_options.release_clearance = release.release_clearance;
-  place = robot::PlanPlacement(release.p_W_release, plan.grasp_height, transfer.end(), place_options);
+  place = robot::PlanPlacement(release.p_W_release, release.grasp.grasp_height, transfer.end(), place_options);
   if (place.ok) {
     transfer.JointMove("carry", place.q_above);
     // Fast down to just above the release point; the last centimetres (LetGo) are slow.
@@ -154,6 +211,43 @@ bool PlanTransfer(const PickRequest& release, MotionChain& transfer, robot::Plac
     transfer.Line("lower", X_WT_above_release, lines.transit, lines.transit_acceleration);
   }
   return true;
+}
+
+// The lowest transfer whose held object passes kCarryAbove over everything seen under it once it
+// leaves the plumb lines of the lift and of the way down into the bin (the blends' corners included),
+// from kLowestCarry up to below the grasp plan's own lift. False: none found (the caller plans the
+// grasp plan's).
+bool PlanLowTransfer(const PickRequest& release, MotionChain& transfer, robot::PlacePlan& place) {
+  const robot::GraspPlan& plan = release.grasp;
+  const double grasp_z = plan.X_WT_grasp.translation().z();
+  const double bottom_at_grasp_z = grasp_z - plan.grasp_height;
+  double clearance = kLowestCarry;  // The held object's bottom above where it stood (m).
+  for (int tries = 0; tries < kCarryTries && grasp_z + clearance < plan.X_WT_lift.translation().z(); ++tries) {
+    Eigen::Isometry3d X_WT_lift = plan.X_WT_lift;
+    X_WT_lift.translation().z() = std::fmax(grasp_z + clearance, plan.X_WT_pregrasp.translation().z());
+    MotionChain trial = transfer;
+    robot::PlacePlan trial_place;
+    const double place_clearance = bottom_at_grasp_z + clearance - release.p_W_release.z();
+    if (!PlanTransferVia(release, X_WT_lift, place_clearance, trial, trial_place) || !trial_place.ok) return false;
+    const std::vector<Eigen::Vector2d> plumb_xy{plan.X_WT_grasp.translation().head<2>(),
+                                                trial_place.X_WT_release.translation().head<2>()};
+    const double least = LeastClearanceOver(trial.trajectory(), 0, trial.trajectory().size(), release.held,
+                                            *release.carry_over, kCarryBeside, plumb_xy);
+    if (least >= kCarryAbove) {
+      transfer = std::move(trial);
+      place = trial_place;
+      return true;
+    }
+    clearance += std::fmax(kCarryAbove - least, kCarryRaise);
+  }
+  return false;
+}
+
+// Lift, carry and lower as one chain, as low as what the carry passes over allows (when the request
+// says what that is), else as high as the grasp plan's lift.
+bool PlanTransfer(const PickRequest& release, MotionChain& transfer, robot::PlacePlan& place) {
+  if (release.carry_over && PlanLowTransfer(release, transfer, place)) return true;
+  return PlanTransferVia(release, release.grasp.X_WT_lift, robot::GraspOptions().lift_clearance, transfer, place);
 }
 
 // What the transfer watches as it runs: the hold after the lift (lost: stop) and above the bin, the

@@ -16,6 +16,8 @@
 
 #include <Eigen/Core>
 
+#include "cell/arm_view.h"
+#include "cell/carry_clearance.h"
 #include "cell/cell_layout.h"
 #include "cell/motion_sequencer.h"
 #include "cell/outcomes.h"
@@ -35,6 +37,14 @@ struct PickRequest {
   /// the arm is free to move (at home).
   std::optional<Eigen::Isometry3d> X_WT_exit;
   ArmSpeeds speeds = CellLayout().speeds;
+  /// What the open fingers pass over on the way to the object, as the camera saw it (the object too):
+  /// they come over to it no higher than these need. Empty: via the grasp plan's lift.
+  std::optional<CarryObstacles> approach_over;
+  /// What the carry passes over, as the camera saw it, and the held object's reach (its below_tcp is
+  /// the grasp's height): the lift, the carry and the way down into the bin go no higher than these
+  /// need (from robot::GraspOptions' min_lift_clearance up). Empty: as high as the grasp plan's lift.
+  std::optional<CarryObstacles> carry_over;
+  HeldObject held;
 };
 
 /// Called at the sequence's milestones, for callers that measure (the scripted pick's slip); the

@@ -21,6 +21,27 @@ double HeldReach(const Detection& d) {
   return reach;
 }
 
+// What the arm passes over, as the camera saw it: every object seen but `held` (-1: none), as the
+// disc its points cover up to its top, and every bin, its walls included, up to them or to what it holds.
+CarryObstacles PassedOver(const std::vector<Detection>& detections, int held, const CellLayout& layout,
+                          const BinFill& bins) {
+  CarryObstacles over;
+  for (int i = 0; i < static_cast<int>(detections.size()); ++i) {
+    if (i == held) continue;
+    const Detection& d = detections[i];
+    double radius = 0.5 * d.footprint.width;
+    for (const Eigen::Vector2d& p : d.p_W_xy) radius = std::max(radius, (p - d.footprint.centre_xy).norm());
+    over.discs.push_back({d.footprint.centre_xy, radius, d.footprint.top_z});
+  }
+  for (const auto& [name, bin] : layout.bins) {
+    const Eigen::Vector2d half = bin.inner_half + Eigen::Vector2d::Constant(layout.bin_wall_thickness);
+    const Eigen::Vector2d centre = bin.p_W_floor.head<2>();
+    over.boxes.push_back(
+        {centre - half, centre + half, bin.p_W_floor.z() + std::max(layout.bin_wall_height, bins.HighestIn(name))});
+  }
+  return over;
+}
+
 }  // namespace
 
 SortingPolicy::SortingPolicy(CellIo& io, const CellLayout& layout, const CameraCalibration& calibration,
@@ -71,9 +92,10 @@ BinRelease SortingPolicy::ChooseRelease(const Detection& seen, int filled, doubl
   return bins_.Upright(seen.bin, filled, radius, min_clearance);
 }
 
-AttemptReport SortingPolicy::Attempt(const Detection& seen, int index, int attempt, const robot::GraspPlan& plan,
-                                     const std::optional<Eigen::Isometry3d>& X_WT_exit,
+AttemptReport SortingPolicy::Attempt(const std::vector<Detection>& detections, int index, int attempt,
+                                     const robot::GraspPlan& plan, const std::optional<Eigen::Isometry3d>& X_WT_exit,
                                      std::optional<Observation>& next_view) {
+  const Detection& seen = detections[index];
   AttemptReport report;
   report.detection = index;
   report.seen = &seen;
@@ -88,6 +110,8 @@ AttemptReport SortingPolicy::Attempt(const Detection& seen, int index, int attem
   request.speeds = layout_.speeds;
   PickHooks hooks;
   const HeldObject held{plan.grasp_height, HeldReach(seen)};
+  request.held = held;
+  request.approach_over = PassedOver(detections, -1, layout_, bins_);
   hooks.out_of_view = [&](const robot::Joints& q) { return !view_.ArmInView(q, held); };
   hooks.left_view = [&] { next_view = Observe(held); };
   hooks.grasped = [&] { observer_.Grasped(); };
@@ -100,6 +124,7 @@ AttemptReport SortingPolicy::Attempt(const Detection& seen, int index, int attem
     placing.place_yaw_step = report.release.yaw_step;
     placing.place_yaw_offset = report.release.yaw_offset;
     placing.release_clearance = report.release.clearance;
+    placing.carry_over = PassedOver(detections, index, layout_, bins_);
   };
   const size_t first_phase = motions_.phases().size();
   report.pick = PickAndPlace(motions_, request, hooks);
@@ -147,7 +172,7 @@ PolicyResult SortingPolicy::Run() {
     const Detection& seen = observation.detections[chosen];
     const int attempt = memory.RecordAttempt(seen.footprint.centre_xy);
     ++result.attempts;
-    const AttemptReport report = Attempt(seen, chosen, attempt, choice.plan, X_WT_exit, during_carry);
+    const AttemptReport report = Attempt(observation.detections, chosen, attempt, choice.plan, X_WT_exit, during_carry);
     X_WT_exit = report.pick.X_WT_exit;
     const AttemptResult r = report.pick.result;
     // Only a release into the bin leaves the view captured during the carry as it was.

@@ -94,7 +94,7 @@ class SortingPolicy {
  private:
   // Captures and observes; `held`: what the arm holds if it is carrying something.
   Observation Observe(const std::optional<HeldObject>& held = std::nullopt);
-  AttemptReport Attempt(const Detection& seen, int index, int attempt, const robot::GraspPlan& plan,
+  AttemptReport Attempt(const std::vector<Detection>& detections, int index, int attempt, const robot::GraspPlan& plan,
                         const std::optional<Eigen::Isometry3d>& X_WT_exit, std::optional<Observation>& next_view);
 
   CellIo& io_;

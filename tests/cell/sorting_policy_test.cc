@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <memory>
@@ -258,6 +259,49 @@ TEST(SortingPolicy, AnObjectSeenInTheBinIsNotLetGoOnto) {
   ASSERT_EQ(released.size(), 2u);
   EXPECT_LT((released[0] - BinSlot(layout, "bottle", 1).head<2>()).norm(), 1e-4);
   EXPECT_LT((released[1] - BinSlot(layout, "bottle", 1).head<2>()).norm(), 1e-4);
+}
+
+// How high the held object's bottom was lifted above where it stood: the TCP at the lift's end over
+// its height at the grasp (the reach's end), in the run's first attempt.
+double FirstLift(const SortRun& run) {
+  double grasp_z = 0;
+  for (size_t i = 0; i < run.motions.size(); ++i) {
+    if (run.motions[i] == "reach") grasp_z = robot::TcpPose(run.motion_ends[i]).translation().z();
+    if (run.motions[i] == "lift") return robot::TcpPose(run.motion_ends[i]).translation().z() - grasp_z;
+  }
+  return 0;
+}
+
+// The TCP's height where the run's first motion of `phase` left the arm; NaN if none.
+double TcpZAfter(const SortRun& run, const std::string& phase) {
+  for (size_t i = 0; i < run.motions.size(); ++i) {
+    if (run.motions[i] == phase) return robot::TcpPose(run.motion_ends[i]).translation().z();
+  }
+  return std::nan("");
+}
+
+TEST(SortingPolicy, LiftsOnlyAsHighAsWhatTheCarryPassesOverNeeds) {
+  PolicyOptions options;
+  options.max_attempts = 1;
+  // The cup alone: lifted only as high as its bin's walls need (0.10 m; it passes 3 cm over them), not
+  // the 0.30 m a lift that sees nothing would need.
+  const CellLayout layout = Layout();
+  const robot::GraspOptions grasping;
+  const SortRun alone = Sort({kCup}, {true}, options);
+  ASSERT_EQ(alone.seen.results, std::vector<AttemptResult>{AttemptResult::kReleased});
+  EXPECT_GE(FirstLift(alone), layout.bin_wall_height + 0.03 - 0.002);  // The lines' ends within a millimetre.
+  EXPECT_LT(FirstLift(alone), 0.20);
+  // The open fingers came over to it low too: the approach ended (in its blend into the descent) less
+  // than 5 cm above the pre-grasp pose (its via pose 3 cm above it, nothing being in the way), not at
+  // the grasp plan's lift.
+  EXPECT_LT(TcpZAfter(alone, "approach") - TcpZAfter(alone, "descend"), 0.05);
+  // Something 0.25 m tall stands in the middle of the cup's bin (the camera sees it): the carry comes
+  // over it, so the cup goes high enough for its bottom to pass 3 cm above it.
+  const Cylinder tall{BinSlot(layout, "cup", 4).head<2>(), 0.03, 0.25, 200, 200, 200};
+  const SortRun over_tall = Sort({kCup, tall}, {true}, options);
+  ASSERT_EQ(over_tall.seen.results, std::vector<AttemptResult>{AttemptResult::kReleased});
+  EXPECT_GT(FirstLift(over_tall), 0.25 + 0.02);
+  EXPECT_LE(FirstLift(over_tall), grasping.lift_clearance + 0.002);
 }
 
 TEST(SortingPolicy, AFaultOfTheCellEndsTheEpisode) {

@@ -1,0 +1,37 @@
+#include "cell/carry_clearance.h"
+
+#include <algorithm>
+#include <stdexcept>
+#include <string>
+
+#include "robot/ur5_kinematics.h"
+
+namespace sortcell::cell {
+
+double LeastClearanceOver(const robot::JointTrajectory& trajectory, int first, int last, const HeldObject& held,
+                          const CarryObstacles& obstacles, double beside,
+                          const std::vector<Eigen::Vector2d>& plumb_xy) {
+  if (first < 0 || last > trajectory.size() || first > last) {
+    throw std::invalid_argument("carry clearance: samples " + std::to_string(first) + " to " + std::to_string(last) +
+                                " are not in a trajectory of " + std::to_string(trajectory.size()));
+  }
+  const double reach = held.radius + beside;
+  double least = std::numeric_limits<double>::infinity();
+  for (int k = first; k < last; ++k) {
+    const Eigen::Vector3d p_WT = robot::TcpPose(trajectory.q[k]).translation();
+    const Eigen::Vector2d xy = p_WT.head<2>();
+    const auto on = [&xy](const Eigen::Vector2d& p) { return (xy - p).norm() <= kOnPlumbLine; };
+    if (std::any_of(plumb_xy.begin(), plumb_xy.end(), on)) continue;
+    const double bottom_z = p_WT.z() - held.below_tcp;
+    for (const auto& disc : obstacles.discs) {
+      if ((xy - disc.centre).norm() < disc.radius + reach) least = std::min(least, bottom_z - disc.top_z);
+    }
+    for (const auto& box : obstacles.boxes) {
+      const Eigen::Vector2d nearest = xy.cwiseMax(box.min_xy).cwiseMin(box.max_xy);
+      if ((xy - nearest).norm() < reach) least = std::min(least, bottom_z - box.top_z);
+    }
+  }
+  return least;
+}
+
+}  // namespace sortcell::cell
