@@ -18,11 +18,13 @@ double LeastClearanceOver(const robot::JointTrajectory& trajectory, int first, i
   const double reach = held.radius + beside;
   double least = std::numeric_limits<double>::infinity();
   for (int k = first; k < last; ++k) {
-    const Eigen::Vector3d p_WT = robot::TcpPose(trajectory.q[k]).translation();
-    const Eigen::Vector2d xy = p_WT.head<2>();
-    const auto on = [&xy](const Eigen::Vector2d& p) { return (xy - p).norm() <= kOnPlumbLine; };
+    const Eigen::Isometry3d X_WT = robot::TcpPose(trajectory.q[k]);
+    const Eigen::Vector2d p_xy = X_WT.translation().head<2>();
+    const auto on = [&p_xy](const Eigen::Vector2d& p) { return (p_xy - p).norm() <= kOnPlumbLine; };
     if (std::any_of(plumb_xy.begin(), plumb_xy.end(), on)) continue;
-    const double bottom_z = p_WT.z() - held.below_tcp;
+    const Eigen::Vector3d p_W_bottom = X_WT * Eigen::Vector3d(0, 0, held.below_tcp);  // Along z_T (down).
+    const Eigen::Vector2d xy = p_W_bottom.head<2>();
+    const double bottom_z = p_W_bottom.z();
     for (const auto& disc : obstacles.discs) {
       if ((xy - disc.centre).norm() < disc.radius + reach) least = std::min(least, bottom_z - disc.top_z);
     }

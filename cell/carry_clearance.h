@@ -31,9 +31,10 @@ struct CarryObstacles {
   std::vector<Box> boxes;
 };
 
-/// The least height (m) of the held object's bottom above the top of an obstacle it comes over, along
-/// samples [first, last) of `trajectory`: it comes over an obstacle where its reach (the held radius,
-/// widened by `beside`) overlaps the obstacle's outline. Samples with the TCP within kOnPlumbLine of one
+/// The least height (m) of the held object's bottom (held.below_tcp along the TCP's z, which points
+/// down) above the top of an obstacle it comes over, along samples [first, last) of `trajectory`: it
+/// comes over an obstacle where its reach (the held radius, widened by `beside`) overlaps the
+/// obstacle's outline. Samples with the TCP within kOnPlumbLine of one
 /// of `plumb_xy` are not counted: straight up from where an object stood or down to where it is let go,
 /// nothing is passed over (what stands beside it is the grasp's and the bin slot's to keep clear).
 /// +infinity when it comes over none.

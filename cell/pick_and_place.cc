@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
@@ -26,12 +27,31 @@ constexpr double kReleaseOpening = 0.010;
 constexpr double kCarryAbove = 0.03;
 // ... where it passes within this of it sideways (m).
 constexpr double kCarryBeside = 0.02;
-// The lowest lift tried (the held object's bottom above where it stood, m), and how many tries: each
-// next one as much higher as the last passed too low (a few millimetres more at least), since the
-// joint move's path changes with the heights at its ends.
+// The lowest lift tried (the held object's bottom above where it stood, m), how many tries, and the
+// least raise from one to the next (m).
 constexpr double kLowestCarry = 0.10;
-constexpr int kCarryTries = 6;
+constexpr int kCarryTries = 8;
 constexpr double kCarryRaise = 0.005;
+
+// The next height to try after one whose path passed `least` (m) over what it came over, where
+// kCarryAbove is wanted: as much higher as that needs if the least clearance rises with the height as
+// it did from the try before (the path changes with the heights at its ends, so a raise of the ends
+// gains less), a quarter of the raise at least; the first time, one for one.
+class RaiseToClear {
+ public:
+  double Next(double height, double least) {
+    double gain = 1;
+    if (tried_) gain = std::clamp((least - last_least_) / (height - last_height_), 0.25, 1.0);
+    tried_ = true;
+    last_height_ = height;
+    last_least_ = least;
+    return height + std::fmax((kCarryAbove - least) / gain, kCarryRaise);
+  }
+
+ private:
+  bool tried_ = false;
+  double last_height_ = 0, last_least_ = 0;
+};
 
 void Notify(const std::function<void()>& hook) {
   if (hook) hook();
@@ -40,7 +60,7 @@ void Notify(const std::function<void()>& hook) {
 // Home from where the arm is now, after a step failed or the object was lost: straight up to
 // `X_WT_up` first, then the joint move.
 bool Home(MotionSequencer& run, const PickRequest& request, const Eigen::Isometry3d& X_WT_up) {
-  return GoHome(run, X_WT_up, request.q_home, request.speeds);
+  return GoHome(run, BinExit{X_WT_up, X_WT_up}, request.q_home, request.speeds);
 }
 
 // The sequence after a step failed: a fault ends it; a motion that could not be planned lets go of
@@ -76,10 +96,13 @@ bool PlanLowApproach(const PickRequest& request, MotionChain& approach) {
   const robot::GraspPlan& plan = request.grasp;
   const ArmSpeeds& lines = request.speeds;
   const robot::GraspOptions grasping;
-  const HeldObject open_fingers{robot::kFingerTipBeyondTcp, 0.5 * robot::kMaxGap + robot::kFingerDepth};
+  // The finger tips, as far out as the open fingers' stems or the palm reach.
+  const HeldObject open_fingers{robot::kFingerTipBeyondTcp,
+                                std::fmax(0.5 * robot::kMaxGap + robot::kFingerDepth, robot::kPalmHalfLength)};
   std::vector<Eigen::Vector2d> plumb_xy{plan.X_WT_pregrasp.translation().head<2>()};
-  if (request.X_WT_exit) plumb_xy.push_back(request.X_WT_exit->translation().head<2>());
+  if (request.exit) plumb_xy.push_back(request.exit->X_WT_low.translation().head<2>());
   double above = grasping.approach_height;  // The via pose over the pre-grasp (m).
+  RaiseToClear raise;
   for (int tries = 0; tries < kCarryTries; ++tries) {
     Eigen::Isometry3d X_WT_via = plan.X_WT_pregrasp;
     X_WT_via.translation().z() += above;
@@ -97,7 +120,7 @@ bool PlanLowApproach(const PickRequest& request, MotionChain& approach) {
       approach = std::move(trial);
       return true;
     }
-    above += std::fmax(kCarryAbove - least, kCarryRaise);
+    above = raise.Next(above, least);
   }
   return false;
 }
@@ -107,18 +130,24 @@ bool ApproachAndGrasp(MotionSequencer& run, const PickRequest& request) {
   const robot::GraspPlan& plan = request.grasp;
   const ArmSpeeds& lines = request.speeds;
   // Out of the bin: the first centimetres slowly, the fingers passing what was just released.
-  if (request.X_WT_exit) {
+  if (request.exit) {
     Eigen::Isometry3d X_WT_clear = robot::TcpPose(run.io().CommandedJoints());
     X_WT_clear.translation().z() += kSlowPlacing;
     if (!run.MoveL("retreat", X_WT_clear, lines.slow, lines.slow_acceleration)) return false;
   }
-  MotionChain approach(run.io().CommandedJoints(), MotionChain::Load::kEmptyHanded, lines.empty_joints);
   // Up out of the bin as if still holding: what was just released may still touch a finger, and a
-  // fast pull flings it out of the bin.
-  if (request.X_WT_exit && !approach.Line("retreat", *request.X_WT_exit, lines.transit, lines.transit_acceleration)) {
-    return run.Run(approach);  // Reports the planning failure.
-  }
-  if (!PlanLowApproach(request, approach)) {
+  // fast pull flings it out of the bin. Only as high as the carry came in when the way over to the
+  // object is checked against what the camera saw; else as high as before, and via the plan's lift.
+  const MotionChain start(run.io().CommandedJoints(), MotionChain::Load::kEmptyHanded, lines.empty_joints);
+  MotionChain approach = start;
+  const bool low =
+      (!request.exit || approach.Line("retreat", request.exit->X_WT_low, lines.transit, lines.transit_acceleration)) &&
+      PlanLowApproach(request, approach);
+  if (!low) {
+    approach = start;
+    if (request.exit && !approach.Line("retreat", request.exit->X_WT_high, lines.transit, lines.transit_acceleration)) {
+      return run.Run(approach);  // Reports the planning failure.
+    }
     approach.JointMove("approach", plan.q_lift);
     approach.Line("descend", plan.X_WT_pregrasp, lines.empty_transit, lines.empty_transit_acceleration);
   }
@@ -129,7 +158,7 @@ bool ApproachAndGrasp(MotionSequencer& run, const PickRequest& request) {
     if (phase == "retreat") run.StartFingers(plan.open_gap);
     return true;
   };
-  if (!request.X_WT_exit) run.StartFingers(plan.open_gap);
+  if (!request.exit) run.StartFingers(plan.open_gap);
   return run.Run(approach, fingers) && run.MoveL("reach", plan.X_WT_grasp, lines.reach, lines.reach_acceleration) &&
          run.Grasp("grasp");
 }
@@ -196,7 +225,8 @@ bool PlanTransferVia(const PickRequest& release, const Eigen::Isometry3d& X_WT_l
   const ArmSpeeds& lines = release.speeds;
   if (!transfer.Line("lift", X_WT_lift, lines.transit, lines.transit_acceleration)) return false;
   robot::GraspOptions place_options;
-  // Above the bin at the carry's height, not lower (the walls are the carry's check to clear).
+  // Above the bin at the carry's height (lower only where the arm cannot reach it, down to
+  // min_lift_clearance or to it when lower); the walls are the carry's check to clear.
   place_options.lift_clearance = place_clearance;
   place_options.min_lift_clearance = std::fmin(place_options.min_lift_clearance, place_clearance);
   place_options.place_yaw_step = release.place_yaw_step;
@@ -218,29 +248,59 @@ bool PlanTransferVia(const PickRequest& release, const Eigen::Isometry3d& X_WT_l
 // from kLowestCarry up to below the grasp plan's own lift. False: none found (the caller plans the
 // grasp plan's).
 bool PlanLowTransfer(const PickRequest& release, MotionChain& transfer, robot::PlacePlan& place) {
+  if (!(release.held_radius > 0)) {
+    throw std::invalid_argument(
+        "pick request: what the carry passes over is given but not the held object's reach "
+        "(held_radius " +
+        std::to_string(release.held_radius) + " m, expected > 0)");
+  }
   const robot::GraspPlan& plan = release.grasp;
+  // The held object hangs grasp_height below the TCP; the gripper's palm reaches further out than a small one.
+  const HeldObject held{plan.grasp_height, std::fmax(release.held_radius, robot::kPalmHalfLength)};
   const double grasp_z = plan.X_WT_grasp.translation().z();
   const double bottom_at_grasp_z = grasp_z - plan.grasp_height;
+  // Above the bin never lower than where the slow placing starts, with a few millimetres of lowering to it.
+  const double lowest_above_bin = release.release_clearance + kSlowPlacing + kCarryRaise;
   double clearance = kLowestCarry;  // The held object's bottom above where it stood (m).
+  RaiseToClear raise;
   for (int tries = 0; tries < kCarryTries && grasp_z + clearance < plan.X_WT_lift.translation().z(); ++tries) {
     Eigen::Isometry3d X_WT_lift = plan.X_WT_lift;
     X_WT_lift.translation().z() = std::fmax(grasp_z + clearance, plan.X_WT_pregrasp.translation().z());
     MotionChain trial = transfer;
     robot::PlacePlan trial_place;
-    const double place_clearance = bottom_at_grasp_z + clearance - release.p_W_release.z();
-    if (!PlanTransferVia(release, X_WT_lift, place_clearance, trial, trial_place) || !trial_place.ok) return false;
+    const double place_clearance = std::fmax(bottom_at_grasp_z + clearance - release.p_W_release.z(), lowest_above_bin);
+    if (!PlanTransferVia(release, X_WT_lift, place_clearance, trial, trial_place) || !trial_place.ok ||
+        trial.phase_ends().back().first != "lower") {
+      return false;
+    }
     const std::vector<Eigen::Vector2d> plumb_xy{plan.X_WT_grasp.translation().head<2>(),
                                                 trial_place.X_WT_release.translation().head<2>()};
-    const double least = LeastClearanceOver(trial.trajectory(), 0, trial.trajectory().size(), release.held,
-                                            *release.carry_over, kCarryBeside, plumb_xy);
+    const double least = LeastClearanceOver(trial.trajectory(), 0, trial.trajectory().size(), held, *release.carry_over,
+                                            kCarryBeside, plumb_xy);
     if (least >= kCarryAbove) {
       transfer = std::move(trial);
       place = trial_place;
       return true;
     }
-    clearance += std::fmax(kCarryAbove - least, kCarryRaise);
+    clearance = raise.Next(clearance, least);
   }
   return false;
+}
+
+// `place`'s pose above the bin, raised to where a carry that sees nothing comes in (the held object's
+// bottom lift_clearance above the bin's floor), or in 2 cm steps as high below that as the arm reaches
+// there (as robot::PlanPlacement): the way out of the bin for motions not checked against the scene.
+Eigen::Isometry3d HighAbove(const robot::PlacePlan& place, const PickRequest& release) {
+  const robot::GraspOptions defaults;
+  for (double clearance = defaults.lift_clearance; clearance >= defaults.min_lift_clearance - 1e-9; clearance -= 0.02) {
+    Eigen::Isometry3d X_WT = place.X_WT_above;
+    X_WT.translation().z() = release.p_W_release.z() + clearance + release.grasp.grasp_height;
+    if (X_WT.translation().z() <= place.X_WT_above.translation().z()) break;
+    if (robot::SelectNearest(robot::SolveTcpIk(X_WT, place.q_above[5]), place.q_above, defaults.selection)) {
+      return X_WT;
+    }
+  }
+  return place.X_WT_above;
 }
 
 // Lift, carry and lower as one chain, as low as what the carry passes over allows (when the request
@@ -275,10 +335,10 @@ ChainHooks TransferWatch(MotionSequencer& run, const PickHooks& hooks, PickRepor
 
 }  // namespace
 
-bool GoHome(MotionSequencer& run, const std::optional<Eigen::Isometry3d>& X_WT_exit, const robot::Joints& q_home,
+bool GoHome(MotionSequencer& run, const std::optional<BinExit>& exit, const robot::Joints& q_home,
             const ArmSpeeds& lines) {
   MotionChain home(run.io().CommandedJoints(), MotionChain::Load::kEmptyHanded, lines.empty_joints);
-  if (X_WT_exit && !home.Line("retreat", *X_WT_exit, lines.transit, lines.transit_acceleration)) return run.Run(home);
+  if (exit && !home.Line("retreat", exit->X_WT_high, lines.transit, lines.transit_acceleration)) return run.Run(home);
   home.JointMove("home", q_home);
   return run.Run(home);
 }
@@ -313,7 +373,7 @@ PickReport PickAndPlace(MotionSequencer& run, const PickRequest& request, const 
   if (!place.ok) return PutBack(run, release, report);
   if (!LetGo(run, release, place.X_WT_release, release_gap, hooks)) return Fail(run, request, report);
   report.reached_bin = true;
-  report.X_WT_exit = place.X_WT_above;
+  report.exit = BinExit{place.X_WT_above, HighAbove(place, release)};
   report.result = held_above_bin ? AttemptResult::kReleased : AttemptResult::kDropped;
   return report;
 }

@@ -16,7 +16,6 @@
 
 #include <Eigen/Core>
 
-#include "cell/arm_view.h"
 #include "cell/carry_clearance.h"
 #include "cell/cell_layout.h"
 #include "cell/motion_sequencer.h"
@@ -24,6 +23,16 @@
 #include "robot/grasp_planner.h"
 
 namespace sortcell::cell {
+
+/// Where an attempt left the arm in a bin: the poses straight up out of it.
+struct BinExit {
+  /// As high as the carry came in: what the camera saw under the next motion is checked from there.
+  Eigen::Isometry3d X_WT_low = Eigen::Isometry3d::Identity();
+  /// As high as a carry that sees nothing comes in (the held object's bottom
+  /// robot::GraspOptions::lift_clearance above the bin's floor, lower where the arm cannot reach that
+  /// high): the way out for a motion that is not checked (home, the approach via the grasp plan's lift).
+  Eigen::Isometry3d X_WT_high = Eigen::Isometry3d::Identity();
+};
 
 struct PickRequest {
   robot::GraspPlan grasp;                                 ///< A plan with status kOk.
@@ -33,18 +42,18 @@ struct PickRequest {
   double release_clearance =
       robot::GraspOptions().release_clearance;    ///< Object bottom above the floor at the release (m).
   robot::Joints q_home = CellLayout().q_observe;  ///< Where the arm goes after a miss or a failure.
-  /// Where the last attempt left the arm: it first goes straight up to here (out of a bin); empty:
-  /// the arm is free to move (at home).
-  std::optional<Eigen::Isometry3d> X_WT_exit;
+  /// Where the last attempt left the arm: it first goes straight up out of the bin; empty: the arm is
+  /// free to move (at home).
+  std::optional<BinExit> exit;
   ArmSpeeds speeds = CellLayout().speeds;
   /// What the open fingers pass over on the way to the object, as the camera saw it (the object too):
   /// they come over to it no higher than these need. Empty: via the grasp plan's lift.
   std::optional<CarryObstacles> approach_over;
-  /// What the carry passes over, as the camera saw it, and the held object's reach (its below_tcp is
-  /// the grasp's height): the lift, the carry and the way down into the bin go no higher than these
-  /// need (from robot::GraspOptions' min_lift_clearance up). Empty: as high as the grasp plan's lift.
+  /// What the carry passes over, as the camera saw it: the lift, the carry and the way down into the
+  /// bin go no higher than these need (tried from 0.10 m up). Empty: as high as the grasp plan's lift.
   std::optional<CarryObstacles> carry_over;
-  HeldObject held;
+  /// How far the held object reaches across from the TCP's axis (m); needed (> 0) with carry_over.
+  double held_radius = 0;
 };
 
 /// Called at the sequence's milestones, for callers that measure (the scripted pick's slip); the
@@ -59,8 +68,8 @@ struct PickHooks {
   std::function<bool(const robot::Joints& q)> out_of_view;
   std::function<void()> left_view;
   /// After the fingers closed on the object, before the lift: sets where in the bin to let go (the
-  /// request's p_W_release, place_yaw_* and release_clearance), for a caller that looks into the bin
-  /// first. Without it the request's are used.
+  /// request's p_W_release, place_yaw_* and release_clearance) and what the carry passes over
+  /// (carry_over), for a caller that looks into the bin first. Without it the request's are used.
   std::function<void(PickRequest& release)> choose_release;
 };
 
@@ -78,7 +87,7 @@ struct PickReport {
   /// The phase in which the hold came near slipping and the fingers squeezed harder; empty: never.
   std::string squeezed_harder_in;
   /// Where the arm is to leave to first (straight up out of the bin); empty when it ended at home.
-  std::optional<Eigen::Isometry3d> X_WT_exit;
+  std::optional<BinExit> exit;
 };
 
 /// Runs one attempt. A motion that cannot be planned on the way lets go of whatever is held and
@@ -87,8 +96,8 @@ struct PickReport {
 /// (kSimDiverged).
 PickReport PickAndPlace(MotionSequencer& run, const PickRequest& request, const PickHooks& hooks = {});
 
-/// From where an attempt left the arm: straight up to `X_WT_exit` (if any), then home, one motion.
-bool GoHome(MotionSequencer& run, const std::optional<Eigen::Isometry3d>& X_WT_exit, const robot::Joints& q_home,
+/// From where an attempt left the arm: straight up to `exit`'s high pose (if any), then home, one motion.
+bool GoHome(MotionSequencer& run, const std::optional<BinExit>& exit, const robot::Joints& q_home,
             const ArmSpeeds& lines);
 
 }  // namespace sortcell::cell

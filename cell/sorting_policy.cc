@@ -93,7 +93,7 @@ BinRelease SortingPolicy::ChooseRelease(const Detection& seen, int filled, doubl
 }
 
 AttemptReport SortingPolicy::Attempt(const std::vector<Detection>& detections, int index, int attempt,
-                                     const robot::GraspPlan& plan, const std::optional<Eigen::Isometry3d>& X_WT_exit,
+                                     const robot::GraspPlan& plan, const std::optional<BinExit>& exit,
                                      std::optional<Observation>& next_view) {
   const Detection& seen = detections[index];
   AttemptReport report;
@@ -106,11 +106,11 @@ AttemptReport SortingPolicy::Attempt(const std::vector<Detection>& detections, i
   PickRequest request;
   request.grasp = plan;
   request.q_home = layout_.q_observe;
-  request.X_WT_exit = X_WT_exit;
+  request.exit = exit;
   request.speeds = layout_.speeds;
   PickHooks hooks;
   const HeldObject held{plan.grasp_height, HeldReach(seen)};
-  request.held = held;
+  request.held_radius = held.radius;
   request.approach_over = PassedOver(detections, -1, layout_, bins_);
   hooks.out_of_view = [&](const robot::Joints& q) { return !view_.ArmInView(q, held); };
   hooks.left_view = [&] { next_view = Observe(held); };
@@ -143,8 +143,8 @@ PolicyResult SortingPolicy::Run() {
   PolicyResult result;
   const double start = io_.Now();
   robot::PickMemory memory(options_.pick);
-  std::optional<Observation> during_carry;     // The view captured during the last carry.
-  std::optional<Eigen::Isometry3d> X_WT_exit;  // Where the arm is to leave to first (out of a bin).
+  std::optional<Observation> during_carry;  // The view captured during the last carry.
+  std::optional<BinExit> exit;              // Where the arm is to leave to first (out of a bin).
   while (!motions_.faulted()) {
     if (io_.Now() - start >= options_.time_limit_s) {
       result.status = EpisodeStatus::kTimeLimit;
@@ -160,8 +160,8 @@ PolicyResult SortingPolicy::Run() {
       during_carry.reset();
     } else {
       // The arm may hide the view: home first.
-      if (X_WT_exit && !GoHome(motions_, X_WT_exit, layout_.q_observe, layout_.speeds)) break;
-      X_WT_exit.reset();
+      if (exit && !GoHome(motions_, exit, layout_.q_observe, layout_.speeds)) break;
+      exit.reset();
       observation = Observe();
     }
     ++result.frames;
@@ -172,8 +172,8 @@ PolicyResult SortingPolicy::Run() {
     const Detection& seen = observation.detections[chosen];
     const int attempt = memory.RecordAttempt(seen.footprint.centre_xy);
     ++result.attempts;
-    const AttemptReport report = Attempt(observation.detections, chosen, attempt, choice.plan, X_WT_exit, during_carry);
-    X_WT_exit = report.pick.X_WT_exit;
+    const AttemptReport report = Attempt(observation.detections, chosen, attempt, choice.plan, exit, during_carry);
+    exit = report.pick.exit;
     const AttemptResult r = report.pick.result;
     // Only a release into the bin leaves the view captured during the carry as it was.
     if (r != AttemptResult::kReleased) during_carry.reset();
@@ -183,7 +183,7 @@ PolicyResult SortingPolicy::Run() {
     if (r == AttemptResult::kSimDiverged) break;
   }
   // Home at the end, out of the bin the last object went into.
-  if (!motions_.faulted() && X_WT_exit) GoHome(motions_, X_WT_exit, layout_.q_observe, layout_.speeds);
+  if (!motions_.faulted() && exit) GoHome(motions_, exit, layout_.q_observe, layout_.speeds);
   if (motions_.faulted()) result.status = EpisodeStatus::kSimDiverged;
   return result;
 }

@@ -95,7 +95,7 @@ class SortingPolicy {
   // Captures and observes; `held`: what the arm holds if it is carrying something.
   Observation Observe(const std::optional<HeldObject>& held = std::nullopt);
   AttemptReport Attempt(const std::vector<Detection>& detections, int index, int attempt, const robot::GraspPlan& plan,
-                        const std::optional<Eigen::Isometry3d>& X_WT_exit, std::optional<Observation>& next_view);
+                        const std::optional<BinExit>& exit, std::optional<Observation>& next_view);
 
   CellIo& io_;
   const CellLayout& layout_;

@@ -181,7 +181,7 @@ cell::AttemptResult PickIntoBin(cell::MotionSequencer& motions, const robot::Gra
   request.speeds = layout.speeds;
   const cell::PickReport report = cell::PickAndPlace(motions, request, hooks);
   detail = report.detail;
-  if (report.X_WT_exit && !cell::GoHome(motions, report.X_WT_exit, layout.q_observe, layout.speeds)) {
+  if (report.exit && !cell::GoHome(motions, report.exit, layout.q_observe, layout.speeds)) {
     detail = motions.failure();
     return motions.faulted() ? cell::AttemptResult::kSimDiverged : cell::AttemptResult::kMotionFailed;
   }

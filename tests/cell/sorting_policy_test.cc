@@ -280,28 +280,48 @@ double TcpZAfter(const SortRun& run, const std::string& phase) {
   return std::nan("");
 }
 
+// The TCP's height where the run's last motion of `phase` left the arm; NaN if none.
+double TcpZAfterLast(const SortRun& run, const std::string& phase) {
+  for (size_t i = run.motions.size(); i-- > 0;) {
+    if (run.motions[i] == phase) return robot::TcpPose(run.motion_ends[i]).translation().z();
+  }
+  return std::nan("");
+}
+
 TEST(SortingPolicy, LiftsOnlyAsHighAsWhatTheCarryPassesOverNeeds) {
   PolicyOptions options;
   options.max_attempts = 1;
+  // (The fake cell records the lift's end in the middle of its blend into the carry: a few mm low.)
   // The cup alone: lifted only as high as its bin's walls need (0.10 m; it passes 3 cm over them), not
   // the 0.30 m a lift that sees nothing would need.
   const CellLayout layout = Layout();
   const robot::GraspOptions grasping;
   const SortRun alone = Sort({kCup}, {true}, options);
   ASSERT_EQ(alone.seen.results, std::vector<AttemptResult>{AttemptResult::kReleased});
-  EXPECT_GE(FirstLift(alone), layout.bin_wall_height + 0.03 - 0.002);  // The lines' ends within a millimetre.
+  EXPECT_GE(FirstLift(alone), layout.bin_wall_height + 0.03 - 0.005);
   EXPECT_LT(FirstLift(alone), 0.20);
   // The open fingers came over to it low too: the approach ended (in its blend into the descent) less
   // than 5 cm above the pre-grasp pose (its via pose 3 cm above it, nothing being in the way), not at
   // the grasp plan's lift.
   EXPECT_LT(TcpZAfter(alone, "approach") - TcpZAfter(alone, "descend"), 0.05);
-  // Something 0.25 m tall stands in the middle of the cup's bin (the camera sees it): the carry comes
-  // over it, so the cup goes high enough for its bottom to pass 3 cm above it.
-  const Cylinder tall{BinSlot(layout, "cup", 4).head<2>(), 0.03, 0.25, 200, 200, 200};
+  // Home at the end goes straight up out of the bin as high as before first (the joint move home is
+  // checked against nothing): the held object's bottom would be 0.30 m over the floor, far above the
+  // 5 cm over the release point where the lowering ended.
+  EXPECT_GT(TcpZAfterLast(alone, "retreat") - TcpZAfterLast(alone, "lower"), 0.15);
+  // Something 0.20 m tall stands in a corner of the cup's bin, clear of the slot the cup goes to (the
+  // camera sees it): the carry comes over the bin, so the cup goes high enough for its bottom to pass
+  // 3 cm above it, still lower than a lift that sees nothing.
+  const Cylinder tall{BinSlot(layout, "cup", 3).head<2>(), 0.03, 0.20, 200, 200, 200};
   const SortRun over_tall = Sort({kCup, tall}, {true}, options);
   ASSERT_EQ(over_tall.seen.results, std::vector<AttemptResult>{AttemptResult::kReleased});
-  EXPECT_GT(FirstLift(over_tall), 0.25 + 0.02);
-  EXPECT_LE(FirstLift(over_tall), grasping.lift_clearance + 0.002);
+  EXPECT_GT(FirstLift(over_tall), 0.20 + 0.02);
+  EXPECT_LT(FirstLift(over_tall), grasping.lift_clearance - 0.005);
+  // 0.28 m tall: a carry 3 cm over it would have to go higher than a lift that sees nothing, so the cup
+  // goes as high as that lift, as before.
+  const Cylinder taller{BinSlot(layout, "cup", 3).head<2>(), 0.03, 0.28, 200, 200, 200};
+  const SortRun over_taller = Sort({kCup, taller}, {true}, options);
+  ASSERT_EQ(over_taller.seen.results, std::vector<AttemptResult>{AttemptResult::kReleased});
+  EXPECT_NEAR(FirstLift(over_taller), grasping.lift_clearance, 0.01);
 }
 
 TEST(SortingPolicy, AFaultOfTheCellEndsTheEpisode) {
