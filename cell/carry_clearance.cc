@@ -8,29 +8,30 @@
 
 namespace sortcell::cell {
 
-double LeastClearanceOver(const robot::JointTrajectory& trajectory, int first, int last, const HeldObject& held,
-                          const CarryObstacles& obstacles, double beside,
+double LeastClearanceOver(const robot::JointTrajectory& trajectory, int first, int last,
+                          const std::vector<HeldObject>& parts, const CarryObstacles& obstacles, double beside,
                           const std::vector<Eigen::Vector2d>& plumb_xy) {
   if (first < 0 || last > trajectory.size() || first > last) {
     throw std::invalid_argument("carry clearance: samples " + std::to_string(first) + " to " + std::to_string(last) +
                                 " are not in a trajectory of " + std::to_string(trajectory.size()));
   }
-  const double reach = held.radius + beside;
   double least = std::numeric_limits<double>::infinity();
   for (int k = first; k < last; ++k) {
     const Eigen::Isometry3d X_WT = robot::TcpPose(trajectory.q[k]);
     const Eigen::Vector2d p_xy = X_WT.translation().head<2>();
     const auto on = [&p_xy](const Eigen::Vector2d& p) { return (p_xy - p).norm() <= kOnPlumbLine; };
     if (std::any_of(plumb_xy.begin(), plumb_xy.end(), on)) continue;
-    const Eigen::Vector3d p_W_bottom = X_WT * Eigen::Vector3d(0, 0, held.below_tcp);  // Along z_T (down).
-    const Eigen::Vector2d xy = p_W_bottom.head<2>();
-    const double bottom_z = p_W_bottom.z();
-    for (const auto& disc : obstacles.discs) {
-      if ((xy - disc.centre).norm() < disc.radius + reach) least = std::min(least, bottom_z - disc.top_z);
-    }
-    for (const auto& box : obstacles.boxes) {
-      const Eigen::Vector2d nearest = xy.cwiseMax(box.min_xy).cwiseMin(box.max_xy);
-      if ((xy - nearest).norm() < reach) least = std::min(least, bottom_z - box.top_z);
+    for (const HeldObject& part : parts) {
+      const Eigen::Vector3d p_W_lowest = X_WT * Eigen::Vector3d(0, 0, part.below_tcp);  // Along z_T (down).
+      const Eigen::Vector2d xy = p_W_lowest.head<2>();
+      const double reach = part.radius + beside;
+      for (const auto& disc : obstacles.discs) {
+        if ((xy - disc.centre).norm() < disc.radius + reach) least = std::min(least, p_W_lowest.z() - disc.top_z);
+      }
+      for (const auto& box : obstacles.boxes) {
+        const Eigen::Vector2d nearest = xy.cwiseMax(box.min_xy).cwiseMin(box.max_xy);
+        if ((xy - nearest).norm() < reach) least = std::min(least, p_W_lowest.z() - box.top_z);
+      }
     }
   }
   return least;

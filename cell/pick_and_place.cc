@@ -33,6 +33,13 @@ constexpr double kLowestCarry = 0.10;
 constexpr int kCarryTries = 8;
 constexpr double kCarryRaise = 0.005;
 
+// The gripper as the clearance check sees it from above: the finger tips as far out as the fully open
+// fingers' stems reach, and the palm, high above them but wider.
+std::vector<HeldObject> GripperParts() {
+  return {{robot::kFingerTipBeyondTcp, 0.5 * robot::kMaxGap + robot::kFingerDepth},
+          {-robot::kPalmBeforeTcp, robot::kPalmHalfLength}};
+}
+
 // The next height to try after one whose path passed `least` (m) over what it came over, where
 // kCarryAbove is wanted: as much higher as that needs if the least clearance rises with the height as
 // it did from the try before (the path changes with the heights at its ends, so a raise of the ends
@@ -96,9 +103,7 @@ bool PlanLowApproach(const PickRequest& request, MotionChain& approach) {
   const robot::GraspPlan& plan = request.grasp;
   const ArmSpeeds& lines = request.speeds;
   const robot::GraspOptions grasping;
-  // The finger tips, as far out as the open fingers' stems or the palm reach.
-  const HeldObject open_fingers{robot::kFingerTipBeyondTcp,
-                                std::fmax(0.5 * robot::kMaxGap + robot::kFingerDepth, robot::kPalmHalfLength)};
+  const std::vector<HeldObject> gripper = GripperParts();
   std::vector<Eigen::Vector2d> plumb_xy{plan.X_WT_pregrasp.translation().head<2>()};
   if (request.exit) plumb_xy.push_back(request.exit->X_WT_low.translation().head<2>());
   double above = grasping.approach_height;  // The via pose over the pre-grasp (m).
@@ -114,7 +119,7 @@ bool PlanLowApproach(const PickRequest& request, MotionChain& approach) {
         !trial.Line("descend", plan.X_WT_pregrasp, lines.empty_transit, lines.empty_transit_acceleration)) {
       return false;
     }
-    const double least = LeastClearanceOver(trial.trajectory(), 0, trial.trajectory().size(), open_fingers,
+    const double least = LeastClearanceOver(trial.trajectory(), 0, trial.trajectory().size(), gripper,
                                             *request.approach_over, kCarryBeside, plumb_xy);
     if (least >= kCarryAbove) {
       approach = std::move(trial);
@@ -255,8 +260,8 @@ bool PlanLowTransfer(const PickRequest& release, MotionChain& transfer, robot::P
         std::to_string(release.held_radius) + " m, expected > 0)");
   }
   const robot::GraspPlan& plan = release.grasp;
-  // The held object hangs grasp_height below the TCP; the gripper's palm reaches further out than a small one.
-  const HeldObject held{plan.grasp_height, std::fmax(release.held_radius, robot::kPalmHalfLength)};
+  std::vector<HeldObject> hanging = GripperParts();  // From the TCP: the gripper and what it holds.
+  hanging.push_back({plan.grasp_height, release.held_radius});
   const double grasp_z = plan.X_WT_grasp.translation().z();
   const double bottom_at_grasp_z = grasp_z - plan.grasp_height;
   // Above the bin never lower than where the slow placing starts, with a few millimetres of lowering to it.
@@ -275,8 +280,8 @@ bool PlanLowTransfer(const PickRequest& release, MotionChain& transfer, robot::P
     }
     const std::vector<Eigen::Vector2d> plumb_xy{plan.X_WT_grasp.translation().head<2>(),
                                                 trial_place.X_WT_release.translation().head<2>()};
-    const double least = LeastClearanceOver(trial.trajectory(), 0, trial.trajectory().size(), held, *release.carry_over,
-                                            kCarryBeside, plumb_xy);
+    const double least = LeastClearanceOver(trial.trajectory(), 0, trial.trajectory().size(), hanging,
+                                            *release.carry_over, kCarryBeside, plumb_xy);
     if (least >= kCarryAbove) {
       transfer = std::move(trial);
       place = trial_place;
