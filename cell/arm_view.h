@@ -23,7 +23,7 @@ namespace sortcell::cell {
 
 /// An object between the fingers, as the robot knows it: a capsule from the TCP down.
 struct HeldObject {
-  double below_tcp = 0;  ///< How far it reaches below the TCP (its grasp height) (m).
+  double below_tcp = 0;  ///< How far it reaches below the TCP (its grasp height; negative: above it) (m).
   double radius = 0;     ///< Its horizontal reach from the TCP's axis (m).
 };
 

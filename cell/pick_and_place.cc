@@ -294,14 +294,19 @@ bool PlanLowTransfer(const PickRequest& release, MotionChain& transfer, robot::P
 
 // `place`'s pose above the bin, raised to where a carry that sees nothing comes in (the held object's
 // bottom lift_clearance above the bin's floor), or in 2 cm steps as high below that as the arm reaches
-// there (as robot::PlanPlacement): the way out of the bin for motions not checked against the scene.
+// there in a straight line (as robot::PlanPlacement's way down): the way out of the bin for motions not
+// checked against the scene.
 Eigen::Isometry3d HighAbove(const robot::PlacePlan& place, const PickRequest& release) {
   const robot::GraspOptions defaults;
   for (double clearance = defaults.lift_clearance; clearance >= defaults.min_lift_clearance - 1e-9; clearance -= 0.02) {
     Eigen::Isometry3d X_WT = place.X_WT_above;
     X_WT.translation().z() = release.p_W_release.z() + clearance + release.grasp.grasp_height;
     if (X_WT.translation().z() <= place.X_WT_above.translation().z()) break;
-    if (robot::SelectNearest(robot::SolveTcpIk(X_WT, place.q_above[5]), place.q_above, defaults.selection)) {
+    // The line up from above the bin must plan, its end not near a straight elbow (as PlanPlacement's).
+    const robot::CartesianPlan up = robot::PlanCartesianLine(place.q_above, X_WT, robot::kMovelSpeed,
+                                                             robot::kMovelAcceleration, 0.002, defaults.selection);
+    if (up.status == robot::CartesianPlanStatus::kOk && !up.trajectory.q.empty() &&
+        std::abs(up.trajectory.q.back()[2]) >= defaults.min_elbow_bend) {
       return X_WT;
     }
   }
@@ -369,10 +374,11 @@ PickReport PickAndPlace(MotionSequencer& run, const PickRequest& request, const 
   bool held_above_bin = false;
   if (!run.Run(transfer, TransferWatch(run, hooks, report, held_above_bin))) {
     if (run.faulted() || !run.stopped()) return Fail(run, request, report);
-    // Lost during the lift: let go of nothing and go home.
-    report.result = run.Gripper("open", robot::kMaxGap) && run.MoveJ("home", request.q_home)
-                        ? AttemptResult::kDropped
-                        : AttemptResult::kSimDiverged;
+    // Lost during the lift: let go of nothing and go home, straight up to the grasp plan's lift first
+    // (a low lift ends among the neighbours, and the joint move home is checked against nothing).
+    const bool home = run.Gripper("open", robot::kMaxGap) && (Home(run, release, release.grasp.X_WT_lift) ||
+                                                              (!run.faulted() && run.MoveJ("home", request.q_home)));
+    report.result = home ? AttemptResult::kDropped : AttemptResult::kSimDiverged;
     return report;
   }
   if (!place.ok) return PutBack(run, release, report);

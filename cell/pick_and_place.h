@@ -94,6 +94,8 @@ struct PickReport {
 /// goes home (kMotionFailed); a missed grasp or a drop goes home too; a bin that cannot be reached
 /// sends the object back to where it was grasped (kPutBack); a fault of the cell ends it at once
 /// (kSimDiverged).
+/// @throws std::invalid_argument if the request says what the carry passes over (carry_over) but not
+/// the held object's reach (held_radius <= 0).
 PickReport PickAndPlace(MotionSequencer& run, const PickRequest& request, const PickHooks& hooks = {});
 
 /// From where an attempt left the arm: straight up to `exit`'s high pose (if any), then home, one motion.

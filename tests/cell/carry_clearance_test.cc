@@ -41,8 +41,8 @@ TEST(CarryClearance, EachPartByItsOwnLowestPointAndReach) {
   const Eigen::Vector3d p_WT = robot::TcpPose(t.q[0]).translation();
   CarryObstacles over;
   over.discs.push_back({p_WT.head<2>() + Eigen::Vector2d(0.09, 0), 0.01, 0.20});  // 9 cm out: 8 cm to its edge.
-  // A held object 4 cm across does not come over it (4 + 2 < 8 cm); a palm 8.8 cm across, 8 cm above the
-  // TCP, does.
+  // A held object reaching 4 cm from the axis does not come over it (4 + 2 < 8 cm); a palm reaching
+  // 8.8 cm out, 8 cm above the TCP, does.
   const HeldObject held{0.10, 0.04}, palm{-0.08, 0.088};
   EXPECT_EQ(LeastClearanceOver(t, 0, 1, {held}, over, 0.02), std::numeric_limits<double>::infinity());
   EXPECT_NEAR(LeastClearanceOver(t, 0, 1, {held, palm}, over, 0.02), p_WT.z() + 0.08 - 0.20, 1e-12);
