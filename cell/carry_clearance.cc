@@ -1,23 +1,17 @@
 #include "cell/carry_clearance.h"
 
 #include <algorithm>
-#include <stdexcept>
-#include <string>
 
 #include "robot/ur5_kinematics.h"
 
 namespace sortcell::cell {
 
-double LeastClearanceOver(const robot::JointTrajectory& trajectory, int first, int last,
-                          const std::vector<HeldObject>& parts, const CarryObstacles& obstacles, double beside,
+double LeastClearanceOver(const robot::JointTrajectory& trajectory, const std::vector<HeldObject>& parts,
+                          const CarryObstacles& obstacles, double beside,
                           const std::vector<Eigen::Vector2d>& plumb_xy) {
-  if (first < 0 || last > trajectory.size() || first > last) {
-    throw std::invalid_argument("carry clearance: samples " + std::to_string(first) + " to " + std::to_string(last) +
-                                " are not in a trajectory of " + std::to_string(trajectory.size()));
-  }
   double least = std::numeric_limits<double>::infinity();
-  for (int k = first; k < last; ++k) {
-    const Eigen::Isometry3d X_WT = robot::TcpPose(trajectory.q[k]);
+  for (const robot::Joints& q : trajectory.q) {
+    const Eigen::Isometry3d X_WT = robot::TcpPose(q);
     const Eigen::Vector2d p_xy = X_WT.translation().head<2>();
     const auto on = [&p_xy](const Eigen::Vector2d& p) { return (p_xy - p).norm() <= kOnPlumbLine; };
     if (std::any_of(plumb_xy.begin(), plumb_xy.end(), on)) continue;

@@ -32,15 +32,14 @@ struct CarryObstacles {
 };
 
 /// The least height (m) of what hangs from the TCP above the top of an obstacle it comes over, along
-/// samples [first, last) of `trajectory`. Each of `parts` (the held object, the fingers, the palm) has
+/// every sample of `trajectory`. Each of `parts` (the held object, the fingers, the palm) has
 /// its lowest point below_tcp along the TCP's z (which points down; negative: above the TCP) and
 /// comes over an obstacle where its reach (its radius, widened by `beside`) overlaps the obstacle's
 /// outline. Samples with the TCP within kOnPlumbLine of one of `plumb_xy` are not counted: straight up
 /// from where an object stood or down to where it is let go, nothing is passed over (what stands beside
 /// it is the grasp's and the bin slot's to keep clear). +infinity when nothing comes over anything.
-/// @throws std::invalid_argument if the samples are not in the trajectory.
-double LeastClearanceOver(const robot::JointTrajectory& trajectory, int first, int last,
-                          const std::vector<HeldObject>& parts, const CarryObstacles& obstacles, double beside,
+double LeastClearanceOver(const robot::JointTrajectory& trajectory, const std::vector<HeldObject>& parts,
+                          const CarryObstacles& obstacles, double beside,
                           const std::vector<Eigen::Vector2d>& plumb_xy = {});
 
 /// How far (m) from a plumb line's xy a sample still counts as on it: the lines' IK to well under a

@@ -119,8 +119,8 @@ bool PlanLowApproach(const PickRequest& request, MotionChain& approach) {
         !trial.Line("descend", plan.X_WT_pregrasp, lines.empty_transit, lines.empty_transit_acceleration)) {
       return false;
     }
-    const double least = LeastClearanceOver(trial.trajectory(), 0, trial.trajectory().size(), gripper,
-                                            *request.approach_over, kCarryBeside, plumb_xy);
+    const double least =
+        LeastClearanceOver(trial.trajectory(), gripper, *request.approach_over, kCarryBeside, plumb_xy);
     if (least >= kCarryAbove) {
       approach = std::move(trial);
       return true;
@@ -280,8 +280,7 @@ bool PlanLowTransfer(const PickRequest& release, MotionChain& transfer, robot::P
     }
     const std::vector<Eigen::Vector2d> plumb_xy{plan.X_WT_grasp.translation().head<2>(),
                                                 trial_place.X_WT_release.translation().head<2>()};
-    const double least = LeastClearanceOver(trial.trajectory(), 0, trial.trajectory().size(), hanging,
-                                            *release.carry_over, kCarryBeside, plumb_xy);
+    const double least = LeastClearanceOver(trial.trajectory(), hanging, *release.carry_over, kCarryBeside, plumb_xy);
     if (least >= kCarryAbove) {
       transfer = std::move(trial);
       place = trial_place;
@@ -293,12 +292,12 @@ bool PlanLowTransfer(const PickRequest& release, MotionChain& transfer, robot::P
 }
 
 // `place`'s pose above the bin, raised to where a carry that sees nothing comes in (the held object's
-// bottom lift_clearance above the bin's floor), or in 2 cm steps as high below that as the arm reaches
-// there in a straight line (as robot::PlanPlacement's way down): the way out of the bin for motions not
-// checked against the scene.
+// bottom lift_clearance above the bin's floor), or to the highest of robot::LiftClearancesHighestFirst below
+// that which the arm reaches there in a straight line (as robot::PlanPlacement's way down): the way out of
+// the bin for motions not checked against the scene.
 Eigen::Isometry3d HighAbove(const robot::PlacePlan& place, const PickRequest& release) {
   const robot::GraspOptions defaults;
-  for (double clearance = defaults.lift_clearance; clearance >= defaults.min_lift_clearance - 1e-9; clearance -= 0.02) {
+  for (const double clearance : robot::LiftClearancesHighestFirst(defaults)) {
     Eigen::Isometry3d X_WT = place.X_WT_above;
     X_WT.translation().z() = release.p_W_release.z() + clearance + release.grasp.grasp_height;
     if (X_WT.translation().z() <= place.X_WT_above.translation().z()) break;

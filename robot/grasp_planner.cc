@@ -17,6 +17,14 @@ constexpr EnumNames<GraspStatus, 4> kGraspStatusNames{{{GraspStatus::kOk, "ok"},
 
 const char* ToString(GraspStatus status) { return NameOf(kGraspStatusNames, status); }
 
+std::vector<double> LiftClearancesHighestFirst(const GraspOptions& options) {
+  std::vector<double> clearances;
+  for (double clearance = options.lift_clearance; clearance >= options.min_lift_clearance - 1e-9; clearance -= 0.02) {
+    clearances.push_back(clearance);
+  }
+  return clearances;
+}
+
 Eigen::Isometry3d TopDownTcpPose(const Eigen::Vector3d& p_W, double pinch_yaw) {
   // z_T down, y_T (the closing direction) along the pinch direction, x_T = y_T x z_T.
   const Eigen::Vector3d z(0, 0, -1), y(std::cos(pinch_yaw), std::sin(pinch_yaw), 0);
@@ -55,7 +63,7 @@ GraspPlan PlanTopDownGrasp(const ObjectFootprint& object, const Joints& q_curren
 
   // The highest reachable lift; of the two yaws, the one nearer to the current joints.
   double best_distance = 0;
-  for (double clearance = options.lift_clearance; clearance >= options.min_lift_clearance - 1e-9; clearance -= 0.02) {
+  for (const double clearance : LiftClearancesHighestFirst(options)) {
     const double z_lift = std::fmax(object.base_z + clearance + plan.grasp_height, z_pregrasp);
     for (const double yaw : {object.pinch_yaw, object.pinch_yaw + M_PI}) {
       const Eigen::Isometry3d lift = TopDownTcpPose(p + Eigen::Vector3d(0, 0, z_lift), yaw);
@@ -109,7 +117,7 @@ std::vector<TopDownCandidate> TopDownPosesByDistance(const Eigen::Vector3d& p_W,
 PlacePlan PlanPlacement(const Eigen::Vector3d& p_W_floor, double grasp_height, const Joints& q_current,
                         const GraspOptions& options) {
   PlacePlan first;  // The nearest reachable placement, taken when no line down is smooth.
-  for (double clearance = options.lift_clearance; clearance >= options.min_lift_clearance - 1e-9; clearance -= 0.02) {
+  for (const double clearance : LiftClearancesHighestFirst(options)) {
     const Eigen::Vector3d p_above = p_W_floor + Eigen::Vector3d(0, 0, clearance + grasp_height);
     for (const TopDownCandidate& c : TopDownPosesByDistance(p_above, q_current, options.selection,
                                                             options.place_yaw_step, options.place_yaw_offset)) {

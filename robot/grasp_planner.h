@@ -8,6 +8,7 @@
 #include <Eigen/Geometry>
 
 #include <cmath>
+#include <vector>
 
 #include "robot/ik_selection.h"
 #include "robot/ur5_kinematics.h"
@@ -73,6 +74,10 @@ struct GraspPlan {
 /// its middle, raised until the palm clears its top and to options.min_tcp_z (as far as the pads still
 /// overlap it and it is still full width), the finger tips above the table.
 double GraspHeight(const ObjectFootprint& object, const GraspOptions& options);
+
+/// The clearances (m) a lift or a placement tries, highest first: options.lift_clearance, then 2 cm lower
+/// each, down to options.min_lift_clearance (where the arm cannot reach higher, as lowered as needed).
+std::vector<double> LiftClearancesHighestFirst(const GraspOptions& options);
 
 /// A top-down TCP pose (z_T pointing down) at p_W whose fingers close along `pinch_yaw`.
 Eigen::Isometry3d TopDownTcpPose(const Eigen::Vector3d& p_W, double pinch_yaw);
