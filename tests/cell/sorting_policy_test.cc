@@ -324,6 +324,52 @@ TEST(SortingPolicy, LiftsOnlyAsHighAsWhatTheCarryPassesOverNeeds) {
   EXPECT_NEAR(FirstLift(over_taller), grasping.lift_clearance, 0.01);
 }
 
+// The TCP's height where each of the run's motions of `phase` left the arm, in order.
+std::vector<double> TcpZsAfter(const SortRun& run, const std::string& phase) {
+  std::vector<double> z;
+  for (size_t i = 0; i < run.motions.size(); ++i) {
+    if (run.motions[i] == phase) z.push_back(robot::TcpPose(run.motion_ends[i]).translation().z());
+  }
+  return z;
+}
+
+TEST(SortingPolicy, AnApproachThatCannotPassLowLeavesTheBinAndComesOverAsHighAsBefore) {
+  // The scripted cell does not take the cup away: it is sorted twice, the second approach coming from
+  // the cup's bin. Nothing in the way: the arm leaves the bin only as high as the carry came in and the
+  // approach ends less than 5 cm above the pre-grasp (where the descent starts).
+  PolicyOptions options;
+  options.max_attempts = 2;
+  const SortRun open = Sort({kCup}, {true, true}, options);
+  ASSERT_EQ(open.seen.results, (std::vector<AttemptResult>{AttemptResult::kReleased, AttemptResult::kReleased}));
+  ASSERT_EQ(TcpZsAfter(open, "approach").size(), 2u);
+  EXPECT_LT(TcpZsAfter(open, "approach")[1] - TcpZsAfter(open, "descend")[1], 0.05);
+  // A 0.38 m column stands in the bin's next slot (the camera sees it; the cup goes to the slot beside
+  // it): no way from the bin below the grasp plan's lift passes 3 cm over it, so the arm comes over to
+  // the cup via the plan's lift, as before the carry and approach were checked against the scene.
+  const CellLayout layout = Layout();
+  const Cylinder column{BinSlot(layout, "cup", 1).head<2>(), 0.03, 0.38, 200, 200, 200};
+  const SortRun blocked = Sort({kCup, column}, {true, true}, options);
+  ASSERT_EQ(blocked.seen.results, (std::vector<AttemptResult>{AttemptResult::kReleased, AttemptResult::kReleased}));
+  const std::vector<double> approach = TcpZsAfter(blocked, "approach"), descend = TcpZsAfter(blocked, "descend");
+  ASSERT_EQ(approach.size(), 2u);
+  ASSERT_EQ(descend.size(), 2u);
+  EXPECT_GT(approach[1] - descend[1], 0.15) << "the approach came over at the grasp plan's lift";
+}
+
+TEST(SortingPolicy, ACarryIntoARaisedBinArrivesNoLowerThanWhereTheSlowPlacingStarts) {
+  // The cup's bin stands on a 5 cm shelf with 2 cm walls: a carry as low as what it passes over would
+  // arrive below where the lowering ends (5 cm over the release point, where the slow placing starts).
+  // It arrives above it, so the lowering goes down.
+  CellLayout layout = Layout();
+  layout.bins["cup"].p_W_floor.z() = 0.05;
+  layout.bin_wall_height = 0.02;
+  PolicyOptions options;
+  options.max_attempts = 1;
+  const SortRun run = Sort({kCup}, {true}, options, layout);
+  ASSERT_EQ(run.seen.results, std::vector<AttemptResult>{AttemptResult::kReleased});
+  EXPECT_GT(TcpZAfter(run, "carry"), TcpZAfter(run, "lower"));
+}
+
 TEST(SortingPolicy, AFaultOfTheCellEndsTheEpisode) {
   const SortRun run = Sort({kBottle}, {true}, {}, Layout(), Model(), false, "carry");
   ASSERT_EQ(run.seen.results.size(), 1u);
