@@ -1,6 +1,7 @@
 #include "cell/bin_fill.h"
 
 #include <algorithm>
+#include <optional>
 #include <cmath>
 #include <stdexcept>
 
@@ -116,7 +117,8 @@ double BinFill::HighestIn(const std::string& bin) const {
   return height.empty() ? 0.0 : *std::max_element(height.begin(), height.end());
 }
 
-BinRelease BinFill::Upright(const std::string& bin, int filled, double radius, double min_clearance) const {
+BinRelease BinFill::Upright(const std::string& bin, int filled, double radius, double min_clearance,
+                            const std::function<bool(const BinRelease&)>& placeable) const {
   MapOf(bin);  // Names an unknown bin first.
   if (layout_.bin_slots.empty()) throw std::invalid_argument("cell layout: no bin slots");
   const int n = static_cast<int>(layout_.bin_slots.size());
@@ -128,19 +130,27 @@ BinRelease BinFill::Upright(const std::string& bin, int filled, double radius, d
     release.yaw_step = layout_.place_yaw_step;
     return release;
   };
-  // Heights within a centimetre count as the same: the layout's order decides between them.
-  BinRelease best = at_slot(filled % n);
-  double best_height = HighestUnder(bin, best);
-  for (int i = 1; i < n; ++i) {
-    const BinRelease candidate = at_slot((filled + i) % n);
-    const double height = HighestUnder(bin, candidate);
-    if (height < best_height - 0.01) {
-      best = candidate;
-      best_height = height;
+  // The least under it; heights within a centimetre count as the same: the layout's order decides
+  // between them. Among the placeable slots if there are any.
+  const auto least_under = [&](bool only_placeable) {
+    std::optional<BinRelease> best;
+    double best_height = 0;
+    for (int i = 0; i < n; ++i) {
+      BinRelease candidate = at_slot((filled + i) % n);
+      const double height = HighestUnder(bin, candidate);
+      candidate.clearance = std::max(min_clearance, height + kAboveContents);
+      if (only_placeable && !placeable(candidate)) continue;
+      if (!best || height < best_height - 0.01) {
+        best = candidate;
+        best_height = height;
+      }
     }
+    return best;
+  };
+  if (placeable) {
+    if (const std::optional<BinRelease> best = least_under(true)) return *best;
   }
-  best.clearance = std::max(min_clearance, best_height + kAboveContents);
-  return best;
+  return *least_under(false);
 }
 
 BinRelease BinFill::Lying(const std::string& bin) const {

@@ -5,6 +5,7 @@
 /// in the bin is pressed into it and flung out; the release point and height come from this instead.
 
 #include <map>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -46,10 +47,12 @@ class BinFill {
 
   /// An upright object standing on a disc of `radius` (m): the layout's bin slot with the least
   /// under that disc (the layout's order from `filled` where they tie), let go `min_clearance` above
-  /// the floor or that far above what is already there.
+  /// the floor or that far above what is already there. Only slots `placeable` accepts are chosen
+  /// (the arm can let this object go there); when it accepts none, the choice among all of them.
   /// @throws std::invalid_argument naming the bin if the layout has none of that name, or if the
   ///         layout has no bin slots.
-  BinRelease Upright(const std::string& bin, int filled, double radius, double min_clearance) const;
+  BinRelease Upright(const std::string& bin, int filled, double radius, double min_clearance,
+                     const std::function<bool(const BinRelease&)>& placeable = {}) const;
   /// A lying object, longer than the bin is wide: along a diagonal, in the middle, let go above the
   /// walls (lowered in, its ends would catch on them) and above what is on the diagonals. Until a
   /// capture sees it, it may be anywhere in the bin.

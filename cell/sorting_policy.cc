@@ -84,12 +84,23 @@ void SortingPolicy::LookIntoBins(const HeldObject& held) {
   unseen_release_.reset();
 }
 
-BinRelease SortingPolicy::ChooseRelease(const Detection& seen, int filled, double min_clearance) const {
+BinRelease SortingPolicy::ChooseRelease(const Detection& seen, int filled, double min_clearance,
+                                        double grasp_height) const {
   if (seen.lying) return bins_.Lying(seen.bin);
   // Upright it stands on its footprint: across the pinch and, for a prism, its other pair of sides.
   const double across = seen.turned ? seen.turned->width : seen.footprint.width;
   const double radius = 0.5 * std::hypot(seen.footprint.width, seen.round ? 0.0 : across);
-  return bins_.Upright(seen.bin, filled, radius, min_clearance);
+  // A slot the arm can let this object go in, held this high above its bottom, as robot::PlanPlacement
+  // plans it (a tall bottle held high cannot be let down into a bin's far corner: the layout's check
+  // holds for objects held 5 cm above their bottom).
+  const auto placeable = [&](const BinRelease& release) {
+    robot::GraspOptions options;
+    options.place_yaw_step = release.yaw_step;
+    options.place_yaw_offset = release.yaw_offset;
+    options.release_clearance = release.clearance;
+    return robot::PlanPlacement(release.p_W_floor, grasp_height, layout_.q_observe, options).ok;
+  };
+  return bins_.Upright(seen.bin, filled, radius, min_clearance, placeable);
 }
 
 AttemptReport SortingPolicy::Attempt(const std::vector<Detection>& detections, int index, int attempt,
@@ -119,7 +130,7 @@ AttemptReport SortingPolicy::Attempt(const std::vector<Detection>& detections, i
   hooks.choose_release = [&](PickRequest& placing) {
     // The last release into this bin has not been seen yet: look, while the fingers squeeze.
     if (unseen_release_ == seen.bin) LookIntoBins(held);
-    report.release = ChooseRelease(seen, filled, placing.release_clearance);
+    report.release = ChooseRelease(seen, filled, placing.release_clearance, placing.grasp.grasp_height);
     placing.p_W_release = report.release.p_W_floor;
     placing.place_yaw_step = report.release.yaw_step;
     placing.place_yaw_offset = report.release.yaw_offset;

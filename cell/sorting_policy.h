@@ -110,8 +110,9 @@ class SortingPolicy {
   std::map<std::string, int> released_into_;  // Objects released into each bin so far.
   // Captures only to see into the bins (no perception of the table).
   void LookIntoBins(const HeldObject& held);
-  // Where in its bin to let go of `seen`, from what is there.
-  BinRelease ChooseRelease(const Detection& seen, int filled, double min_clearance) const;
+  // Where in its bin to let go of `seen`, held grasp_height above its bottom, from what is there and
+  // where the arm can let it go.
+  BinRelease ChooseRelease(const Detection& seen, int filled, double min_clearance, double grasp_height) const;
 
   BinFill bins_;                               // What is in the bins already.
   std::optional<std::string> unseen_release_;  // The bin of the last release, until a capture saw it.

@@ -50,6 +50,20 @@ TEST(BinFill, EmptyBinsTakeTheSlotsInOrderAndLyingObjectsAboveTheWalls) {
   EXPECT_DOUBLE_EQ(lying.yaw_step, M_PI / 2);
 }
 
+TEST(BinFill, OnlyASlotTheArmCanLetGoInIsChosenWhileThereIsOne) {
+  const CellLayout layout = OneBin();
+  const BinFill bins(layout);
+  // The slot in the layout's order (slot 1) out of the arm's reach: the next in the order that is not.
+  const Eigen::Vector3d out_of_reach = BinSlot(layout, "others", 1);
+  const auto placeable = [&](const BinRelease& r) { return !r.p_W_floor.isApprox(out_of_reach); };
+  EXPECT_TRUE(bins.Upright("others", 1, 0.035, 0.03, placeable).p_W_floor.isApprox(BinSlot(layout, "others", 2)));
+  EXPECT_TRUE(bins.Upright("others", 0, 0.035, 0.03, placeable).p_W_floor.isApprox(BinSlot(layout, "others", 0)));
+  // None is: the choice as if every slot were (the pick then puts the object back).
+  const auto none = [](const BinRelease&) { return false; };
+  EXPECT_TRUE(bins.Upright("others", 1, 0.035, 0.03, none).p_W_floor.isApprox(out_of_reach));
+  EXPECT_DOUBLE_EQ(bins.Upright("others", 1, 0.035, 0.03, none).clearance, 0.03);
+}
+
 TEST(BinFill, AnObjectSeenInTheBinIsNotLetGoOnto) {
   const CellLayout layout = OneBin();
   BinFill bins(layout);

@@ -241,6 +241,28 @@ TEST(SortingPolicy, ReleasesIntoThePredictedBinSlotBySlot) {
   }
 }
 
+TEST(SortingPolicy, ATallObjectGoesToASlotTheArmCanLetItGoIn) {
+  // The bottle's bin where the default cell has its cup bin: its (+x, +y) corner slot, the second in
+  // the layout's order, is out of reach for an object held as high above its bottom as the bottle
+  // (the arm reaches down there only for objects held up to 0.10 m above their bottom). The scripted
+  // cell does not take the bottle away, so it is sorted twice: the second time into another slot,
+  // not put back.
+  CellLayout layout = Layout();
+  layout.bins["bottle"] = Bin{Eigen::Vector3d(0.45, 0.50, 0.008), Eigen::Vector2d(0.13, 0.13)};
+  layout.bins["cup"] = Bin{Eigen::Vector3d(0.15, 0.50, 0.008), Eigen::Vector2d(0.13, 0.13)};
+  PolicyOptions options;
+  options.max_attempts = 2;
+  const SortRun run = Sort({kBottle}, {true, true}, options, layout);
+  ASSERT_EQ(run.seen.results, (std::vector<AttemptResult>{AttemptResult::kReleased, AttemptResult::kReleased}));
+  std::vector<Eigen::Vector2d> released;
+  for (size_t i = 0; i < run.motions.size(); ++i) {
+    if (run.motions[i] == "lower") released.push_back(robot::TcpPose(run.motion_ends[i]).translation().head<2>());
+  }
+  ASSERT_EQ(released.size(), 2u);
+  EXPECT_LT((released[0] - BinSlot(layout, "bottle", 0).head<2>()).norm(), 1e-4);
+  EXPECT_GT((released[1] - BinSlot(layout, "bottle", 1).head<2>()).norm(), 0.05);
+}
+
 TEST(SortingPolicy, AnObjectSeenInTheBinIsNotLetGoOnto) {
   // Something already stands in the bottle bin's first slot (the camera sees into the bins): the
   // release goes to the next slot. The scripted cell never shows what was released, so the camera
