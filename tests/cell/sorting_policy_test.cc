@@ -224,16 +224,22 @@ TEST(SortingPolicy, SortsAnObjectItHoldsAndMovesThroughThePhases) {
                                                             "carry", "lower", "place", "release"}));
 }
 
+// Where the run let go of each object: the TCP's xy at the end of each lowering into a bin.
+std::vector<Eigen::Vector2d> ReleasePoints(const SortRun& run) {
+  std::vector<Eigen::Vector2d> released;
+  for (size_t i = 0; i < run.motions.size(); ++i) {
+    if (run.motions[i] == "lower") released.push_back(robot::TcpPose(run.motion_ends[i]).translation().head<2>());
+  }
+  return released;
+}
+
 TEST(SortingPolicy, ReleasesIntoThePredictedBinSlotBySlot) {
   // The scripted cell does not take the object away: it is seen and sorted again, into the next slot.
   PolicyOptions options;
   options.max_attempts = 2;
   const SortRun run = Sort({kBottle}, {true, true}, options);
   ASSERT_EQ(run.seen.results, (std::vector<AttemptResult>{AttemptResult::kReleased, AttemptResult::kReleased}));
-  std::vector<Eigen::Vector2d> released;
-  for (size_t i = 0; i < run.motions.size(); ++i) {
-    if (run.motions[i] == "lower") released.push_back(robot::TcpPose(run.motion_ends[i]).translation().head<2>());
-  }
+  const std::vector<Eigen::Vector2d> released = ReleasePoints(run);
   const CellLayout layout = Layout();
   ASSERT_EQ(released.size(), 2u);
   for (int k = 0; k < 2; ++k) {
@@ -254,10 +260,7 @@ TEST(SortingPolicy, ATallObjectGoesToASlotTheArmCanLetItGoIn) {
   options.max_attempts = 2;
   const SortRun run = Sort({kBottle}, {true, true}, options, layout);
   ASSERT_EQ(run.seen.results, (std::vector<AttemptResult>{AttemptResult::kReleased, AttemptResult::kReleased}));
-  std::vector<Eigen::Vector2d> released;
-  for (size_t i = 0; i < run.motions.size(); ++i) {
-    if (run.motions[i] == "lower") released.push_back(robot::TcpPose(run.motion_ends[i]).translation().head<2>());
-  }
+  const std::vector<Eigen::Vector2d> released = ReleasePoints(run);
   ASSERT_EQ(released.size(), 2u);
   EXPECT_LT((released[0] - BinSlot(layout, "bottle", 0).head<2>()).norm(), 1e-4);
   EXPECT_GT((released[1] - BinSlot(layout, "bottle", 1).head<2>()).norm(), 0.05);
@@ -274,10 +277,7 @@ TEST(SortingPolicy, AnObjectSeenInTheBinIsNotLetGoOnto) {
   options.max_attempts = 2;
   const SortRun run = Sort({kBottle, in_bin}, {true, true}, options);
   ASSERT_EQ(run.seen.results, (std::vector<AttemptResult>{AttemptResult::kReleased, AttemptResult::kReleased}));
-  std::vector<Eigen::Vector2d> released;
-  for (size_t i = 0; i < run.motions.size(); ++i) {
-    if (run.motions[i] == "lower") released.push_back(robot::TcpPose(run.motion_ends[i]).translation().head<2>());
-  }
+  const std::vector<Eigen::Vector2d> released = ReleasePoints(run);
   ASSERT_EQ(released.size(), 2u);
   EXPECT_LT((released[0] - BinSlot(layout, "bottle", 1).head<2>()).norm(), 1e-4);
   EXPECT_LT((released[1] - BinSlot(layout, "bottle", 1).head<2>()).norm(), 1e-4);
