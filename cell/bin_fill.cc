@@ -1,8 +1,8 @@
 #include "cell/bin_fill.h"
 
 #include <algorithm>
-#include <optional>
 #include <cmath>
+#include <optional>
 #include <stdexcept>
 
 namespace sortcell::cell {
@@ -139,11 +139,10 @@ BinRelease BinFill::Upright(const std::string& bin, int filled, double radius, d
       BinRelease candidate = at_slot((filled + i) % n);
       const double height = HighestUnder(bin, candidate);
       candidate.clearance = std::max(min_clearance, height + kAboveContents);
+      if (best && height >= best_height - 0.01) continue;  // It would not be chosen: not planned for.
       if (only_placeable && !placeable(candidate)) continue;
-      if (!best || height < best_height - 0.01) {
-        best = candidate;
-        best_height = height;
-      }
+      best = candidate;
+      best_height = height;
     }
     return best;
   };

@@ -4,8 +4,8 @@
 /// of its view) and the robot remembers what it released where. A held object lowered onto one already
 /// in the bin is pressed into it and flung out; the release point and height come from this instead.
 
-#include <map>
 #include <functional>
+#include <map>
 #include <string>
 #include <vector>
 

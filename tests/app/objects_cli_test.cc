@@ -23,6 +23,7 @@ TEST(ObjectsCheckCli, ABadObjectIsOneLineNamingItsFileAndExit2) {
   const std::string set = SetWith(dir.path(), user.urdf.string());
   ::setenv("SORTCELL_IMPORT_CACHE", (dir.path() / "cache").c_str(), 1);
   const auto r = RunSortcell("objects check " + set + " --out " + (dir.path() / "out").string());
+  ::unsetenv("SORTCELL_IMPORT_CACHE");  // Later tests of this process (a shard) must not see a removed folder.
   EXPECT_EQ(r.exit_code, 2) << r.err;
   EXPECT_NE(r.err.find("object set '" + set + "'"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find(user.urdf.string()), std::string::npos) << r.err;

@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <vector>
+
 #include "error_of.h"
 
 namespace sortcell::cell {
@@ -62,6 +64,26 @@ TEST(BinFill, OnlyASlotTheArmCanLetGoInIsChosenWhileThereIsOne) {
   const auto none = [](const BinRelease&) { return false; };
   EXPECT_TRUE(bins.Upright("others", 1, 0.035, 0.03, none).p_W_floor.isApprox(out_of_reach));
   EXPECT_DOUBLE_EQ(bins.Upright("others", 1, 0.035, 0.03, none).clearance, 0.03);
+}
+
+TEST(BinFill, ThePlaceabilityIsJudgedAtTheClearanceAboveWhatIsInTheSlot) {
+  const CellLayout layout = OneBin();
+  BinFill bins(layout);
+  perception::Cloud cloud;
+  AddBlock(cloud, {0.36, -0.57, 0.05}, {0.40, -0.53, 0.078});  // 7 cm high in slot 0's corner.
+  bins.See(cloud, kIdentity, {});
+  // Only slot 0 is placeable: it is chosen, let go above the box, and judged at that clearance.
+  std::vector<double> judged_at;
+  const auto only_slot0 = [&](const BinRelease& r) {
+    const bool slot0 = r.p_W_floor.isApprox(BinSlot(layout, "others", 0));
+    if (slot0) judged_at.push_back(r.clearance);
+    return slot0;
+  };
+  const BinRelease release = bins.Upright("others", 0, 0.035, 0.03, only_slot0);
+  EXPECT_TRUE(release.p_W_floor.isApprox(BinSlot(layout, "others", 0)));
+  EXPECT_GT(release.clearance, 0.06);
+  ASSERT_EQ(judged_at.size(), 1u);
+  EXPECT_DOUBLE_EQ(judged_at[0], release.clearance);
 }
 
 TEST(BinFill, AnObjectSeenInTheBinIsNotLetGoOnto) {

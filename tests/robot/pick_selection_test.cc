@@ -1,9 +1,6 @@
 #include <gtest/gtest.h>
 
-#include <vector>
-
 #include "error_of.h"
-#include "robot/grasp_planner.h"
 #include "robot/gripper_geometry.h"
 #include "robot/pick_selection.h"
 
@@ -202,23 +199,6 @@ TEST(PickSelection, TheGraspRisesAboveATallerNeighbour) {
   EXPECT_NEAR(GraspHeight(bottle, options), 0.15, 1e-12);
   bottle.full_width_top_z = 0.10;  // Below the grasp without neighbours: that one.
   EXPECT_NEAR(GraspHeight(bottle, options), free.grasp_height, 1e-12);
-}
-
-// The lift and the placement try their clearances from the highest down in 2 cm steps, the lowest
-// allowed included, and one only where the lowest is the highest.
-TEST(GraspPlanner, LiftClearancesGoDownFromTheHighestInTwoCentimetreSteps) {
-  GraspOptions options;
-  options.lift_clearance = 0.30;
-  options.min_lift_clearance = 0.15;
-  const std::vector<double> clearances = LiftClearancesHighestFirst(options);
-  ASSERT_EQ(clearances.size(), 8u);
-  for (size_t k = 0; k < clearances.size(); ++k) EXPECT_NEAR(clearances[k], 0.30 - 0.02 * k, 1e-12);
-  options.min_lift_clearance = 0.16;
-  EXPECT_EQ(LiftClearancesHighestFirst(options).size(), 8u) << "the lowest allowed is tried";
-  options.lift_clearance = options.min_lift_clearance = 0.123;
-  EXPECT_EQ(LiftClearancesHighestFirst(options), std::vector<double>{0.123});
-  options.min_lift_clearance = 0.2;
-  EXPECT_TRUE(LiftClearancesHighestFirst(options).empty());
 }
 
 }  // namespace
