@@ -131,25 +131,24 @@ BinRelease BinFill::Upright(const std::string& bin, int filled, double radius, d
     return release;
   };
   // The least under it; heights within a centimetre count as the same: the layout's order decides
-  // between them. Among the placeable slots if there are any.
-  const auto least_under = [&](bool only_placeable) {
-    std::optional<BinRelease> best;
-    double best_height = 0;
-    for (int i = 0; i < n; ++i) {
-      BinRelease candidate = at_slot((filled + i) % n);
-      const double height = HighestUnder(bin, candidate);
-      candidate.clearance = std::max(min_clearance, height + kAboveContents);
-      if (best && height >= best_height - 0.01) continue;  // It would not be chosen: not planned for.
-      if (only_placeable && !placeable(candidate)) continue;
+  // between them. Among the placeable slots if there are any (planned only for a slot that would be
+  // chosen), else among all.
+  std::optional<BinRelease> best, best_placeable;
+  double best_height = 0, best_placeable_height = 0;
+  for (int i = 0; i < n; ++i) {
+    BinRelease candidate = at_slot((filled + i) % n);
+    const double height = HighestUnder(bin, candidate);
+    candidate.clearance = std::max(min_clearance, height + kAboveContents);
+    if (placeable && (!best_placeable || height < best_placeable_height - 0.01) && placeable(candidate)) {
+      best_placeable = candidate;
+      best_placeable_height = height;
+    }
+    if (!best || height < best_height - 0.01) {
       best = candidate;
       best_height = height;
     }
-    return best;
-  };
-  if (placeable) {
-    if (const std::optional<BinRelease> best = least_under(true)) return *best;
   }
-  return *least_under(false);
+  return best_placeable ? *best_placeable : *best;
 }
 
 BinRelease BinFill::Lying(const std::string& bin) const {
